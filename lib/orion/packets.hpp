@@ -6,8 +6,11 @@
 #include <type_traits>
 
 #include "orion/codec.hpp"
+#include "orion/packets_config.hpp"
 #include "orion/packets_control.hpp"
+#include "orion/packets_external.hpp"
 #include "orion/packets_telemetry.hpp"
+#include "orion/packets_version.hpp"
 
 namespace gimbal::orion {
 
@@ -22,7 +25,8 @@ struct Concat<PacketList<A...>, PacketList<B...>, Rest...> {
     using type = typename Concat<PacketList<A..., B...>, Rest...>::type;
 };
 
-using AllPackets = Concat<TelemetryPackets, ControlPackets>::type;
+using AllPackets = Concat<TelemetryPackets, ControlPackets, ConfigPackets, VersionPackets,
+                          ExternalPackets>::type;
 
 // Calls f.template operator()<P>() for the packet type P whose id is `id`.
 // Returns false when no packet with a layout has that id.
