@@ -170,4 +170,40 @@ constexpr std::span<const EnumName<RangeSource>> enum_names(RangeSource) {
     return range_source_names;
 }
 
+enum class RetractCmd : std::uint8_t {  // OrionRetractCmd_t
+    disable = 0,
+    deploy = 1,
+    retract = 2,
+};
+constexpr std::array<EnumName<RetractCmd>, 3> retract_cmd_names{{
+    {RetractCmd::disable, "disable"},
+    {RetractCmd::deploy, "deploy"},
+    {RetractCmd::retract, "retract"},
+}};
+constexpr std::span<const EnumName<RetractCmd>> enum_names(RetractCmd) {
+    return retract_cmd_names;
+}
+
+enum class UserDataPort : std::uint8_t {  // UserDataPort_t
+    ethernet = 0,
+    primary = 2,
+    fp2 = 3,
+    fp1 = 4,
+    fp3 = 8,
+    fp4 = 9,
+    current = 255,
+};
+constexpr std::array<EnumName<UserDataPort>, 7> user_data_port_names{{
+    {UserDataPort::ethernet, "ethernet"},
+    {UserDataPort::primary, "primary"},
+    {UserDataPort::fp2, "fp2"},
+    {UserDataPort::fp1, "fp1"},
+    {UserDataPort::fp3, "fp3"},
+    {UserDataPort::fp4, "fp4"},
+    {UserDataPort::current, "current"},
+}};
+constexpr std::span<const EnumName<UserDataPort>> enum_names(UserDataPort) {
+    return user_data_port_names;
+}
+
 }  // namespace gimbal::orion
