@@ -4,8 +4,10 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <span>
 #include <string>
 #include <type_traits>
@@ -17,6 +19,10 @@
 namespace gimbal::orion {
 
 inline constexpr std::size_t max_data_length = 140;
+
+// A packet's fields() expands into one call per field; forcing these small helpers inline
+// turns a decode into straight-line code (GCC otherwise gives up on large packets).
+#define GIMBAL_CODEC_INLINE [[gnu::always_inline]] inline
 
 // Data bytes of one packet, without sync, id, length or checksum.
 struct Payload {
@@ -42,6 +48,55 @@ struct Decoded {
     explicit operator bool() const { return ok; }
 };
 
+// --- conversions without undefined behaviour ----------------------------------------------
+
+// A double converted to an integer type: NaN is 0, out-of-range values saturate, the rest
+// truncate toward zero (a plain cast is undefined behaviour out of range).
+template <class T>
+T saturate_cast(double x) {
+    static_assert(std::is_integral_v<T>);
+    using L = std::numeric_limits<T>;
+    if (x != x) return T{0};
+    // 2^digits is the first value above max(); it and min() are exact doubles.
+    constexpr double above_max = 2.0 * static_cast<double>(std::uint64_t{1} << (L::digits - 1));
+    if (x >= above_max) return L::max();
+    if constexpr (std::is_signed_v<T>) {
+        if (x <= static_cast<double>(L::min())) return L::min();
+    } else {
+        if (x <= -1.0) return T{0};
+    }
+    return static_cast<T>(x);
+}
+
+// The raw wire integer (two's complement in 64 bits) of a value already rounded and saturated
+// to [Enc::min_raw, Enc::max_raw]. The 8-byte limits are not exact doubles, hence the care.
+template <int B, bool S>
+std::uint64_t raw_from_rounded(double r) {
+    using Enc = IntEnc<B, S>;
+    if constexpr (S) {
+        if (r >= Enc::max_raw) return Enc::max_int;
+        if (r <= Enc::min_raw) return std::uint64_t{0} - Enc::max_int;
+        return static_cast<std::uint64_t>(static_cast<std::int64_t>(r));
+    } else {
+        if (r >= Enc::max_raw) return Enc::max_int;
+        return static_cast<std::uint64_t>(r);
+    }
+}
+
+// A member of type T from a decoded value: floating members get the scale, integers and enums
+// saturate instead of overflowing.
+template <class T>
+GIMBAL_CODEC_INLINE T member_from_double(double v, Scale s) {
+    if constexpr (std::is_enum_v<T>)
+        return static_cast<T>(saturate_cast<std::underlying_type_t<T>>(v));
+    else if constexpr (std::is_same_v<T, bool>)
+        return v != 0.0;
+    else if constexpr (std::is_integral_v<T>)
+        return saturate_cast<T>(v);
+    else  // from_raw_double(), with the division by a constant as a multiplication
+        return static_cast<T>(v * (1.0 / s.factor) + s.offset);
+}
+
 // --- encoder ---------------------------------------------------------------------------
 
 class Encoder {
@@ -52,22 +107,35 @@ class Encoder {
     bool ok() const { return !overflow_; }
 
     template <class T, class E>
-    void field(std::string_view, const T& member, E enc, Scale s = {}, Unit = Unit::none) {
-        if constexpr (is_std_array<T> || is_std_vector<T>) {
+    GIMBAL_CODEC_INLINE void field(std::string_view, const T& member, E enc, Scale s = {},
+                                   Unit = Unit::none) {
+        if constexpr (is_std_array<T>) {
             for (const auto& item : member) put(item, enc, s);
+        } else if constexpr (is_std_vector<T>) {
+            // Only as many items as the count field said (it saturates at its maximum).
+            const std::size_t n = std::min(member.size(), take_repeat_limit());
+            for (std::size_t i = 0; i < n; ++i) put(member[i], enc, s);
         } else {
             put(member, enc, s);
         }
     }
 
+    // Values wider than the bitfield saturate at its maximum, like every other field.
     template <class T>
     void bits(std::string_view, const T& member, int width) {
+        const std::uint64_t max = (std::uint64_t{1} << width) - 1;
         std::uint64_t raw;
-        if constexpr (std::is_enum_v<T>)
-            raw = static_cast<std::uint64_t>(member);
-        else
-            raw = static_cast<std::uint64_t>(member);
-        put_bits(raw, width);
+        if constexpr (std::is_enum_v<T>) {
+            const auto u = static_cast<std::underlying_type_t<T>>(member);
+            raw = u < 0 ? 0 : static_cast<std::uint64_t>(u);
+        } else if constexpr (std::is_same_v<T, bool>) {
+            raw = member ? 1 : 0;
+        } else if constexpr (std::is_floating_point_v<T>) {
+            raw = saturate_cast<std::uint64_t>(std::round(static_cast<double>(member)));
+        } else {
+            raw = member < 0 ? 0 : static_cast<std::uint64_t>(member);
+        }
+        put_bits(std::min(raw, max), width);
     }
 
     template <class E>
@@ -83,12 +151,14 @@ class Encoder {
     template <class T, class E>
     void count(std::string_view, const std::vector<T>& items, E enc, std::size_t max) {
         if (items.size() > max) overflow_ = true;  // the caller bounds repeats before encoding
-        put(static_cast<std::uint64_t>(std::min(items.size(), max)), enc, Scale{});
+        repeat_limit_ = std::min(items.size(), max);
+        put(static_cast<std::uint64_t>(repeat_limit_), enc, Scale{});
     }
 
     template <class G>
     void group(std::string_view, const std::vector<G>& items) {
-        for (const auto& item : items) const_cast<G&>(item).fields(*this);
+        const std::size_t n = std::min(items.size(), take_repeat_limit());
+        for (std::size_t i = 0; i < n; ++i) const_cast<G&>(items[i]).fields(*this);
     }
 
     void string(std::string_view, const std::string& s, std::size_t max_bytes) {
@@ -114,7 +184,14 @@ class Encoder {
     void optional() {}
 
   private:
-    bool room(std::size_t n) {
+    // The repeat after a count() writes at most that many items; the limit applies once.
+    std::size_t take_repeat_limit() {
+        const std::size_t n = repeat_limit_;
+        repeat_limit_ = static_cast<std::size_t>(-1);
+        return n;
+    }
+
+    GIMBAL_CODEC_INLINE bool room(std::size_t n) {
         if (out_.size + n > max_data_length) {
             overflow_ = true;
             return false;
@@ -123,7 +200,7 @@ class Encoder {
     }
 
     // Bitfields leave a partly filled byte; the next whole-byte field starts on a new byte.
-    void align() { bit_ = 0; }
+    GIMBAL_CODEC_INLINE void align() { bit_ = 0; }
 
     void put_bits(std::uint64_t raw, int width) {
         for (int i = width - 1; i >= 0; --i) {
@@ -138,7 +215,7 @@ class Encoder {
     }
 
     template <class T, int B, bool S>
-    void put(const T& value, IntEnc<B, S>, Scale s) {
+    GIMBAL_CODEC_INLINE void put(const T& value, IntEnc<B, S>, Scale s) {
         using Enc = IntEnc<B, S>;
         align();
         if (!room(Enc::size)) return;
@@ -146,20 +223,18 @@ class Encoder {
         if constexpr (std::is_integral_v<T> && !std::is_same_v<T, bool>) {
             // Exact path for plain integers; still saturate to the field's width.
             if constexpr (std::is_signed_v<T>) {
-                const auto lim = static_cast<std::int64_t>(Enc::max_raw);
-                const std::int64_t v = std::clamp<std::int64_t>(value, S ? -lim : 0, lim);
+                const auto lim = static_cast<std::int64_t>(Enc::max_int);
+                const std::int64_t v =
+                    std::clamp<std::int64_t>(static_cast<std::int64_t>(value), S ? -lim : 0, lim);
                 raw = static_cast<std::uint64_t>(v);
             } else {
                 const auto v = static_cast<std::uint64_t>(value);
-                raw = (B == 8 || v <= static_cast<std::uint64_t>(Enc::max_raw))
-                          ? v
-                          : static_cast<std::uint64_t>(Enc::max_raw);
+                raw = v <= Enc::max_int ? v : Enc::max_int;
             }
             (void)s;
         } else {
             const double r = round_saturate(to_raw_double(value, s), Enc::min_raw, Enc::max_raw);
-            raw = S ? static_cast<std::uint64_t>(static_cast<std::int64_t>(r))
-                    : static_cast<std::uint64_t>(r);
+            raw = raw_from_rounded<B, S>(r);
         }
         store_be(out_.bytes.data() + out_.size, raw, Enc::size);
         out_.size += Enc::size;
@@ -195,6 +270,7 @@ class Encoder {
     Payload& out_;
     int bit_ = 0;
     bool overflow_ = false;
+    std::size_t repeat_limit_ = static_cast<std::size_t>(-1);
 };
 
 // --- decoder ---------------------------------------------------------------------------
@@ -207,7 +283,8 @@ class Decoder {
     const DecodeError& error() const { return error_; }
 
     template <class T, class E>
-    void field(std::string_view key, T& member, E enc, Scale s = {}, Unit = Unit::none) {
+    GIMBAL_CODEC_INLINE void field(std::string_view key, T& member, E enc, Scale s = {},
+                                   Unit = Unit::none) {
         if constexpr (is_std_array<T> || is_std_vector<T>) {
             if (!need(key, E::size * member.size())) return;
             for (auto& item : member) get(item, enc, s);
@@ -255,20 +332,22 @@ class Decoder {
         }
     }
 
+    // Like ProtoGen's stringFromBytes: at most max_bytes - 1 characters, then one byte for the
+    // terminator (consumed even when it is not zero, as the encoder always writes one).
     void string(std::string_view key, std::string& s, std::size_t max_bytes) {
-        bit_ = 0;
         if (!need(key, 1)) return;
+        const std::size_t left = data_.size() - pos_;
+        const std::size_t limit = std::min(max_bytes - 1, left);
         std::size_t n = 0;
-        const std::size_t limit = std::min(max_bytes, data_.size() - pos_);
         while (n < limit && data_[pos_ + n] != 0) ++n;
         s.assign(reinterpret_cast<const char*>(data_.data() + pos_), n);
-        pos_ += (n < limit) ? n + 1 : n;  // consume the terminator when there is one
+        pos_ += (n < left) ? n + 1 : n;  // the data may end without a terminator
     }
 
     void fixed_string(std::string_view key, std::string& s, std::size_t bytes) {
         if (!need(key, bytes)) return;
         const auto* p = reinterpret_cast<const char*>(data_.data() + pos_);
-        s.assign(p, strnlen(p, bytes));
+        s.assign(p, strnlen(p, bytes - 1));  // the last byte is always the terminator
         pos_ += bytes;
     }
 
@@ -277,37 +356,50 @@ class Decoder {
     void optional() { optional_ = true; }
 
   private:
-    bool stopped() const { return failed_ || absent_; }
+    GIMBAL_CODEC_INLINE bool stopped() const { return failed_ || absent_; }
 
-    // Checks that n whole bytes remain. Running out in the optional tail is not an error:
-    // the rest of the fields keep their ICD defaults.
-    bool need(std::string_view key, std::size_t n) {
-        bit_ = 0;
-        if (stopped()) return false;
-        if (pos_ + n <= data_.size()) return true;
+    // A whole-byte field after a bitfield that ended inside a byte starts on the next byte
+    // (the encoder does the same).
+    GIMBAL_CODEC_INLINE void align() {
+        if (bit_ != 0) {
+            bit_ = 0;
+            ++pos_;
+        }
+    }
+
+    // Running out in the optional tail is not an error: the rest of the fields keep their
+    // ICD defaults.
+    void ran_out(std::string_view key) {
         if (optional_) {
             absent_ = true;
         } else {
             failed_ = true;
             error_ = DecodeError{"packet too short", key, pos_, data_.size()};
         }
+    }
+
+    // Checks that n whole bytes remain.
+    GIMBAL_CODEC_INLINE bool need(std::string_view key, std::size_t n) {
+        if (stopped()) return false;
+        align();
+        if (pos_ <= data_.size() && n <= data_.size() - pos_) return true;
+        ran_out(key);
         return false;
     }
 
     bool need_bits(std::string_view key, int width) {
         if (stopped()) return false;
-        const std::size_t bits_left = (data_.size() - pos_) * 8 - static_cast<std::size_t>(bit_);
-        if (pos_ <= data_.size() && bits_left >= static_cast<std::size_t>(width)) return true;
-        const int saved = bit_;
-        need(key, data_.size() + 1);  // records the failure (or the absent optional tail)
-        bit_ = saved;
+        const std::size_t bits_left =
+            pos_ < data_.size() ? (data_.size() - pos_) * 8 - static_cast<std::size_t>(bit_) : 0;
+        if (bits_left >= static_cast<std::size_t>(width)) return true;
+        ran_out(key);
         return false;
     }
 
     std::uint64_t take_bits(int width) {
         std::uint64_t raw = 0;
         for (int i = 0; i < width; ++i) {
-            const unsigned bit = (data_[pos_] >> (7 - bit_)) & 1u;
+            const unsigned bit = (static_cast<unsigned>(data_[pos_]) >> (7 - bit_)) & 1u;
             raw = (raw << 1) | bit;
             if (++bit_ == 8) {
                 bit_ = 0;
@@ -318,19 +410,23 @@ class Decoder {
     }
 
     template <class T, int B, bool S>
-    void get(T& member, IntEnc<B, S>, Scale s) {
+    GIMBAL_CODEC_INLINE void get(T& member, IntEnc<B, S>, Scale s) {
         const std::uint64_t raw = load_be(data_.data() + pos_, B);
         pos_ += B;
-        if constexpr (std::is_integral_v<T> && !std::is_same_v<T, bool>) {
+        if constexpr ((std::is_integral_v<T> && !std::is_same_v<T, bool>) || std::is_enum_v<T>) {
+            // Integers and enums take the raw value exactly (no scale); a narrower member
+            // keeps the low bits, as a C cast would.
+            using I = typename std::conditional_t<std::is_enum_v<T>, std::underlying_type<T>,
+                                                  std::type_identity<T>>::type;
             if constexpr (S)
-                member = static_cast<T>(sign_extend(raw, 8 * B));
+                member = static_cast<T>(static_cast<I>(sign_extend(raw, 8 * B)));
             else
-                member = static_cast<T>(raw);
+                member = static_cast<T>(static_cast<I>(raw));
             (void)s;
         } else {
             const double r =
                 S ? static_cast<double>(sign_extend(raw, 8 * B)) : static_cast<double>(raw);
-            member = from_raw_double<T>(r, s);
+            member = member_from_double<T>(r, s);
         }
     }
 
@@ -338,21 +434,21 @@ class Decoder {
     void get(T& member, SmallFloatEnc<B, Sig>, Scale s) {
         const auto raw = static_cast<std::uint32_t>(load_be(data_.data() + pos_, B));
         pos_ += B;
-        member = from_raw_double<T>(small_to_float(raw, 8 * B, Sig), s);
+        member = member_from_double<T>(small_to_float(raw, 8 * B, Sig), s);
     }
 
     template <class T>
     void get(T& member, F32Enc, Scale s) {
         const auto raw = static_cast<std::uint32_t>(load_be(data_.data() + pos_, 4));
         pos_ += 4;
-        member = from_raw_double<T>(static_cast<double>(std::bit_cast<float>(raw)), s);
+        member = member_from_double<T>(static_cast<double>(std::bit_cast<float>(raw)), s);
     }
 
     template <class T>
     void get(T& member, F64Enc, Scale s) {
         const std::uint64_t raw = load_be(data_.data() + pos_, 8);
         pos_ += 8;
-        member = from_raw_double<T>(std::bit_cast<double>(raw), s);
+        member = member_from_double<T>(std::bit_cast<double>(raw), s);
     }
 
     std::span<const std::uint8_t> data_;

@@ -66,14 +66,17 @@ class Framer {
         const std::uint8_t* base = data.data();
         std::size_t i = 0;
         while (i < n) {
-            const void* hit = std::memchr(base + i, sync0, n - i);
-            if (!hit) {
-                stats_.dropped_bytes += n - i;
-                return n;
+            if (base[i] != sync0) {  // in a clean stream the next frame starts right here
+                const void* hit = std::memchr(base + i, sync0, n - i);
+                if (!hit) {
+                    stats_.dropped_bytes += n - i;
+                    return n;
+                }
+                const auto at =
+                    static_cast<std::size_t>(static_cast<const std::uint8_t*>(hit) - base);
+                stats_.dropped_bytes += at - i;
+                i = at;
             }
-            const auto at = static_cast<std::size_t>(static_cast<const std::uint8_t*>(hit) - base);
-            stats_.dropped_bytes += at - i;
-            i = at;
             if (n - i < 2) return i;
             if (base[i + 1] != sync1) {
                 ++stats_.dropped_bytes;

@@ -255,7 +255,12 @@ class JsonReader {
             fail("bad_request", where + ": must be an integer");
             return false;
         }
-        return in_range(out, lo, hi, where);
+        // Integers are exact in a double: no tolerance, or -1 would pass for a U32.
+        if (out < lo || out > hi) {
+            fail("out_of_range", where + ": must be between " + num(lo) + " and " + num(hi));
+            return false;
+        }
+        return true;
     }
 
     template <class T>

@@ -25,8 +25,8 @@ struct Concat<PacketList<A...>, PacketList<B...>, Rest...> {
     using type = typename Concat<PacketList<A..., B...>, Rest...>::type;
 };
 
-using AllPackets = Concat<TelemetryPackets, ControlPackets, ConfigPackets, VersionPackets,
-                          ExternalPackets>::type;
+using AllPackets =
+    Concat<TelemetryPackets, ControlPackets, ConfigPackets, VersionPackets, ExternalPackets>::type;
 
 // Calls f.template operator()<P>() for the packet type P whose id is `id`.
 // Returns false when no packet with a layout has that id.

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <type_traits>
 
@@ -22,6 +23,10 @@ struct IntEnc {
                : (Bytes == 8 ? 18446744073709551615.0
                              : static_cast<double>((std::uint64_t{1} << (8 * Bytes)) - 1));
     static constexpr double min_raw = Signed ? -max_raw : 0.0;
+    // The same limits as integers (max_raw of an 8-byte field is not exact as a double).
+    static constexpr std::uint64_t max_int =
+        Signed ? (std::uint64_t{1} << (8 * Bytes - 1)) - 1
+               : (Bytes == 8 ? ~std::uint64_t{0} : (std::uint64_t{1} << (8 * Bytes)) - 1);
 };
 
 // F16:X / F24:X: 1 sign bit, (bits-1-Sig) exponent bits, Sig significand bits.
@@ -73,16 +78,28 @@ inline constexpr double rad2deg = 180.0 / pi;
 
 // --- raw byte access ----------------------------------------------------------------------
 
+// n is 1..8 (a compile-time constant after inlining): one load or store, not n byte moves.
 inline std::uint64_t load_be(const std::uint8_t* p, std::size_t n) {
-    std::uint64_t v = 0;
-    for (std::size_t i = 0; i < n; ++i) v = (v << 8) | p[i];
-    return v;
+    if constexpr (std::endian::native == std::endian::little) {
+        std::uint64_t v = 0;
+        std::memcpy(&v, p, n);
+        return __builtin_bswap64(v) >> (64 - 8 * n);
+    } else {
+        std::uint64_t v = 0;
+        for (std::size_t i = 0; i < n; ++i) v = (v << 8) | p[i];
+        return v;
+    }
 }
 
 inline void store_be(std::uint8_t* p, std::uint64_t v, std::size_t n) {
-    for (std::size_t i = n; i-- > 0;) {
-        p[i] = static_cast<std::uint8_t>(v & 0xFF);
-        v >>= 8;
+    if constexpr (std::endian::native == std::endian::little) {
+        const std::uint64_t swapped = __builtin_bswap64(v << (64 - 8 * n));
+        std::memcpy(p, &swapped, n);
+    } else {
+        for (std::size_t i = n; i-- > 0;) {
+            p[i] = static_cast<std::uint8_t>(v & 0xFF);
+            v >>= 8;
+        }
     }
 }
 
@@ -95,20 +112,29 @@ inline std::int64_t sign_extend(std::uint64_t v, int bits) {
 }
 
 // Round half away from zero, then saturate to [lo, hi] (the ICD reference encoder's rule).
+// Same result as std::round, without the libm call it costs on baseline x86-64.
 inline double round_saturate(double x, double lo, double hi) {
-    if (std::isnan(x)) return 0.0;
-    const double r = std::round(x);  // std::round rounds half away from zero
-    if (r >= hi) return hi;
-    if (r <= lo) return lo;
-    return r;
+    if (x != x) return 0.0;  // NaN
+    if (x >= hi) return hi;
+    if (x <= lo) return lo;
+    if (std::fabs(x) >= 4503599627370496.0) return x;  // 2^52 and up: already an integer
+    const double truncated = static_cast<double>(static_cast<std::int64_t>(x));
+    const double fraction = x - truncated;  // exact below 2^52
+    if (fraction >= 0.5) return truncated + 1.0;
+    if (fraction <= -0.5) return truncated - 1.0;
+    return truncated;
 }
 
 // --- F16:X and friends (ProtoGen floatspecial.c) ------------------------------------------
 
-// Encodes v into a float of `total_bits` bits with `sig_bits` significand bits. Values too
-// small for a normal number become zero (ProtoGen has no denormals); too large saturate to
-// the largest finite value; NaN encodes as zero.
+// Encodes v into a float of `total_bits` bits with `sig_bits` significand bits, bit for bit
+// like ProtoGen's float32ToFloat16: the significand is rounded half away from zero but never
+// carries into the exponent; an exponent below -bias underflows to a signed zero (there are
+// no denormals: a biased exponent of 0 is an ordinary number with an implied leading one);
+// too large or infinite saturates to the largest finite value; NaN encodes as zero.
 std::uint32_t float_to_small(double v, int total_bits, int sig_bits);
+// The inverse, like ProtoGen's float16ToFloat32: only a zero magnitude is zero, every other
+// pattern (biased exponent 0 and all-ones included) is (1 + m / 2^sig) * 2^(e - bias).
 double small_to_float(std::uint32_t raw, int total_bits, int sig_bits);
 
 }  // namespace gimbal::orion

@@ -1,0 +1,148 @@
+#include "app.hpp"
+
+#include <chrono>
+#include <csignal>
+
+#include "link/serial_link.hpp"
+#include "link/sim_link.hpp"
+#include "link/tcp_link.hpp"
+#include "logging.hpp"
+#include "notify.hpp"
+#include "session/orion_protocol.hpp"
+#include "sim/orion_sim.hpp"
+
+namespace gimbald {
+
+namespace cfg = gimbal::daemon;
+namespace log = gimbal::log;
+namespace notify = gimbal::notify;
+
+App::App(const cfg::Config& config)
+    : config_(config), signals_(io_, SIGINT, SIGTERM, SIGHUP), watchdog_timer_(io_) {
+    std::vector<GimbalSession*> raw;
+    for (const auto& g : config_.gimbals) {
+        gimbal::session::OrionOptions options;
+        options.stale_after_s = config_.telemetry.stale_after_s;
+        options.auto_ack_stare = config_.stare.auto_ack;
+        options.allow_fire = config_.laser.allow_fire;
+        options.allow_safety_bypass = config_.laser.allow_safety_bypass;
+        auto protocol = std::make_unique<gimbal::session::OrionProtocol>(options);
+        sessions_.push_back(std::make_unique<GimbalSession>(
+            io_, g.name, std::move(protocol), make_link(g), config_.laser.fire_timeout_s,
+            [this](const std::string& gimbal, const gimbal::state::Event& e) {
+                if (server_) server_->publish_event(gimbal, e);
+                if (e.kind == "link") update_status();
+            }));
+        raw.push_back(sessions_.back().get());
+    }
+    CommandServerOptions options;
+    options.bind = config_.command.bind.to_string();
+    options.port = config_.command.port;
+    options.token = config_.command.token;
+    options.max_subscribers = config_.command.max_subscribers;
+    options.allowed = [this](const boost::asio::ip::address& a) {
+        return config_.command.allowed(a);
+    };
+    server_ = std::make_unique<CommandServer>(io_, std::move(options), std::move(raw));
+}
+
+App::~App() = default;
+
+std::unique_ptr<Link> App::make_link(const cfg::GimbalConfig& g) {
+    if (const auto* tcp = std::get_if<cfg::TcpLink>(&g.link)) {
+        TcpLinkOptions o;
+        o.host = tcp->host;
+        o.port = tcp->port;
+        o.connect_timeout_s = tcp->connect_timeout_s;
+        o.reconnect_min_s = tcp->reconnect_min_s;
+        o.reconnect_max_s = tcp->reconnect_max_s;
+        o.silence_timeout_s = tcp->silence_timeout_s;
+        o.discovery.address = tcp->discover_address;
+        o.discovery.port = tcp->discover_port;
+        o.discovery.reply_port = tcp->discover_reply_port;
+        return std::make_unique<TcpLink>(io_, o);
+    }
+    if (const auto* serial = std::get_if<cfg::SerialLink>(&g.link)) {
+        SerialLinkOptions o;
+        o.device = serial->device;
+        o.baud = serial->baud;
+        o.reconnect_min_s = serial->reconnect_min_s;
+        o.reconnect_max_s = serial->reconnect_max_s;
+        return std::make_unique<SerialLink>(io_, o);
+    }
+    gimbal::sim::OrionSimOptions sim;
+    // The model reads no clock: start its GPS time at now so telemetry `utc` is current.
+    sim.gps_time_at_start_s = gimbal::sim::gps_time_from_unix_s(
+        std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count());
+    return std::make_unique<SimLink>(io_, gimbal::sim::make_orion_sim(sim));
+}
+
+void App::on_signal(const boost::system::error_code& ec, int signo) {
+    if (ec) return;
+    if (signo == SIGHUP) {
+        log::info("reopen", "SIGHUP: reopening the log file");
+        log::reopen();
+        signals_.async_wait([this](const boost::system::error_code& e, int s) { on_signal(e, s); });
+        return;
+    }
+    log::info("stop", signo == SIGTERM ? "SIGTERM: stopping" : "SIGINT: stopping",
+              {{"signal", signo == SIGTERM ? "SIGTERM" : "SIGINT"}});
+    shutdown();
+}
+
+void App::shutdown() {
+    if (stopping_) return;
+    stopping_ = true;
+    notify::stopping();
+    // Sessions first: their cease-fire goes out before the links close.
+    for (auto& s : sessions_) s->stop();
+    server_->stop();
+    signals_.cancel();
+    watchdog_timer_.cancel();
+}
+
+void App::update_status() {
+    std::string status;
+    int up = 0;
+    for (const auto& s : sessions_) {
+        status += (status.empty() ? "" : ", ") + s->status();
+        if (s->connected()) ++up;
+    }
+    notify::status(std::to_string(up) + "/" + std::to_string(sessions_.size()) +
+                   " gimbals connected: " + status);
+}
+
+void App::arm_watchdog() {
+    const auto interval = notify::watchdog_interval();
+    if (!interval) return;
+    watchdog_timer_.expires_after(*interval);
+    watchdog_timer_.async_wait([this](const boost::system::error_code& ec) {
+        if (ec || stopping_) return;
+        notify::watchdog();
+        arm_watchdog();
+    });
+}
+
+int App::run() {
+    for (auto& s : sessions_) s->start();
+    server_->start();
+    signals_.async_wait([this](const boost::system::error_code& e, int s) { on_signal(e, s); });
+    const auto local = server_->local_endpoint();
+    nlohmann::json gimbals = nlohmann::json::array();
+    for (const auto& g : config_.gimbals)
+        gimbals.push_back({{"name", g.name},
+                           {"protocol", std::string(cfg::to_string(g.protocol))},
+                           {"link", cfg::describe(g.link)}});
+    log::info("start", "gimbald started",
+              {{"version", GIMBALD_VERSION},
+               {"command", local.address().to_string() + ":" + std::to_string(local.port())},
+               {"gimbals", gimbals}});
+    notify::ready();
+    update_status();
+    arm_watchdog();
+    io_.run();
+    log::info("stop", "gimbald stopped");
+    return 0;
+}
+
+}  // namespace gimbald

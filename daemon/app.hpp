@@ -1,0 +1,42 @@
+// The running daemon: one io_context, a session per configured gimbal, the command server,
+// signals (SIGTERM/SIGINT stop, SIGHUP reopens the log) and systemd notification.
+#pragma once
+
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/signal_set.hpp>
+#include <boost/asio/steady_timer.hpp>
+#include <memory>
+#include <vector>
+
+#include "command_server.hpp"
+#include "config.hpp"
+#include "gimbal_session.hpp"
+
+namespace gimbald {
+
+class App {
+  public:
+    // Builds every session and binds the command socket; throws on a bind failure.
+    explicit App(const gimbal::daemon::Config& config);
+    ~App();
+
+    // Runs until SIGTERM/SIGINT; returns the process exit code.
+    int run();
+
+  private:
+    std::unique_ptr<Link> make_link(const gimbal::daemon::GimbalConfig& g);
+    void on_signal(const boost::system::error_code& ec, int signo);
+    void shutdown();
+    void arm_watchdog();
+    void update_status();
+
+    gimbal::daemon::Config config_;
+    boost::asio::io_context io_;
+    boost::asio::signal_set signals_;
+    boost::asio::steady_timer watchdog_timer_;
+    std::vector<std::unique_ptr<GimbalSession>> sessions_;
+    std::unique_ptr<CommandServer> server_;
+    bool stopping_ = false;
+};
+
+}  // namespace gimbald

@@ -1,0 +1,892 @@
+#include "config.hpp"
+
+#include <fmt/format.h>
+#include <algorithm>
+#include <array>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <map>
+#include <regex>
+#include <set>
+#include <utility>
+
+namespace gimbal::daemon {
+
+namespace {
+
+using nlohmann::json;
+
+// ---- Reading JSON objects with every problem collected -----------------------------------
+
+class Problems {
+  public:
+    explicit Problems(std::vector<Problem>& out) : out_(&out) {}
+    void add(std::string path, std::string message) {
+        out_->push_back({std::move(path), std::move(message)});
+    }
+
+  private:
+    std::vector<Problem>* out_;
+};
+
+struct Range {
+    double min;
+    double max;
+};
+
+struct IntRange {
+    long long min;
+    long long max;
+};
+
+enum class Presence { optional, required };
+
+std::string join_path(std::string_view path, std::string_view key) {
+    return path.empty() ? std::string(key) : fmt::format("{}.{}", path, key);
+}
+
+std::string index_path(std::string_view path, std::size_t index) {
+    return fmt::format("{}[{}]", path, index);
+}
+
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+    std::vector<std::size_t> row(b.size() + 1);
+    for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+    for (std::size_t i = 1; i <= a.size(); ++i) {
+        std::size_t diagonal = row[0];
+        row[0] = i;
+        for (std::size_t j = 1; j <= b.size(); ++j) {
+            const std::size_t above = row[j];
+            row[j] =
+                std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0u : 1u)});
+            diagonal = above;
+        }
+    }
+    return row[b.size()];
+}
+
+// One JSON object being read. Every key looked up is "known"; finish() reports the others as
+// unknown, so a typo in any section is an error wherever it is.
+class Fields {
+  public:
+    Fields(const json& value, std::string path, Problems& problems)
+        : value_(&value), path_(std::move(path)), problems_(&problems) {
+        if (!value.is_object()) problems_->add(path_, "must be an object");
+    }
+
+    bool is_object() const { return value_->is_object(); }
+    std::string path(std::string_view key) const { return join_path(path_, key); }
+    Problems& problems() { return *problems_; }
+    void problem(std::string_view key, std::string message) {
+        problems_->add(path(key), std::move(message));
+    }
+
+    // The value of `key` (null included), or nullptr when absent.
+    const json* find(std::string_view key) {
+        known_.emplace(key);
+        if (!is_object()) return nullptr;
+        const auto it = value_->find(key);
+        return it == value_->end() ? nullptr : &*it;
+    }
+
+    const json* required(std::string_view key) {
+        const json* value = find(key);
+        if (value == nullptr && is_object()) problem(key, "required");
+        return value;
+    }
+
+    const json* lookup(std::string_view key, Presence presence) {
+        return presence == Presence::required ? required(key) : find(key);
+    }
+
+    // Each reader returns true when the key was present and valid (and `out` was set).
+    bool string(std::string_view key, std::string& out, Presence presence = Presence::optional) {
+        const json* value = lookup(key, presence);
+        if (value == nullptr) return false;
+        if (!value->is_string()) {
+            problem(key, "must be a string");
+            return false;
+        }
+        out = value->get<std::string>();
+        return true;
+    }
+
+    bool boolean(std::string_view key, bool& out) {
+        const json* value = find(key);
+        if (value == nullptr) return false;
+        if (!value->is_boolean()) {
+            problem(key, "must be true or false");
+            return false;
+        }
+        out = value->get<bool>();
+        return true;
+    }
+
+    bool number(std::string_view key, double& out, Range range,
+                Presence presence = Presence::optional) {
+        const json* value = lookup(key, presence);
+        if (value == nullptr) return false;
+        if (!value->is_number()) {
+            problem(key,
+                    fmt::format("must be a number between {:g} and {:g}", range.min, range.max));
+            return false;
+        }
+        const double number = value->get<double>();
+        if (!(number >= range.min && number <= range.max)) {
+            problem(key, fmt::format("must be between {:g} and {:g}", range.min, range.max));
+            return false;
+        }
+        out = number;
+        return true;
+    }
+
+    template <class Int>
+    bool integer(std::string_view key, Int& out, IntRange range,
+                 Presence presence = Presence::optional) {
+        const json* value = lookup(key, presence);
+        if (value == nullptr) return false;
+        if (!value->is_number_integer()) {
+            problem(key, fmt::format("must be an integer between {} and {}", range.min, range.max));
+            return false;
+        }
+        // nlohmann keeps non-negative integers as unsigned: compare each kind as itself.
+        const bool in_range =
+            value->is_number_unsigned()
+                ? (range.min <= 0 ||
+                   value->get<std::uint64_t>() >= static_cast<std::uint64_t>(range.min)) &&
+                      value->get<std::uint64_t>() <= static_cast<std::uint64_t>(range.max)
+                : value->get<std::int64_t>() >= range.min &&
+                      value->get<std::int64_t>() <= range.max;
+        if (!in_range) {
+            problem(key, fmt::format("must be between {} and {}", range.min, range.max));
+            return false;
+        }
+        out = static_cast<Int>(value->get<std::int64_t>());
+        return true;
+    }
+
+    bool choice(std::string_view key, std::string& out,
+                std::initializer_list<std::string_view> options,
+                Presence presence = Presence::optional) {
+        const json* value = lookup(key, presence);
+        if (value == nullptr) return false;
+        if (value->is_string() &&
+            std::find(options.begin(), options.end(), value->get_ref<const std::string&>()) !=
+                options.end()) {
+            out = value->get<std::string>();
+            return true;
+        }
+        std::string list;
+        for (auto option : options)
+            list += fmt::format("{}\"{}\"", list.empty() ? "" : ", ", option);
+        problem(key, "must be one of " + list);
+        return false;
+    }
+
+    // The nested object under `key`; a present non-object is reported.
+    std::optional<Fields> object(std::string_view key, Presence presence = Presence::optional) {
+        const json* value = lookup(key, presence);
+        if (value == nullptr) return std::nullopt;
+        Fields nested(*value, path(key), *problems_);
+        if (!nested.is_object()) return std::nullopt;
+        return nested;
+    }
+
+    // This object's valid keys cannot be known (e.g. its `type` is wrong): skip finish().
+    void keep_unknown_keys() { check_unknown_ = false; }
+
+    void finish() {
+        if (!is_object() || !check_unknown_) return;
+        for (const auto& item : value_->items()) {
+            if (known_.count(item.key()) != 0) continue;
+            problem(item.key(), "unknown key" + suggestion(item.key()));
+        }
+    }
+
+  private:
+    std::string suggestion(std::string_view key) const {
+        for (const auto& known : known_) {
+            if (edit_distance(key, known) <= 2 && known.size() > 2) {
+                return fmt::format(" (did you mean \"{}\"?)", known);
+            }
+        }
+        return {};
+    }
+
+    const json* value_;
+    std::string path_;
+    Problems* problems_;
+    std::set<std::string, std::less<>> known_;
+    bool check_unknown_ = true;
+};
+
+// nlohmann keeps the last of two equal keys without a word; in a configuration that is a
+// silent override ("allow_fire" twice), so it is reported with its path.
+json parse_rejecting_duplicates(std::string_view text, Problems& problems) {
+    struct Container {
+        bool is_array = false;
+        std::set<std::string> keys;
+        std::string key;        // objects: the member being parsed
+        std::size_t index = 0;  // arrays: the element being parsed
+    };
+    std::vector<Container> stack;
+    auto path_to_top = [&stack] {
+        std::string path;
+        for (std::size_t i = 0; i + 1 < stack.size(); ++i) {
+            path = stack[i].is_array ? index_path(path, stack[i].index)
+                                     : join_path(path, stack[i].key);
+        }
+        return path;
+    };
+    auto element_done = [&stack] {
+        if (!stack.empty() && stack.back().is_array) ++stack.back().index;
+    };
+    using event = json::parse_event_t;
+    auto callback = [&](int, event e, json& parsed) {
+        switch (e) {
+            case event::object_start:
+                stack.push_back({false, {}, {}, 0});
+                break;
+            case event::array_start:
+                stack.push_back({true, {}, {}, 0});
+                break;
+            case event::key: {
+                auto& top = stack.back();
+                top.key = parsed.get<std::string>();
+                if (!top.keys.insert(top.key).second) {
+                    problems.add(join_path(path_to_top(), top.key), "duplicate key");
+                }
+                break;
+            }
+            case event::object_end:
+            case event::array_end:
+                stack.pop_back();
+                element_done();
+                break;
+            case event::value:
+                element_done();
+                break;
+        }
+        return true;
+    };
+    return json::parse(text.begin(), text.end(), callback);
+}
+
+// ---- The configuration sections ---------------------------------------------------------
+
+constexpr std::array<std::uint32_t, 22> baud_rates = {
+    1200,   1800,   2400,   4800,    9600,    19200,   38400,   57600,   115200,  230400,  460800,
+    500000, 576000, 921600, 1000000, 1152000, 1500000, 2000000, 2500000, 3000000, 3500000, 4000000};
+
+constexpr std::size_t max_gimbals = 32;
+
+// Ranges shared by several keys; docs/configuration.md lists them.
+constexpr Range connect_timeout_range{0.1, 60};
+constexpr Range reconnect_min_range{0.01, 60};
+constexpr Range reconnect_max_range{0.1, 3600};
+constexpr Range silence_timeout_range{0.1, 3600};
+
+std::string baud_message() {
+    std::string rates;
+    for (auto rate : baud_rates) rates += (rates.empty() ? "" : ", ") + std::to_string(rate);
+    return "must be one of " + rates;
+}
+
+void read_baud(Fields& f, std::string_view key, std::uint32_t& out) {
+    const json* value = f.required(key);
+    if (value == nullptr) return;
+    if (value->is_number_unsigned() || value->is_number_integer()) {
+        const auto rate = value->get<std::int64_t>();
+        for (auto standard : baud_rates) {
+            if (rate == standard) {
+                out = standard;
+                return;
+            }
+        }
+    }
+    f.problem(key, baud_message());
+}
+
+void read_device(Fields& f, std::string_view key, std::string& out) {
+    if (!f.string(key, out, Presence::required)) return;
+    if (out.empty() || out.front() != '/') {
+        f.problem(key, "must be an absolute path such as /dev/ttyUSB0");
+    }
+}
+
+void read_address(Fields& f, std::string_view key, boost::asio::ip::address& out) {
+    const json* value = f.find(key);
+    if (value == nullptr) return;
+    boost::system::error_code ec;
+    if (value->is_string()) {
+        auto address = boost::asio::ip::make_address(value->get_ref<const std::string&>(), ec);
+        if (!ec) {
+            out = address;
+            return;
+        }
+    }
+    f.problem(key, "must be an IPv4 or IPv6 address");
+}
+
+void read_reconnect(Fields& f, double& min_s, double& max_s) {
+    f.number("reconnect_min_s", min_s, reconnect_min_range);
+    f.number("reconnect_max_s", max_s, reconnect_max_range);
+    if (max_s < min_s) {
+        f.problem("reconnect_max_s",
+                  fmt::format("must not be less than reconnect_min_s ({:g})", min_s));
+    }
+}
+
+TcpLink read_tcp(Fields& f) {
+    TcpLink link;
+    if (f.string("host", link.host, Presence::required)) {
+        const bool has_space = std::any_of(link.host.begin(), link.host.end(),
+                                           [](char c) { return c <= ' ' || c > '~'; });
+        if (link.host.empty() || link.host.size() > 253 || has_space) {
+            f.problem("host", "must be a host name, an IP address or \"discover\"");
+        }
+    }
+    f.integer("port", link.port, {1, 65535}, Presence::required);
+    f.number("connect_timeout_s", link.connect_timeout_s, connect_timeout_range);
+    read_reconnect(f, link.reconnect_min_s, link.reconnect_max_s);
+    f.number("silence_timeout_s", link.silence_timeout_s, silence_timeout_range);
+
+    boost::asio::ip::address discover_address =
+        boost::asio::ip::make_address_v4(link.discover_address);
+    read_address(f, "discover_address", discover_address);
+    if (!discover_address.is_v4()) {
+        f.problem("discover_address", "must be an IPv4 address");
+    } else {
+        link.discover_address = discover_address.to_string();
+    }
+    f.integer("discover_port", link.discover_port, {1, 65535});
+    f.integer("discover_reply_port", link.discover_reply_port, {1, 65535});
+    return link;
+}
+
+SerialLink read_serial(Fields& f) {
+    SerialLink link;
+    read_device(f, "device", link.device);
+    read_baud(f, "baud", link.baud);
+    read_reconnect(f, link.reconnect_min_s, link.reconnect_max_s);
+    return link;
+}
+
+std::optional<Link> read_link(Fields& f) {
+    std::string type;
+    if (!f.choice("type", type, {"tcp", "serial", "sim"}, Presence::required)) {
+        f.keep_unknown_keys();  // which keys belong here depends on the type
+        return std::nullopt;
+    }
+    if (type == "tcp") return read_tcp(f);
+    if (type == "serial") return read_serial(f);
+    return SimLink{};
+}
+
+ViewproOptions read_viewpro(Fields& f) {
+    ViewproOptions options;
+    if (auto output = f.object("output")) {
+        auto& o = options.output;
+        std::string osd = o.osd == ViewproOsd::target ? "target" : "uav";
+        if (output->choice("osd", osd, {"target", "uav"})) {
+            o.osd = osd == "target" ? ViewproOsd::target : ViewproOsd::uav;
+        }
+        output->boolean("serial", o.serial);
+        output->boolean("network", o.network);
+        std::string format = "out3";
+        if (output->choice("format", format, {"out1", "out2", "out3", "out4"})) {
+            o.format = static_cast<ViewproFormat>(format.back() - '1');
+        }
+        output->finish();
+    }
+    return options;
+}
+
+void read_feed(Fields& f, GimbalConfig& gimbal) {
+    if (gimbal.protocol == Protocol::orion) {
+        if (auto feed = f.object("feed")) {
+            feed->boolean("autopilot", gimbal.orion_feed.autopilot);
+            feed->boolean("gps", gimbal.orion_feed.gps);
+            feed->finish();
+        }
+        return;
+    }
+    std::string feed;
+    if (f.choice("feed", feed, {"in2", "in1", "mavlink"})) {
+        gimbal.viewpro_feed = feed == "in2"   ? ViewproFeed::in2
+                              : feed == "in1" ? ViewproFeed::in1
+                                              : ViewproFeed::mavlink;
+    }
+}
+
+GimbalConfig read_gimbal(Fields& f) {
+    static const std::regex name_pattern("[a-z0-9_-]{1,32}");
+    GimbalConfig gimbal;
+    if (f.string("name", gimbal.name, Presence::required) &&
+        !std::regex_match(gimbal.name, name_pattern)) {
+        f.problem("name", "must match [a-z0-9_-]{1,32}");
+    }
+    std::string protocol;
+    const bool known_protocol =
+        f.choice("protocol", protocol, {"orion", "viewpro"}, Presence::required);
+    if (known_protocol) gimbal.protocol = *parse_protocol(protocol);
+
+    if (auto link = f.object("link", Presence::required)) {
+        if (auto parsed = read_link(*link)) gimbal.link = *parsed;
+        link->finish();
+    }
+
+    if (!known_protocol) {
+        f.keep_unknown_keys();  // `viewpro` and `feed` depend on the protocol
+        return gimbal;
+    }
+    if (gimbal.protocol == Protocol::viewpro) {
+        if (auto viewpro = f.object("viewpro")) {
+            gimbal.viewpro = read_viewpro(*viewpro);
+            viewpro->finish();
+        }
+    } else if (f.find("viewpro") != nullptr) {
+        f.problem("viewpro", "only for protocol \"viewpro\"");
+    }
+    read_feed(f, gimbal);
+    return gimbal;
+}
+
+void read_gimbals(Fields& root, Config& config) {
+    const json* list = root.required("gimbals");
+    if (list == nullptr) return;
+    if (!list->is_array()) {
+        root.problem("gimbals", "must be an array of gimbals");
+        return;
+    }
+    if (list->empty() || list->size() > max_gimbals) {
+        root.problem("gimbals", fmt::format("must list 1 to {} gimbals", max_gimbals));
+    }
+    std::map<std::string, std::string> first_path_of_name;
+    std::map<std::string, std::string> first_path_of_device;
+    for (std::size_t i = 0; i < list->size(); ++i) {
+        const std::string path = index_path("gimbals", i);
+        Fields f((*list)[i], path, root.problems());
+        if (!f.is_object()) continue;
+        GimbalConfig gimbal = read_gimbal(f);
+        f.finish();
+
+        if (!gimbal.name.empty()) {
+            auto [it, fresh] = first_path_of_name.emplace(gimbal.name, path);
+            if (!fresh) {
+                f.problem("name",
+                          fmt::format("duplicate name \"{}\" (also {})", gimbal.name, it->second));
+            }
+        }
+        if (const auto* serial = std::get_if<SerialLink>(&gimbal.link);
+            serial != nullptr && !serial->device.empty()) {
+            auto [it, fresh] = first_path_of_device.emplace(serial->device, path);
+            if (!fresh) {
+                f.problem("link.device",
+                          fmt::format("\"{}\" is already used by {}", serial->device, it->second));
+            }
+        }
+        config.gimbals.push_back(std::move(gimbal));
+    }
+}
+
+void read_command(Fields& f, CommandConfig& command) {
+    read_address(f, "bind", command.bind);
+    f.integer("port", command.port, {1, 65535});
+    if (const json* allow = f.find("allow")) {
+        if (!allow->is_array() || allow->empty()) {
+            f.problem("allow", "must be a non-empty array of CIDR blocks such as \"127.0.0.0/8\"");
+        } else {
+            command.allow.clear();
+            for (std::size_t i = 0; i < allow->size(); ++i) {
+                const json& item = (*allow)[i];
+                std::optional<Cidr> cidr;
+                if (item.is_string()) cidr = Cidr::parse(item.get_ref<const std::string&>());
+                if (cidr) {
+                    command.allow.push_back(*cidr);
+                } else {
+                    f.problems().add(index_path(f.path("allow"), i), "not a CIDR");
+                }
+            }
+        }
+    }
+    if (const json* token = f.find("token"); token != nullptr && !token->is_null()) {
+        if (!token->is_string() || token->get_ref<const std::string&>().empty() ||
+            token->get_ref<const std::string&>().size() > 256) {
+            f.problem("token", "must be null or a string of 1 to 256 characters");
+        } else {
+            command.token = token->get<std::string>();
+        }
+    }
+    f.integer("max_subscribers", command.max_subscribers, {1, 1024});
+}
+
+void read_log(Fields& f, LogConfig& log) {
+    std::string level;
+    if (f.choice("level", level, {"trace", "debug", "info", "warn", "error"})) {
+        log.level = *log::parse_level(level);
+    }
+    std::string format;
+    if (f.choice("format", format, {"json", "text"})) log.format = *log::parse_format(format);
+    if (const json* file = f.find("file"); file != nullptr && !file->is_null()) {
+        if (!file->is_string() || file->get_ref<const std::string&>().empty()) {
+            f.problem("file", "must be null or a file path");
+        } else {
+            log.file = file->get<std::string>();
+        }
+    }
+}
+
+VehicleConfig read_vehicle(Fields& f) {
+    VehicleConfig vehicle;
+    if (auto source = f.object("source")) {
+        std::string type;
+        if (source->choice("type", type, {"udp", "serial"}, Presence::required)) {
+            if (type == "udp") {
+                UdpSource udp;
+                read_address(*source, "bind", udp.bind);
+                source->integer("port", udp.port, {1, 65535});
+                vehicle.source = udp;
+            } else {
+                SerialSource serial;
+                read_device(*source, "device", serial.device);
+                read_baud(*source, "baud", serial.baud);
+                vehicle.source = serial;
+            }
+            source->finish();
+        }
+    }
+    if (const json* id = f.find("system_id"); id != nullptr && !id->is_null()) {
+        std::uint8_t system_id = 0;
+        f.integer("system_id", system_id, {1, 255});
+        if (system_id != 0) vehicle.system_id = system_id;
+    }
+    f.number("timeout_s", vehicle.timeout_s, {0.1, 60});
+    return vehicle;
+}
+
+// Object sections with no cross-dependencies: read each when present.
+template <class Read>
+void section(Fields& root, std::string_view key, Read read) {
+    if (auto f = root.object(key)) {
+        read(*f);
+        f->finish();
+    }
+}
+
+void check_serial_devices_unique(const Config& config, Problems& problems) {
+    if (!config.vehicle) return;
+    const auto* source = std::get_if<SerialSource>(&config.vehicle->source);
+    if (source == nullptr || source->device.empty()) return;
+    for (std::size_t i = 0; i < config.gimbals.size(); ++i) {
+        const auto* link = std::get_if<SerialLink>(&config.gimbals[i].link);
+        if (link != nullptr && link->device == source->device) {
+            problems.add("vehicle.source.device",
+                         fmt::format("\"{}\" is already used by gimbals[{}]", source->device, i));
+        }
+    }
+}
+
+std::string syntax_problem(std::string_view text, const json::parse_error& e) {
+    // nlohmann counts the byte it stopped at; report it as line:column (1-based).
+    const std::size_t end = std::min<std::size_t>(e.byte > 0 ? e.byte - 1 : 0, text.size());
+    std::size_t line = 1;
+    std::size_t column = 1;
+    for (std::size_t i = 0; i < end; ++i) {
+        if (text[i] == '\n') {
+            ++line;
+            column = 1;
+        } else {
+            ++column;
+        }
+    }
+    std::string what = e.what();
+    // "[json.exception.parse_error.101] parse error at line 3, column 15: syntax error ..."
+    if (auto colon = what.find(": ", what.find("parse error")); colon != std::string::npos) {
+        what = what.substr(colon + 2);
+    }
+    return fmt::format("line {}, column {}: {}", line, column, what);
+}
+
+}  // namespace
+
+std::string_view to_string(Protocol protocol) {
+    return protocol == Protocol::orion ? "orion" : "viewpro";
+}
+
+std::optional<Protocol> parse_protocol(std::string_view name) {
+    if (name == "orion") return Protocol::orion;
+    if (name == "viewpro") return Protocol::viewpro;
+    return std::nullopt;
+}
+
+std::span<const std::uint32_t> standard_baud_rates() {
+    return baud_rates;
+}
+
+std::string_view link_type(const Link& link) {
+    static constexpr std::string_view names[] = {"tcp", "serial", "sim"};
+    return names[link.index()];
+}
+
+std::string describe(const Link& link) {
+    if (const auto* tcp = std::get_if<TcpLink>(&link)) {
+        if (tcp->discover()) {
+            return fmt::format("discover via {}:{}", tcp->discover_address, tcp->discover_port);
+        }
+        if (tcp->host.find(':') != std::string::npos) {
+            return fmt::format("[{}]:{}", tcp->host, tcp->port);
+        }
+        return fmt::format("{}:{}", tcp->host, tcp->port);
+    }
+    if (const auto* serial = std::get_if<SerialLink>(&link)) {
+        return fmt::format("{}@{}", serial->device, serial->baud);
+    }
+    return "sim";
+}
+
+std::optional<Cidr> Cidr::parse(std::string_view text) {
+    const auto slash = text.find('/');
+    boost::system::error_code ec;
+    const auto address = boost::asio::ip::make_address(std::string(text.substr(0, slash)), ec);
+    if (ec) return std::nullopt;
+    const unsigned max_prefix = address.is_v4() ? 32 : 128;
+    unsigned prefix = max_prefix;
+    if (slash != std::string_view::npos) {
+        const auto digits = text.substr(slash + 1);
+        if (digits.empty() || digits.size() > 3 ||
+            !std::all_of(digits.begin(), digits.end(),
+                         [](char c) { return c >= '0' && c <= '9'; })) {
+            return std::nullopt;
+        }
+        prefix = static_cast<unsigned>(std::stoul(std::string(digits)));
+        if (prefix > max_prefix) return std::nullopt;
+    }
+    Cidr cidr{address, prefix};
+    // Clear the host bits so equal blocks compare equal and print canonically.
+    if (address.is_v4()) {
+        auto bytes = address.to_v4().to_bytes();
+        for (std::size_t i = 0; i < bytes.size(); ++i) {
+            const unsigned keep = std::min(8u, prefix - std::min(prefix, unsigned(i * 8)));
+            bytes[i] = static_cast<unsigned char>(bytes[i] & (0xFF00u >> keep));
+        }
+        cidr.network = boost::asio::ip::address_v4(bytes);
+    } else {
+        auto bytes = address.to_v6().to_bytes();
+        for (std::size_t i = 0; i < bytes.size(); ++i) {
+            const unsigned keep = std::min(8u, prefix - std::min(prefix, unsigned(i * 8)));
+            bytes[i] = static_cast<unsigned char>(bytes[i] & (0xFF00u >> keep));
+        }
+        cidr.network = boost::asio::ip::address_v6(bytes);
+    }
+    return cidr;
+}
+
+bool Cidr::contains(const boost::asio::ip::address& address) const {
+    auto candidate = address;
+    if (candidate.is_v6() && candidate.to_v6().is_v4_mapped()) {
+        candidate = boost::asio::ip::make_address_v4(boost::asio::ip::v4_mapped, candidate.to_v6());
+    }
+    if (candidate.is_v4() != network.is_v4()) return false;
+    auto matches = [this](const auto& a, const auto& b) {
+        for (std::size_t i = 0; i < a.size(); ++i) {
+            const unsigned keep =
+                std::min(8u, prefix_length - std::min(prefix_length, unsigned(i * 8)));
+            const unsigned mask = 0xFF00u >> keep;
+            if (((a[i] ^ b[i]) & mask) != 0) return false;
+        }
+        return true;
+    };
+    if (network.is_v4()) return matches(network.to_v4().to_bytes(), candidate.to_v4().to_bytes());
+    return matches(network.to_v6().to_bytes(), candidate.to_v6().to_bytes());
+}
+
+std::string Cidr::to_string() const {
+    return fmt::format("{}/{}", network.to_string(), prefix_length);
+}
+
+std::vector<Cidr> CommandConfig::default_allow() {
+    return {*Cidr::parse("127.0.0.0/8"), *Cidr::parse("::1/128")};
+}
+
+bool CommandConfig::allowed(const boost::asio::ip::address& source) const {
+    return std::any_of(allow.begin(), allow.end(),
+                       [&](const Cidr& cidr) { return cidr.contains(source); });
+}
+
+std::string Problem::text() const {
+    return path.empty() ? message : path + ": " + message;
+}
+
+ConfigResult parse_config(std::string_view text, GimbalsSection gimbals) {
+    ConfigResult result;
+    Problems problems(result.problems);
+    json document;
+    try {
+        document = parse_rejecting_duplicates(text, problems);
+    } catch (const json::parse_error& e) {
+        result.problems.push_back({"", syntax_problem(text, e)});
+        return result;
+    }
+    if (!document.is_object()) {
+        problems.add("", "the configuration must be a JSON object");
+        return result;
+    }
+
+    Config& config = result.config;
+    Fields root(document, "", problems);
+    if (gimbals == GimbalsSection::required) {
+        read_gimbals(root, config);
+    } else {
+        root.find("gimbals");  // replaced by --sim: accepted, not read
+    }
+    section(root, "command", [&](Fields& f) { read_command(f, config.command); });
+    section(root, "laser", [&](Fields& f) {
+        f.boolean("allow_fire", config.laser.allow_fire);
+        f.number("fire_timeout_s", config.laser.fire_timeout_s, {0.1, 3600});
+        f.boolean("allow_safety_bypass", config.laser.allow_safety_bypass);
+    });
+    section(root, "stare", [&](Fields& f) { f.boolean("auto_ack", config.stare.auto_ack); });
+    section(root, "telemetry", [&](Fields& f) {
+        f.number("stale_after_s", config.telemetry.stale_after_s, {0.1, 60});
+    });
+    section(root, "log", [&](Fields& f) { read_log(f, config.log); });
+    section(root, "vehicle", [&](Fields& f) { config.vehicle = read_vehicle(f); });
+    root.finish();
+    check_serial_devices_unique(config, problems);
+    return result;
+}
+
+ConfigResult load_config_file(const std::string& path, GimbalsSection gimbals) {
+    std::FILE* file = std::fopen(path.c_str(), "rbe");
+    if (file == nullptr) {
+        const std::string reason = std::strerror(errno);  // before anything resets errno
+        ConfigResult result;
+        result.problems.push_back({"", fmt::format("cannot read {}: {}", path, reason)});
+        return result;
+    }
+    std::string text;
+    char buffer[4096];
+    for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, file)) > 0;)
+        text.append(buffer, n);
+    const bool failed = std::ferror(file) != 0;
+    const int error = errno;
+    std::fclose(file);
+    if (failed) {
+        const std::string reason = std::strerror(error);
+        ConfigResult result;
+        result.problems.push_back({"", fmt::format("cannot read {}: {}", path, reason)});
+        return result;
+    }
+    return parse_config(text, gimbals);
+}
+
+std::vector<GimbalConfig> sim_gimbals(std::span<const Protocol> protocols) {
+    auto simulated = [](std::string name, Protocol protocol) {
+        GimbalConfig gimbal;
+        gimbal.name = std::move(name);
+        gimbal.protocol = protocol;
+        gimbal.link = SimLink{};
+        return gimbal;
+    };
+    std::vector<GimbalConfig> gimbals;
+    if (protocols.empty()) gimbals.push_back(simulated("sim", Protocol::orion));
+    for (Protocol protocol : protocols) {
+        gimbals.push_back(simulated(fmt::format("sim-{}", to_string(protocol)), protocol));
+    }
+    return gimbals;
+}
+
+namespace {
+
+json link_to_json(const Link& link) {
+    if (const auto* tcp = std::get_if<TcpLink>(&link)) {
+        return {{"type", "tcp"},
+                {"host", tcp->host},
+                {"port", tcp->port},
+                {"connect_timeout_s", tcp->connect_timeout_s},
+                {"reconnect_min_s", tcp->reconnect_min_s},
+                {"reconnect_max_s", tcp->reconnect_max_s},
+                {"silence_timeout_s", tcp->silence_timeout_s},
+                {"discover_address", tcp->discover_address},
+                {"discover_port", tcp->discover_port},
+                {"discover_reply_port", tcp->discover_reply_port}};
+    }
+    if (const auto* serial = std::get_if<SerialLink>(&link)) {
+        return {{"type", "serial"},
+                {"device", serial->device},
+                {"baud", serial->baud},
+                {"reconnect_min_s", serial->reconnect_min_s},
+                {"reconnect_max_s", serial->reconnect_max_s}};
+    }
+    return {{"type", "sim"}};
+}
+
+json gimbal_to_json(const GimbalConfig& gimbal) {
+    json out = {{"name", gimbal.name},
+                {"protocol", to_string(gimbal.protocol)},
+                {"link", link_to_json(gimbal.link)}};
+    if (gimbal.protocol == Protocol::orion) {
+        out["feed"] = {{"autopilot", gimbal.orion_feed.autopilot}, {"gps", gimbal.orion_feed.gps}};
+    } else {
+        static constexpr std::string_view feeds[] = {"in2", "in1", "mavlink"};
+        static constexpr std::string_view formats[] = {"out1", "out2", "out3", "out4"};
+        const auto& o = gimbal.viewpro.output;
+        out["feed"] = feeds[static_cast<std::size_t>(gimbal.viewpro_feed)];
+        out["viewpro"] = {{"output",
+                           {{"osd", o.osd == ViewproOsd::target ? "target" : "uav"},
+                            {"serial", o.serial},
+                            {"network", o.network},
+                            {"format", formats[static_cast<std::size_t>(o.format)]}}}};
+    }
+    return out;
+}
+
+json vehicle_to_json(const VehicleConfig& vehicle) {
+    json source;
+    if (const auto* udp = std::get_if<UdpSource>(&vehicle.source)) {
+        source = {{"type", "udp"}, {"bind", udp->bind.to_string()}, {"port", udp->port}};
+    } else {
+        const auto& serial = std::get<SerialSource>(vehicle.source);
+        source = {{"type", "serial"}, {"device", serial.device}, {"baud", serial.baud}};
+    }
+    return {{"source", source},
+            {"system_id", vehicle.system_id ? json(*vehicle.system_id) : json(nullptr)},
+            {"timeout_s", vehicle.timeout_s}};
+}
+
+}  // namespace
+
+json to_json(const Config& config, bool show_token) {
+    json gimbals = json::array();
+    for (const auto& gimbal : config.gimbals) gimbals.push_back(gimbal_to_json(gimbal));
+    json allow = json::array();
+    for (const auto& cidr : config.command.allow) allow.push_back(cidr.to_string());
+    json token = nullptr;
+    if (config.command.token) token = show_token ? *config.command.token : "***";
+
+    json out = {
+        {"gimbals", gimbals},
+        {"command",
+         {{"bind", config.command.bind.to_string()},
+          {"port", config.command.port},
+          {"allow", allow},
+          {"token", token},
+          {"max_subscribers", config.command.max_subscribers}}},
+        {"laser",
+         {{"allow_fire", config.laser.allow_fire},
+          {"fire_timeout_s", config.laser.fire_timeout_s},
+          {"allow_safety_bypass", config.laser.allow_safety_bypass}}},
+        {"stare", {{"auto_ack", config.stare.auto_ack}}},
+        {"telemetry", {{"stale_after_s", config.telemetry.stale_after_s}}},
+        {"log",
+         {{"level", log::to_string(config.log.level)},
+          {"format", log::to_string(config.log.format)},
+          {"file", config.log.file ? json(*config.log.file) : json(nullptr)}}},
+    };
+    if (config.vehicle) out["vehicle"] = vehicle_to_json(*config.vehicle);
+    return out;
+}
+
+}  // namespace gimbal::daemon

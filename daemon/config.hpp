@@ -1,0 +1,216 @@
+// The configuration file (interface contract section 3) as typed values. parse_config()
+// reads JSON text, applies the defaults and validates everything, collecting every problem
+// with its JSON path ("gimbals[1].link.baud: must be one of 1200, ...") instead of stopping
+// at the first. Ranges and meanings of every key: docs/configuration.md.
+#pragma once
+
+#include <boost/asio/ip/address.hpp>
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+#include "logging.hpp"
+
+namespace gimbal::daemon {
+
+enum class Protocol { orion, viewpro };
+std::string_view to_string(Protocol protocol);
+std::optional<Protocol> parse_protocol(std::string_view name);
+
+// The termios rates from 1200 baud up; a serial link's `baud` must be one of them.
+std::span<const std::uint32_t> standard_baud_rates();
+
+struct TcpLink {
+    std::string host;  // name or address, or "discover" (Orion SDK broadcast discovery)
+    std::uint16_t port = 0;
+    double connect_timeout_s = 3.0;
+    double reconnect_min_s = 0.2;
+    double reconnect_max_s = 5.0;
+    double silence_timeout_s = 3.0;  // no byte for this long: the peer is dead, reconnect
+    // Used only when host is "discover".
+    std::string discover_address = "255.255.255.255";
+    std::uint16_t discover_port = 8745;
+    std::uint16_t discover_reply_port = 8746;
+
+    bool discover() const { return host == "discover"; }
+    bool operator==(const TcpLink&) const = default;
+};
+
+struct SerialLink {
+    std::string device;
+    std::uint32_t baud = 0;  // 8N1, no flow control
+    double reconnect_min_s = 0.2;
+    double reconnect_max_s = 5.0;
+    bool operator==(const SerialLink&) const = default;
+};
+
+struct SimLink {
+    bool operator==(const SimLink&) const = default;
+};
+
+using Link = std::variant<TcpLink, SerialLink, SimLink>;
+std::string_view link_type(const Link& link);  // "tcp", "serial", "sim"
+// "192.168.1.20:8747", "[fe80::1]:8747", "discover via 255.255.255.255:8745",
+// "/dev/ttyUSB0@115200", "sim"
+std::string describe(const Link& link);
+
+enum class ViewproOsd { target, uav };
+enum class ViewproFormat { out1, out2, out3, out4 };
+
+// The Viewpro mode command sent on every (re)connect.
+struct ViewproOutput {
+    ViewproOsd osd = ViewproOsd::target;
+    bool serial = true;
+    bool network = false;
+    ViewproFormat format = ViewproFormat::out3;
+    bool operator==(const ViewproOutput&) const = default;
+};
+
+struct ViewproOptions {
+    ViewproOutput output;
+    bool operator==(const ViewproOptions&) const = default;
+};
+
+// How the vehicle feed reaches an Orion: AutopilotData at 1 Hz, GPS_DATA at 4 Hz.
+struct OrionFeed {
+    bool autopilot = true;
+    bool gps = false;
+    bool operator==(const OrionFeed&) const = default;
+};
+
+// How the vehicle feed reaches a Viewpro: which input frame carries it.
+enum class ViewproFeed { in2, in1, mavlink };
+
+struct GimbalConfig {
+    std::string name;
+    Protocol protocol = Protocol::orion;
+    Link link = SimLink{};
+    ViewproOptions viewpro;                       // Viewpro only
+    OrionFeed orion_feed;                         // `feed` of an Orion gimbal
+    ViewproFeed viewpro_feed = ViewproFeed::in2;  // `feed` of a Viewpro gimbal
+    bool operator==(const GimbalConfig&) const = default;
+};
+
+// An address block such as 192.168.1.0/24 or ::1/128.
+struct Cidr {
+    boost::asio::ip::address network;  // host bits cleared
+    unsigned prefix_length = 0;
+
+    // "a.b.c.d/n" (n 0..32), "v6addr/n" (n 0..128), or a bare address (a single host).
+    // Host bits are cleared: "127.0.0.1/8" is 127.0.0.0/8.
+    static std::optional<Cidr> parse(std::string_view text);
+    // IPv4-mapped IPv6 sources (::ffff:a.b.c.d, seen on dual-stack sockets) match IPv4 blocks.
+    bool contains(const boost::asio::ip::address& address) const;
+    std::string to_string() const;
+    bool operator==(const Cidr&) const = default;
+};
+
+struct CommandConfig {
+    boost::asio::ip::address bind = boost::asio::ip::make_address_v4("127.0.0.1");
+    std::uint16_t port = 8760;
+    std::vector<Cidr> allow = default_allow();
+    std::optional<std::string> token;
+    unsigned max_subscribers = 64;
+
+    // True when a datagram from `source` may be answered (it lies in one of `allow`).
+    bool allowed(const boost::asio::ip::address& source) const;
+    static std::vector<Cidr> default_allow();
+    bool operator==(const CommandConfig&) const = default;
+};
+
+struct LaserConfig {
+    bool allow_fire = false;
+    double fire_timeout_s = 5.0;
+    bool allow_safety_bypass = false;
+    bool operator==(const LaserConfig&) const = default;
+};
+
+struct StareConfig {
+    bool auto_ack = false;
+    bool operator==(const StareConfig&) const = default;
+};
+
+struct TelemetryConfig {
+    double stale_after_s = 1.0;
+    bool operator==(const TelemetryConfig&) const = default;
+};
+
+struct LogConfig {
+    log::Level level = log::Level::info;
+    log::Format format = log::Format::json;
+    std::optional<std::string> file;
+    log::Settings settings() const { return {level, format, file}; }
+    bool operator==(const LogConfig&) const = default;
+};
+
+// MAVLink from the autopilot.
+struct UdpSource {
+    boost::asio::ip::address bind = boost::asio::ip::make_address_v4("127.0.0.1");
+    std::uint16_t port = 14550;
+    bool operator==(const UdpSource&) const = default;
+};
+
+struct SerialSource {
+    std::string device;
+    std::uint32_t baud = 0;
+    bool operator==(const SerialSource&) const = default;
+};
+
+struct VehicleConfig {
+    std::variant<UdpSource, SerialSource> source = UdpSource{};
+    std::optional<std::uint8_t> system_id;  // empty: the first autopilot heard
+    double timeout_s = 1.0;
+    bool operator==(const VehicleConfig&) const = default;
+};
+
+struct Config {
+    std::vector<GimbalConfig> gimbals;
+    CommandConfig command;
+    LaserConfig laser;
+    StareConfig stare;
+    TelemetryConfig telemetry;
+    LogConfig log;
+    std::optional<VehicleConfig> vehicle;
+    bool operator==(const Config&) const = default;
+};
+
+// One problem found in a configuration. `path` is empty for file-level problems (unreadable
+// file, JSON syntax).
+struct Problem {
+    std::string path;
+    std::string message;
+    std::string text() const;  // "gimbals[1].link.baud: must be one of ..."
+    bool operator==(const Problem&) const = default;
+};
+
+struct ConfigResult {
+    Config config;                  // complete only when ok()
+    std::vector<Problem> problems;  // every problem found
+    bool ok() const { return problems.empty(); }
+};
+
+enum class GimbalsSection {
+    required,  // the file defines the gimbals (normal run)
+    ignored,   // --sim replaces them: the `gimbals` key may be absent and is not read
+};
+
+// Parses and validates JSON text. Never throws.
+ConfigResult parse_config(std::string_view text, GimbalsSection gimbals = GimbalsSection::required);
+// Reads and parses a file; an unreadable file is one problem. Never throws.
+ConfigResult load_config_file(const std::string& path,
+                              GimbalsSection gimbals = GimbalsSection::required);
+
+// The simulated gimbals of `--sim` (contract section 2): no protocols -> one Orion named
+// "sim"; otherwise one gimbal "sim-<protocol>" per protocol, link type sim.
+std::vector<GimbalConfig> sim_gimbals(std::span<const Protocol> protocols);
+
+// The configuration as JSON, every key present (the inverse of parse_config). The command
+// token is shown as "***" unless `show_token`.
+nlohmann::json to_json(const Config& config, bool show_token = false);
+
+}  // namespace gimbal::daemon

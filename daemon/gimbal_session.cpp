@@ -1,0 +1,252 @@
+#include "gimbal_session.hpp"
+
+#include <cmath>
+
+#include "logging.hpp"
+
+namespace gimbald {
+
+namespace log = gimbal::log;
+using gimbal::state::Event;
+
+namespace {
+constexpr auto tick_period = std::chrono::milliseconds(100);
+}
+
+GimbalSession::GimbalSession(boost::asio::io_context& io, std::string name,
+                             std::unique_ptr<gimbal::session::Protocol> protocol,
+                             std::unique_ptr<Link> link, double fire_timeout_s, EventSink on_event)
+    : io_(io),
+      name_(std::move(name)),
+      protocol_(std::move(protocol)),
+      link_(std::move(link)),
+      lasers_(fire_timeout_s),
+      on_event_(std::move(on_event)),
+      tick_timer_(io),
+      deadman_timer_(io),
+      epoch_(std::chrono::steady_clock::now()),
+      bad_checksums_(log::Level::warn, "bad_checksum", "bad checksums"),
+      decode_errors_(log::Level::warn, "decode_error", "undecodable packets") {}
+
+GimbalSession::~GimbalSession() {
+    stop();
+}
+
+double GimbalSession::now_s() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - epoch_).count();
+}
+
+void GimbalSession::start() {
+    stopped_ = false;
+    link_->start(
+        [this](std::span<const std::uint8_t> bytes) { on_data(bytes); },
+        [this](bool up) { on_link_state(up); },
+        [this](std::string_view what, std::string_view detail) { on_link_error(what, detail); });
+    schedule_tick();
+}
+
+void GimbalSession::stop() {
+    if (stopped_) return;
+    stopped_ = true;
+    // Rule 5: cease fire on shutdown, written synchronously before the link closes.
+    for (const auto& cease : lasers_.cease_all()) {
+        if (link_->connected()) link_->send_now(cease.frame);
+        lasers_.ceased(cease.index);
+        log::warn("laser_cease", "laser cease-fire sent on shutdown",
+                  {{"gimbal", name_}, {"index", cease.index}});
+    }
+    tick_timer_.cancel();
+    deadman_timer_.cancel();
+    link_->stop();
+}
+
+void GimbalSession::on_data(std::span<const std::uint8_t> bytes) {
+    std::vector<Event> events;
+    std::vector<gimbal::session::Bytes> replies;
+    protocol_->receive(bytes, now_s(), events, replies);
+    for (auto& reply : replies) link_->send(std::move(reply));
+    report_counters();
+    emit(events);
+}
+
+void GimbalSession::report_counters() {
+    const auto c = protocol_->counters();
+    for (; reported_bad_checksums_ < c.bad_checksums; ++reported_bad_checksums_)
+        bad_checksums_.hit(
+            "bad checksum from the gimbal",
+            {{"gimbal", name_}, {"total", c.bad_checksums}, {"dropped_bytes", c.dropped_bytes}});
+    for (; reported_decode_errors_ < c.decode_errors; ++reported_decode_errors_)
+        decode_errors_.hit("packet from the gimbal did not decode", {{"gimbal", name_}});
+}
+
+void GimbalSession::on_link_state(bool up) {
+    std::vector<Event> events;
+    events.push_back(Event{"link", {{"connected", up}}});
+    if (up) {
+        log::info("link_up", "link connected",
+                  {{"gimbal", name_}, {"type", link_->type()}, {"endpoint", link_->endpoint()}});
+        // Rule 5: a reconnect ends any fire the gimbal might still hold from before.
+        for (const auto& cease : lasers_.cease_all()) {
+            if (link_->send(cease.frame)) {
+                lasers_.ceased(cease.index);
+                log::warn("laser_cease", "laser cease-fire sent on reconnect",
+                          {{"gimbal", name_}, {"index", cease.index}});
+            }
+        }
+        for (auto& request : protocol_->on_connect()) link_->send(std::move(request));
+    } else {
+        log::warn("link_down", "link lost",
+                  {{"gimbal", name_}, {"type", link_->type()}, {"endpoint", link_->endpoint()}});
+    }
+    emit(events);
+}
+
+void GimbalSession::on_link_error(std::string_view what, std::string_view detail) {
+    log::warn("link_error", detail,
+              {{"gimbal", name_}, {"what", what}, {"endpoint", link_->endpoint()}});
+}
+
+void GimbalSession::emit(std::vector<Event>& events) {
+    for (const auto& e : events) {
+        if (e.kind == "mode")
+            log::info("mode_change", "gimbal mode changed",
+                      {{"gimbal", name_},
+                       {"from", e.fields.value("from", nlohmann::json())},
+                       {"to", e.fields.value("to", nlohmann::json())}});
+        else if (e.kind == "stare_start")
+            log::info("stare_start", "step-stare started",
+                      {{"gimbal", name_},
+                       {"system_time_ms", e.fields.value("system_time_ms", nlohmann::json())}});
+        else if (e.kind == "debug") {
+            // The gimbal's DebugString priority sets the level: log/info/warn/error/fatal.
+            const auto priority = e.fields.value("priority", nlohmann::json()).dump();
+            log::Level level = log::Level::info;
+            if (priority.find("log") != std::string::npos) level = log::Level::debug;
+            if (priority.find("warn") != std::string::npos) level = log::Level::warn;
+            if (priority.find("error") != std::string::npos ||
+                priority.find("fatal") != std::string::npos)
+                level = log::Level::error;
+            log::write(level, "gimbal_debug", e.fields.value("text", std::string()),
+                       {{"gimbal", name_},
+                        {"source", e.fields.value("source", nlohmann::json())},
+                        {"priority", e.fields.value("priority", nlohmann::json())}});
+        } else if (e.kind == "lost")
+            log::warn("telemetry_lost", "no telemetry within telemetry.stale_after_s",
+                      {{"gimbal", name_}, {"age_s", e.fields.value("age_s", 0.0)}});
+        if (on_event_) on_event_(name_, e);
+    }
+}
+
+void GimbalSession::schedule_tick() {
+    tick_timer_.expires_after(tick_period);
+    tick_timer_.async_wait([this](const boost::system::error_code& ec) {
+        if (ec || stopped_) return;
+        std::vector<Event> events;
+        protocol_->tick(now_s(), events);
+        bad_checksums_.poll();
+        decode_errors_.poll();
+        emit(events);
+        schedule_tick();
+    });
+}
+
+GimbalSession::Outcome GimbalSession::execute(std::string_view cmd, const nlohmann::json& request) {
+    Outcome out;
+    gimbal::command::Plan plan;
+    if (auto error = protocol_->plan(cmd, request, now_s(), plan)) {
+        out.error = std::move(error);
+        return out;
+    }
+    if (!link_->connected()) {
+        out.error = gimbal::command::Error{gimbal::command::code::link_down,
+                                           "gimbal '" + name_ + "' is not connected"};
+        return out;
+    }
+    nlohmann::json sent = nlohmann::json::array();
+    for (auto& packet : plan.packets) {
+        if (!link_->send(packet.frame)) {
+            // Only the first packet can meet a full queue before anything went out for
+            // single-packet commands; report what was written.
+            out.error = gimbal::command::Error{
+                gimbal::command::code::link_down,
+                sent.empty() ? "the link refused the packet (disconnected or queue full)"
+                             : "the link refused a packet after " + std::to_string(sent.size()) +
+                                   " were written"};
+            return out;
+        }
+        sent.push_back(packet.sent);
+    }
+    if (plan.laser) {
+        lasers_.commanded(*plan.laser, now_s());
+        arm_deadman();
+    }
+    out.results = std::move(plan.result);
+    out.results["sent"] = std::move(sent);
+    return out;
+}
+
+void GimbalSession::arm_deadman() {
+    const auto deadline = lasers_.next_deadline();
+    if (!deadline) {
+        deadman_timer_.cancel();
+        return;
+    }
+    const double wait_s = std::max(0.0, *deadline - now_s());
+    deadman_timer_.expires_after(std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+        std::chrono::duration<double>(wait_s)));
+    deadman_timer_.async_wait([this](const boost::system::error_code& ec) {
+        if (ec || stopped_) return;
+        on_deadman();
+    });
+}
+
+void GimbalSession::on_deadman() {
+    std::vector<Event> events;
+    for (auto& cease : lasers_.expired(now_s())) {
+        const bool written = link_->send(cease.frame);
+        if (written) lasers_.ceased(cease.index);
+        log::warn("laser_deadman",
+                  written ? "no laser command within laser.fire_timeout_s: cease-fire sent"
+                          : "no laser command within laser.fire_timeout_s: link down, "
+                            "cease-fire will be sent on reconnect",
+                  {{"gimbal", name_}, {"index", cease.index}, {"sent", written}});
+        events.push_back(Event{"laser_deadman", {{"index", cease.index}}});
+    }
+    emit(events);
+    arm_deadman();
+}
+
+nlohmann::json GimbalSession::snapshot() const {
+    const double now = now_s();
+    const auto& s = link_->stats();
+    const auto c = protocol_->counters();
+    nlohmann::json link = {
+        {"type", link_->type()},
+        {"endpoint", link_->endpoint()},
+        {"connected", link_->connected()},
+        {"rx_bytes", s.rx_bytes},
+        {"tx_bytes", s.tx_bytes},
+        {"rx_packets", c.rx_packets},
+        {"tx_packets", s.tx_packets},
+        {"bad_checksums", c.bad_checksums},
+        {"dropped_bytes", c.dropped_bytes},
+        {"reconnects", s.reconnects},
+        {"last_rx_age_s", s.last_rx
+                              ? nlohmann::json(std::chrono::duration<double>(
+                                                   std::chrono::steady_clock::now() - *s.last_rx)
+                                                   .count())
+                              : nlohmann::json(nullptr)},
+    };
+    nlohmann::json state = {{"protocol", std::string(protocol_->name())},
+                            {"link", std::move(link)},
+                            {"stale", protocol_->stale(now)}};
+    nlohmann::json keys = protocol_->snapshot(now);  // named: items() of a temporary dangles
+    for (auto& [key, value] : keys.items()) state[key] = std::move(value);
+    return state;
+}
+
+std::string GimbalSession::status() const {
+    return name_ + (link_->connected() ? " up" : " down");
+}
+
+}  // namespace gimbald

@@ -1,0 +1,83 @@
+// One configured gimbal at run time: link -> protocol (framer, state, commands) ->
+// subscribers. Owns the timers of its protocol (staleness, laser dead-man) and the link's
+// life cycle. The same class serves Orion and Viewpro: the protocol object holds the
+// differences.
+#pragma once
+
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/steady_timer.hpp>
+#include <chrono>
+#include <functional>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "link/link.hpp"
+#include "logging.hpp"
+#include "session/laser_guard.hpp"
+#include "session/protocol.hpp"
+#include "state/event.hpp"
+
+namespace gimbald {
+
+class GimbalSession {
+  public:
+    using EventSink = std::function<void(const std::string& gimbal, const gimbal::state::Event&)>;
+
+    GimbalSession(boost::asio::io_context& io, std::string name,
+                  std::unique_ptr<gimbal::session::Protocol> protocol, std::unique_ptr<Link> link,
+                  double fire_timeout_s, EventSink on_event);
+    ~GimbalSession();
+
+    void start();
+    // Sends cease-fire for any laser still firing (synchronously), then closes the link.
+    void stop();
+
+    const std::string& name() const { return name_; }
+    std::string_view protocol() const { return protocol_->name(); }
+    bool connected() const { return link_->connected(); }
+    std::string link_type() const { return link_->type(); }
+
+    bool supports(std::string_view cmd) const { return protocol_->supports(cmd); }
+    // Runs a gimbal command: validate, refuse (nothing sent) or write its packets.
+    // Returns the reply results (with "sent") or the error.
+    struct Outcome {
+        std::optional<gimbal::command::Error> error;
+        nlohmann::json results = nlohmann::json::object();
+    };
+    Outcome execute(std::string_view cmd, const nlohmann::json& request);
+
+    // STATE (contract section 5).
+    nlohmann::json snapshot() const;
+    // Short text for systemd's STATUS= line.
+    std::string status() const;
+
+  private:
+    double now_s() const;
+    void on_data(std::span<const std::uint8_t> bytes);
+    void on_link_state(bool connected);
+    void on_link_error(std::string_view what, std::string_view detail);
+    void emit(std::vector<gimbal::state::Event>& events);
+    void schedule_tick();
+    void arm_deadman();
+    void on_deadman();
+    void report_counters();
+
+    boost::asio::io_context& io_;
+    std::string name_;
+    std::unique_ptr<gimbal::session::Protocol> protocol_;
+    std::unique_ptr<Link> link_;
+    gimbal::session::LaserGuard lasers_;
+    EventSink on_event_;
+    boost::asio::steady_timer tick_timer_;
+    boost::asio::steady_timer deadman_timer_;
+    std::chrono::steady_clock::time_point epoch_;
+    bool stopped_ = false;
+    gimbal::log::RateLimitedLog bad_checksums_;
+    gimbal::log::RateLimitedLog decode_errors_;
+    std::uint64_t reported_bad_checksums_ = 0;
+    std::uint64_t reported_decode_errors_ = 0;
+};
+
+}  // namespace gimbald

@@ -1,0 +1,62 @@
+// TCP link to an Orion gimbal (or gimbal-sim): non-blocking resolve + connect with a timeout,
+// TCP_NODELAY and SO_KEEPALIVE, reconnect forever with backoff, silence watchdog. With host
+// "discover" every connection attempt starts with the Orion SDK's UDP broadcast discovery.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/ip/tcp.hpp>
+#include <boost/asio/steady_timer.hpp>
+
+#include "link/backoff.hpp"
+#include "link/discovery.hpp"
+#include "link/stream_link.hpp"
+
+namespace gimbald {
+
+struct TcpLinkOptions {
+    static constexpr const char* discover_host = "discover";
+
+    std::string host;  // name or address, or "discover"
+    std::uint16_t port = 8747;
+    double connect_timeout_s = 3.0;  // covers resolve + connect
+    double reconnect_min_s = 0.2;
+    double reconnect_max_s = 5.0;
+    // The Orion sends telemetry at 10 Hz: nothing for this long means a dead peer. 0 disables.
+    double silence_timeout_s = 3.0;
+    DiscoveryOptions discovery;  // used when host == "discover"
+    SendQueueLimits queue;
+    double send_now_timeout_s = 0.25;
+};
+
+class TcpLink final : public StreamLink<boost::asio::ip::tcp::socket> {
+  public:
+    TcpLink(boost::asio::io_context& io, TcpLinkOptions options);
+    // `backoff` replaces the one built from reconnect_min_s/max_s (tests pass a seeded one).
+    TcpLink(boost::asio::io_context& io, TcpLinkOptions options, Backoff backoff);
+
+    std::string type() const override { return "tcp"; }
+    // "host:port"; in discovery mode the discovered address, or "discover:port" before that.
+    std::string endpoint() const override;
+
+    bool discovery_mode() const { return discovery_.has_value(); }
+
+  private:
+    void open() override;
+    void close_attempt() override;
+    void connect(const std::string& host);
+    void on_resolved(const boost::system::error_code& ec,
+                     const boost::asio::ip::tcp::resolver::results_type& endpoints);
+    void on_connected(const boost::system::error_code& ec);
+
+    TcpLinkOptions options_;
+    boost::asio::ip::tcp::resolver resolver_;
+    boost::asio::steady_timer connect_timer_;
+    std::optional<Discovery> discovery_;
+    std::string target_host_;  // the host of the current/last attempt
+};
+
+}  // namespace gimbald

@@ -1,0 +1,46 @@
+// gimbald: ground-control daemon for camera gimbals. See `gimbald --help` and docs/.
+#include <boost/system/system_error.hpp>
+#include <exception>
+#include <iostream>
+
+#include "app.hpp"
+#include "config.hpp"
+#include "logging.hpp"
+#include "options.hpp"
+
+int main(int argc, char** argv) {
+    namespace cfg = gimbal::daemon;
+    namespace log = gimbal::log;
+
+    const auto cli = cfg::parse_command_line(argc, argv, std::cout, std::cerr);
+    if (cli.exit_code) return *cli.exit_code;
+    const auto& options = cli.options;
+    if (options.check_config) return cfg::check_config(options, std::cout, std::cerr);
+
+    const auto resolved = cfg::resolve_config(options);
+    if (!resolved.ok()) {
+        for (const auto& p : resolved.problems)
+            std::cerr << "gimbald: " << cfg::config_source(options) << ": " << p.text() << "\n";
+        return cfg::exit_config_error;
+    }
+    const auto& config = resolved.config;
+    try {
+        log::configure(config.log.settings());
+    } catch (const std::exception& e) {
+        std::cerr << "gimbald: " << e.what() << "\n";
+        return cfg::exit_config_error;
+    }
+    log::info("config", "configuration loaded",
+              {{"source", cfg::config_source(options)}, {"config", cfg::to_json(config)}});
+
+    try {
+        gimbald::App app(config);
+        return app.run();
+    } catch (const boost::system::system_error& e) {
+        log::error("runtime_failure", e.what(), {{"code", e.code().value()}});
+        return cfg::exit_runtime_failure;
+    } catch (const std::exception& e) {
+        log::error("runtime_failure", e.what());
+        return cfg::exit_runtime_failure;
+    }
+}

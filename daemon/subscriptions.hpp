@@ -1,0 +1,56 @@
+// Subscribers of the command socket (contract section 4.1, subscribe/unsubscribe): who gets
+// STATE at which rate and events, until their TTL passes without a renewal. Time is passed
+// in, so the table is tested without sockets or clocks.
+#pragma once
+
+#include <boost/asio/ip/udp.hpp>
+#include <cstddef>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace gimbald {
+
+struct Subscription {
+    std::optional<std::string> gimbal;  // nullopt: every gimbal
+    double rate_hz = 10.0;
+    double ttl_s = 60.0;
+    bool events = true;
+    double expires_s = 0;
+    double next_state_s = 0;
+};
+
+class Subscriptions {
+  public:
+    using Endpoint = boost::asio::ip::udp::endpoint;
+
+    explicit Subscriptions(std::size_t max_subscribers) : max_(max_subscribers) {}
+
+    enum class Result { added, renewed, full };
+    // Adds or renews (replacing its parameters) the subscription of `who`.
+    Result subscribe(const Endpoint& who, Subscription s, double now_s);
+    bool unsubscribe(const Endpoint& who);
+    // Drops subscriptions whose TTL passed; returns who was dropped.
+    std::vector<Endpoint> expire(double now_s);
+
+    // Subscribers due a STATE datagram for `gimbal` at now_s. Call once per gimbal, then
+    // mark_sent() once per tick.
+    std::vector<Endpoint> due_state(const std::string& gimbal, double now_s) const;
+    void mark_sent(double now_s);
+    // Subscribers that want events of `gimbal`.
+    std::vector<Endpoint> event_targets(const std::string& gimbal) const;
+    // When the next STATE datagram (or expiry) is due; nullopt when nobody subscribes.
+    std::optional<double> next_due() const;
+
+    std::size_t size() const { return subs_.size(); }
+
+  private:
+    static bool covers(const Subscription& s, const std::string& gimbal) {
+        return !s.gimbal || *s.gimbal == gimbal;
+    }
+    std::size_t max_;
+    std::map<Endpoint, Subscription> subs_;
+};
+
+}  // namespace gimbald

@@ -1,0 +1,169 @@
+#include "command/params.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+namespace gimbal::command {
+namespace {
+
+// Keys every request may carry; they are handled by the command server, not by commands.
+bool is_envelope(std::string_view key) {
+    return key == "cmd" || key == "id" || key == "gimbal" || key == "token";
+}
+
+}  // namespace
+
+std::string format_number(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.10g", v);
+    return buf;
+}
+
+Params::Params(const nlohmann::json& params) : params_(params) {}
+
+void Params::fail(std::string c, std::string message) {
+    if (!error_) error_ = Error{std::move(c), std::move(message)};
+}
+
+void Params::reject_unknown() {
+    if (error_ || !params_.is_object()) return;
+    for (const auto& item : params_.items()) {
+        if (is_envelope(item.key()) || used_.count(item.key())) continue;
+        fail(code::bad_request, "unknown parameter '" + item.key() + "'");
+        return;
+    }
+}
+
+bool Params::has(std::string_view key) const {
+    return params_.is_object() && params_.contains(std::string(key));
+}
+
+const nlohmann::json* Params::take(std::string_view key, bool required) {
+    if (error_) return nullptr;
+    used_.insert(std::string(key));
+    auto it = params_.find(std::string(key));
+    if (it == params_.end() || it->is_null()) {
+        if (required) fail(code::bad_request, "missing parameter '" + std::string(key) + "'");
+        return nullptr;
+    }
+    return &*it;
+}
+
+const nlohmann::json* Params::raw(std::string_view key) {
+    return take(key, false);
+}
+
+std::optional<double> Params::number(std::string_view key, double lo, double hi, bool required) {
+    const nlohmann::json* j = take(key, required);
+    if (!j) return std::nullopt;
+    if (!j->is_number()) {
+        fail(code::bad_request, "'" + std::string(key) + "' must be a number");
+        return std::nullopt;
+    }
+    const double v = j->get<double>();
+    if (!std::isfinite(v) || v < lo || v > hi) {
+        fail(code::out_of_range, "'" + std::string(key) + "' must be between " + format_number(lo) +
+                                     " and " + format_number(hi));
+        return std::nullopt;
+    }
+    return v;
+}
+
+std::optional<std::int64_t> Params::integer(std::string_view key, std::int64_t lo, std::int64_t hi,
+                                            bool required) {
+    const nlohmann::json* j = take(key, required);
+    if (!j) return std::nullopt;
+    if (!j->is_number() ||
+        (j->is_number_float() && j->get<double>() != std::floor(j->get<double>()))) {
+        fail(code::bad_request, "'" + std::string(key) + "' must be an integer");
+        return std::nullopt;
+    }
+    const double v = j->get<double>();
+    if (v < static_cast<double>(lo) || v > static_cast<double>(hi)) {
+        fail(code::out_of_range, "'" + std::string(key) + "' must be between " +
+                                     std::to_string(lo) + " and " + std::to_string(hi));
+        return std::nullopt;
+    }
+    return static_cast<std::int64_t>(v);
+}
+
+std::optional<bool> Params::boolean(std::string_view key, bool required) {
+    const nlohmann::json* j = take(key, required);
+    if (!j) return std::nullopt;
+    if (!j->is_boolean()) {
+        fail(code::bad_request, "'" + std::string(key) + "' must be true or false");
+        return std::nullopt;
+    }
+    return j->get<bool>();
+}
+
+std::optional<std::string> Params::choice(std::string_view key,
+                                          std::span<const std::string_view> choices,
+                                          bool required) {
+    const nlohmann::json* j = take(key, required);
+    if (!j) return std::nullopt;
+    std::string list;
+    for (auto c : choices) list += (list.empty() ? "" : ", ") + std::string(c);
+    if (!j->is_string()) {
+        fail(code::bad_request, "'" + std::string(key) + "' must be one of " + list);
+        return std::nullopt;
+    }
+    const auto v = j->get<std::string>();
+    for (auto c : choices)
+        if (c == v) return v;
+    fail(code::bad_request, "'" + std::string(key) + "' must be one of " + list);
+    return std::nullopt;
+}
+
+std::optional<std::string> Params::text(std::string_view key, std::size_t max_chars,
+                                        bool required) {
+    const nlohmann::json* j = take(key, required);
+    if (!j) return std::nullopt;
+    if (!j->is_string()) {
+        fail(code::bad_request, "'" + std::string(key) + "' must be a string");
+        return std::nullopt;
+    }
+    auto v = j->get<std::string>();
+    if (v.size() > max_chars) {
+        fail(code::out_of_range, "'" + std::string(key) + "' must be at most " +
+                                     std::to_string(max_chars) + " characters");
+        return std::nullopt;
+    }
+    for (const char ch : v) {
+        const auto c = static_cast<unsigned char>(ch);
+        if (c < 0x20 || c > 0x7E) {
+            fail(code::bad_request, "'" + std::string(key) + "' must be printable ASCII");
+            return std::nullopt;
+        }
+    }
+    return v;
+}
+
+std::optional<std::vector<double>> Params::numbers(std::string_view key, std::size_t count,
+                                                   double lo, double hi, bool required) {
+    const nlohmann::json* j = take(key, required);
+    if (!j) return std::nullopt;
+    if (!j->is_array() || j->size() != count) {
+        fail(code::bad_request, "'" + std::string(key) + "' must be an array of " +
+                                    std::to_string(count) + " numbers");
+        return std::nullopt;
+    }
+    std::vector<double> out;
+    for (const auto& item : *j) {
+        if (!item.is_number()) {
+            fail(code::bad_request, "'" + std::string(key) + "' must be an array of " +
+                                        std::to_string(count) + " numbers");
+            return std::nullopt;
+        }
+        const double v = item.get<double>();
+        if (!std::isfinite(v) || v < lo || v > hi) {
+            fail(code::out_of_range, "'" + std::string(key) + "' items must be between " +
+                                         format_number(lo) + " and " + format_number(hi));
+            return std::nullopt;
+        }
+        out.push_back(v);
+    }
+    return out;
+}
+
+}  // namespace gimbal::command

@@ -1,0 +1,52 @@
+#include "session/laser_guard.hpp"
+
+namespace gimbal::session {
+
+void LaserGuard::commanded(const command::LaserIntent& intent, double now_s) {
+    if (intent.index >= slots_.size()) return;
+    auto& slot = slots_[intent.index];
+    slot.firing = intent.fire;
+    slot.deadline_armed = intent.fire;
+    slot.deadline_s = now_s + timeout_s_;
+    slot.cease_frame = intent.cease_frame;
+}
+
+std::vector<LaserGuard::Cease> LaserGuard::expired(double now_s) {
+    std::vector<Cease> out;
+    for (std::uint8_t i = 0; i < slots_.size(); ++i) {
+        auto& slot = slots_[i];
+        if (slot.firing && slot.deadline_armed && slot.deadline_s <= now_s) {
+            slot.deadline_armed = false;
+            out.push_back(Cease{i, slot.cease_frame});
+        }
+    }
+    return out;
+}
+
+std::vector<LaserGuard::Cease> LaserGuard::cease_all() const {
+    std::vector<Cease> out;
+    for (std::uint8_t i = 0; i < slots_.size(); ++i)
+        if (slots_[i].firing) out.push_back(Cease{i, slots_[i].cease_frame});
+    return out;
+}
+
+void LaserGuard::ceased(std::uint8_t index) {
+    if (index < slots_.size()) {
+        slots_[index].firing = false;
+        slots_[index].deadline_armed = false;
+    }
+}
+
+std::optional<double> LaserGuard::next_deadline() const {
+    std::optional<double> next;
+    for (const auto& slot : slots_)
+        if (slot.firing && slot.deadline_armed && (!next || slot.deadline_s < *next))
+            next = slot.deadline_s;
+    return next;
+}
+
+bool LaserGuard::firing(std::uint8_t index) const {
+    return index < slots_.size() && slots_[index].firing;
+}
+
+}  // namespace gimbal::session

@@ -1,0 +1,44 @@
+// The Orion side of a gimbal session: OrionPublic framer, state model and commands.
+#pragma once
+
+#include <memory>
+
+#include "command/orion_commands.hpp"
+#include "orion/framer.hpp"
+#include "session/protocol.hpp"
+#include "state/orion_state.hpp"
+
+namespace gimbal::session {
+
+struct OrionOptions {
+    double stale_after_s = 1.0;
+    bool auto_ack_stare = false;
+    bool allow_fire = false;
+    bool allow_safety_bypass = false;
+};
+
+class OrionProtocol final : public Protocol {
+  public:
+    explicit OrionProtocol(const OrionOptions& options);
+
+    std::string_view name() const override { return "orion"; }
+    void receive(std::span<const std::uint8_t> bytes, double now_s,
+                 std::vector<state::Event>& events, std::vector<Bytes>& replies) override;
+    void tick(double now_s, std::vector<state::Event>& events) override;
+    std::vector<Bytes> on_connect() override;
+    bool stale(double now_s) const override { return state_.stale(now_s); }
+    nlohmann::json snapshot(double now_s) const override { return state_.snapshot(now_s); }
+    FrameCounters counters() const override;
+    bool supports(std::string_view cmd) const override;
+    std::optional<command::Error> plan(std::string_view cmd, const nlohmann::json& request,
+                                       double now_s, command::Plan& plan) override;
+
+    const state::OrionState& state() const { return state_; }
+
+  private:
+    OrionOptions options_;
+    orion::Framer framer_;
+    state::OrionState state_;
+};
+
+}  // namespace gimbal::session

@@ -1,0 +1,53 @@
+// Everything protocol-specific about one gimbal, behind one interface, so the daemon has a
+// single session, command and subscription path for Orion and Viewpro alike:
+// bytes in -> framer -> state (+ events); JSON command -> packets out. Pure: time is passed in.
+#pragma once
+
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include "command/result.hpp"
+#include "state/event.hpp"
+
+namespace gimbal::session {
+
+using Bytes = std::vector<std::uint8_t>;
+
+// Framer counters shown in the STATE `link` object.
+struct FrameCounters {
+    std::uint64_t rx_packets = 0;
+    std::uint64_t bad_checksums = 0;
+    std::uint64_t dropped_bytes = 0;
+    std::uint64_t decode_errors = 0;
+};
+
+class Protocol {
+  public:
+    virtual ~Protocol() = default;
+
+    virtual std::string_view name() const = 0;  // "orion" / "viewpro"
+
+    // Bytes from the gimbal at now_s. Appends the events they cause and the packets the
+    // daemon answers with by itself (e.g. StareAck when stare.auto_ack is set).
+    virtual void receive(std::span<const std::uint8_t> bytes, double now_s,
+                         std::vector<state::Event>& events, std::vector<Bytes>& replies) = 0;
+    virtual void tick(double now_s, std::vector<state::Event>& events) = 0;
+    // A new connection: forget partial frames; returns what to send first (requests).
+    virtual std::vector<Bytes> on_connect() = 0;
+
+    virtual bool stale(double now_s) const = 0;
+    // The protocol's keys of STATE (section 5), without protocol/link/stale.
+    virtual nlohmann::json snapshot(double now_s) const = 0;
+    virtual FrameCounters counters() const = 0;
+
+    virtual bool supports(std::string_view cmd) const = 0;
+    // Plans a command; on error returns it and plans nothing.
+    virtual std::optional<command::Error> plan(std::string_view cmd, const nlohmann::json& request,
+                                               double now_s, command::Plan& plan) = 0;
+};
+
+}  // namespace gimbal::session

@@ -1,0 +1,65 @@
+// A simulated Trillium Orion gimbal behind the byte-level Device interface: what the daemon's
+// sim link and the gimbal-sim tool serve. See docs/simulator.md for the behaviour in full.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "orion/enums.hpp"
+#include "sim/device.hpp"
+
+namespace gimbal::sim {
+
+struct OrionSimOptions {
+    // The aircraft flies a level circle around this centre (WGS84, height above the ellipsoid).
+    double lat_deg = 45.7;
+    double lon_deg = -121.5;
+    double alt_m = 1500;
+    double radius_m = 1000;
+    double speed_mps = 25;  // 0 hovers at the centre
+    bool clockwise = true;
+    // Flat terrain at this height above the ellipsoid gives the line of sight its range.
+    double terrain_alt_m = 100;
+    // Reported geoid height above the ellipsoid (MSL altitude = WGS84 altitude - this).
+    double geoid_undulation_m = -21;
+
+    // Axes: slew rate limits and tilt end stops (pan turns without end stops).
+    double pan_rate_max_dps = 60;
+    double tilt_rate_max_dps = 60;
+    double tilt_min_deg = -120;
+    double tilt_max_deg = 30;
+
+    // Path mode and step-stare.
+    double path_scan_speed_mps = 100;
+    double stare_time_s = 1.0;  // StareStart maxStareTime, at most 2.55
+    double step_timeout_s = 2.0;
+    double on_target_deg = 0.5;
+
+    // Lasers by index; an empty password means none is needed.
+    std::vector<orion::LaserType> lasers{orion::LaserType::pointer, orion::LaserType::lightware};
+    std::string laser_password;
+    bool retract_installed = true;
+
+    // GPS time (seconds since 1980-01-06, leap seconds included) when the model starts, and
+    // the gimbal's uptime then. The model never reads a clock: the caller passes these.
+    double gps_time_at_start_s = 1419724818.0;  // 2025-01-01T00:00:00Z
+    std::uint32_t uptime_at_start_ms = 0;
+    std::uint8_t leap_seconds = 18;
+
+    std::uint32_t seed = 1;  // sensor noise; the same seed gives the same bytes
+};
+
+std::unique_ptr<Device> make_orion_sim(const OrionSimOptions& options = {});
+
+// GPS time for a Unix time: GPS counts from 1980-01-06 and includes the leap seconds UTC
+// skips (18 since 2017).
+inline double gps_time_from_unix_s(double unix_s, std::uint8_t leap_seconds = 18) {
+    return unix_s - 315964800.0 + leap_seconds;
+}
+
+// Wire bytes of the CrownVersion packet the simulated gimbal reports: the discovery reply.
+std::vector<std::uint8_t> orion_sim_crown_version_frame();
+
+}  // namespace gimbal::sim

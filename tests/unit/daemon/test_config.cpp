@@ -1,0 +1,673 @@
+// Configuration file: the shipped examples, defaults, every validation rule with its exact
+// path and message, unknown keys at every level, CIDR matching and the --sim gimbals.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <fstream>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "config.hpp"
+
+using namespace gimbal::daemon;
+using nlohmann::json;
+
+namespace {
+
+const std::string source_dir = std::string(GIMBAL_TEST_DATA) + "/../..";
+
+std::string read_text(const std::string& path) {
+    std::ifstream in(path);
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+json read_json(const std::string& path) {
+    return json::parse(read_text(path));
+}
+
+std::vector<std::string> problem_texts(const ConfigResult& result) {
+    std::vector<std::string> texts;
+    for (const auto& p : result.problems) texts.push_back(p.text());
+    return texts;
+}
+
+std::string joined(const std::vector<std::string>& texts) {
+    std::string all;
+    for (const auto& t : texts) all += t + "\n";
+    return all;
+}
+
+// A valid configuration with one gimbal of each link type, every other key at its default.
+json valid_config() {
+    return json::parse(R"({
+      "gimbals": [
+        {"name": "main", "protocol": "orion",
+         "link": {"type": "tcp", "host": "192.168.1.20", "port": 8747}},
+        {"name": "nose", "protocol": "viewpro",
+         "link": {"type": "serial", "device": "/dev/ttyUSB0", "baud": 115200}},
+        {"name": "bench", "protocol": "orion", "link": {"type": "sim"}}
+      ]
+    })");
+}
+
+// Applies `edit` to a valid configuration and returns the problems of the result.
+template <class Edit>
+std::vector<std::string> problems_after(Edit edit) {
+    json config = valid_config();
+    edit(config);
+    return problem_texts(parse_config(config.dump()));
+}
+
+const std::string baud_list =
+    "1200, 1800, 2400, 4800, 9600, 19200, 38400, 57600, 115200, 230400, 460800, 500000, "
+    "576000, 921600, 1000000, 1152000, 1500000, 2000000, 2500000, 3000000, 3500000, 4000000";
+
+// Every object path of a JSON document, e.g. "", "gimbals[0]", "gimbals[0].link".
+void object_paths(const json& value, const std::string& path, std::vector<std::string>& out) {
+    if (value.is_object()) {
+        out.push_back(path);
+        for (const auto& [key, item] : value.items()) {
+            object_paths(item, path.empty() ? key : path + "." + key, out);
+        }
+    } else if (value.is_array()) {
+        for (std::size_t i = 0; i < value.size(); ++i) {
+            object_paths(value[i], path + "[" + std::to_string(i) + "]", out);
+        }
+    }
+}
+
+json& at_path(json& root, const std::string& path) {
+    // "gimbals[0].link" -> "/gimbals/0/link"
+    std::string pointer;
+    for (char c : path) {
+        if (c == '.' || c == '[') {
+            pointer += '/';
+        } else if (c != ']') {
+            pointer += c;
+        }
+    }
+    if (!pointer.empty() && pointer.front() != '/') pointer.insert(pointer.begin(), '/');
+    return root[json::json_pointer(pointer)];
+}
+
+// Leaf key paths with array indices dropped: "gimbals[].link.port".
+void leaf_paths(const json& value, const std::string& path, std::vector<std::string>& out) {
+    if (value.is_object()) {
+        for (const auto& [key, item] : value.items()) {
+            leaf_paths(item, path.empty() ? key : path + "." + key, out);
+        }
+    } else if (value.is_array() && !value.empty() && value[0].is_object()) {
+        for (const auto& item : value) leaf_paths(item, path + "[]", out);
+    } else {
+        out.push_back(path);
+    }
+}
+
+}  // namespace
+
+TEST_CASE("the example configuration is valid and holds every default", "[config]") {
+    const std::string path = source_dir + "/config/gimbald.json";
+    const auto result = load_config_file(path);
+    INFO(joined(problem_texts(result)));
+    REQUIRE(result.ok());
+    const Config& config = result.config;
+    REQUIRE(config.gimbals.size() == 2);
+    CHECK(config.gimbals[0].name == "main");
+    CHECK(config.gimbals[1].protocol == Protocol::viewpro);
+    REQUIRE(config.vehicle.has_value());
+
+    // Serialising the parsed file gives back exactly the file: no key is lost or invented.
+    CHECK(to_json(config) == read_json(path));
+
+    // The same gimbals with only the required keys, and an empty vehicle section, give the
+    // same configuration: every other value in the file is the default.
+    json minimal = valid_config();
+    minimal["gimbals"].erase(2);
+    minimal["vehicle"] = json::object();
+    const auto defaults = parse_config(minimal.dump());
+    REQUIRE(defaults.ok());
+    CHECK(defaults.config == config);
+}
+
+TEST_CASE("the sim example configuration is valid", "[config]") {
+    const auto result = load_config_file(source_dir + "/config/sim.json");
+    INFO(joined(problem_texts(result)));
+    REQUIRE(result.ok());
+    REQUIRE(result.config.gimbals.size() == 1);
+    const auto& gimbal = result.config.gimbals[0];
+    CHECK(gimbal.protocol == Protocol::orion);
+    const auto* tcp = std::get_if<TcpLink>(&gimbal.link);
+    REQUIRE(tcp != nullptr);
+    CHECK(tcp->host == "127.0.0.1");
+    CHECK(tcp->port == 8747);
+}
+
+TEST_CASE("docs/configuration.md documents every key", "[config]") {
+    const std::string docs = read_text(source_dir + "/docs/configuration.md");
+    REQUIRE(!docs.empty());
+    std::vector<std::string> paths;
+    leaf_paths(read_json(source_dir + "/config/gimbald.json"), "", paths);
+    // Keys the example cannot show at once: the other vehicle source.
+    paths.push_back("vehicle.source.device");
+    paths.push_back("vehicle.source.baud");
+    for (const auto& path : paths) {
+        INFO(path);
+        CHECK(docs.find("`" + path + "`") != std::string::npos);
+    }
+}
+
+TEST_CASE("defaults are applied to absent keys", "[config]") {
+    const auto result = parse_config(valid_config().dump());
+    INFO(joined(problem_texts(result)));
+    REQUIRE(result.ok());
+    const Config& c = result.config;
+
+    const auto& tcp = std::get<TcpLink>(c.gimbals[0].link);
+    CHECK(tcp.connect_timeout_s == 3.0);
+    CHECK(tcp.reconnect_min_s == 0.2);
+    CHECK(tcp.reconnect_max_s == 5.0);
+    CHECK(tcp.silence_timeout_s == 3.0);
+    CHECK(tcp.discover_address == "255.255.255.255");
+    CHECK(tcp.discover_port == 8745);
+    CHECK(tcp.discover_reply_port == 8746);
+    CHECK_FALSE(tcp.discover());
+    CHECK(c.gimbals[0].orion_feed.autopilot);
+    CHECK_FALSE(c.gimbals[0].orion_feed.gps);
+
+    const auto& serial = std::get<SerialLink>(c.gimbals[1].link);
+    CHECK(serial.device == "/dev/ttyUSB0");
+    CHECK(serial.baud == 115200);
+    CHECK(serial.reconnect_min_s == 0.2);
+    CHECK(serial.reconnect_max_s == 5.0);
+    CHECK(c.gimbals[1].viewpro.output.osd == ViewproOsd::target);
+    CHECK(c.gimbals[1].viewpro.output.serial);
+    CHECK_FALSE(c.gimbals[1].viewpro.output.network);
+    CHECK(c.gimbals[1].viewpro.output.format == ViewproFormat::out3);
+    CHECK(c.gimbals[1].viewpro_feed == ViewproFeed::in2);
+    CHECK(std::holds_alternative<SimLink>(c.gimbals[2].link));
+
+    CHECK(c.command.bind.to_string() == "127.0.0.1");
+    CHECK(c.command.port == 8760);
+    REQUIRE(c.command.allow.size() == 2);
+    CHECK(c.command.allow[0].to_string() == "127.0.0.0/8");
+    CHECK(c.command.allow[1].to_string() == "::1/128");
+    CHECK_FALSE(c.command.token.has_value());
+    CHECK(c.command.max_subscribers == 64);
+    CHECK_FALSE(c.laser.allow_fire);
+    CHECK(c.laser.fire_timeout_s == 5.0);
+    CHECK_FALSE(c.laser.allow_safety_bypass);
+    CHECK_FALSE(c.stare.auto_ack);
+    CHECK(c.telemetry.stale_after_s == 1.0);
+    CHECK(c.log.level == gimbal::log::Level::info);
+    CHECK(c.log.format == gimbal::log::Format::json);
+    CHECK_FALSE(c.log.file.has_value());
+    CHECK_FALSE(c.vehicle.has_value());
+}
+
+TEST_CASE("given values are read", "[config]") {
+    json config = valid_config();
+    config["gimbals"][0]["link"] = {{"type", "tcp"},
+                                    {"host", "discover"},
+                                    {"port", 8747},
+                                    {"connect_timeout_s", 1.5},
+                                    {"reconnect_min_s", 1},
+                                    {"reconnect_max_s", 30},
+                                    {"silence_timeout_s", 10},
+                                    {"discover_address", "192.168.1.255"},
+                                    {"discover_port", 9745},
+                                    {"discover_reply_port", 9746}};
+    config["gimbals"][0]["feed"] = {{"autopilot", false}, {"gps", true}};
+    config["gimbals"][1]["viewpro"] = {
+        {"output", {{"osd", "uav"}, {"serial", false}, {"network", true}, {"format", "out1"}}}};
+    config["gimbals"][1]["feed"] = "mavlink";
+    config["command"] = {{"bind", "::"},
+                         {"port", 9000},
+                         {"allow", {"10.0.0.0/8"}},
+                         {"token", "s3cret"},
+                         {"max_subscribers", 5}};
+    config["laser"] = {
+        {"allow_fire", true}, {"fire_timeout_s", 0.5}, {"allow_safety_bypass", true}};
+    config["stare"] = {{"auto_ack", true}};
+    config["telemetry"] = {{"stale_after_s", 2.5}};
+    config["log"] = {{"level", "debug"}, {"format", "text"}, {"file", "/var/log/gimbald/g.log"}};
+    config["vehicle"] = {
+        {"source", {{"type", "serial"}, {"device", "/dev/ttyACM0"}, {"baud", 57600}}},
+        {"system_id", 7},
+        {"timeout_s", 3}};
+
+    const auto result = parse_config(config.dump());
+    INFO(joined(problem_texts(result)));
+    REQUIRE(result.ok());
+    const Config& c = result.config;
+    const auto& tcp = std::get<TcpLink>(c.gimbals[0].link);
+    CHECK(tcp.discover());
+    CHECK(tcp.connect_timeout_s == 1.5);
+    CHECK(tcp.reconnect_min_s == 1.0);
+    CHECK(tcp.reconnect_max_s == 30.0);
+    CHECK(tcp.silence_timeout_s == 10.0);
+    CHECK(tcp.discover_address == "192.168.1.255");
+    CHECK(tcp.discover_port == 9745);
+    CHECK(tcp.discover_reply_port == 9746);
+    CHECK_FALSE(c.gimbals[0].orion_feed.autopilot);
+    CHECK(c.gimbals[0].orion_feed.gps);
+    CHECK(c.gimbals[1].viewpro.output ==
+          ViewproOutput{ViewproOsd::uav, false, true, ViewproFormat::out1});
+    CHECK(c.gimbals[1].viewpro_feed == ViewproFeed::mavlink);
+    CHECK(c.command.bind.to_string() == "::");
+    CHECK(c.command.port == 9000);
+    CHECK(c.command.token == std::optional<std::string>("s3cret"));
+    CHECK(c.command.max_subscribers == 5);
+    CHECK(c.laser.allow_fire);
+    CHECK(c.laser.fire_timeout_s == 0.5);
+    CHECK(c.laser.allow_safety_bypass);
+    CHECK(c.stare.auto_ack);
+    CHECK(c.telemetry.stale_after_s == 2.5);
+    CHECK(c.log.level == gimbal::log::Level::debug);
+    CHECK(c.log.format == gimbal::log::Format::text);
+    CHECK(c.log.file == std::optional<std::string>("/var/log/gimbald/g.log"));
+    REQUIRE(c.vehicle.has_value());
+    CHECK(c.vehicle->source ==
+          std::variant<UdpSource, SerialSource>(SerialSource{"/dev/ttyACM0", 57600}));
+    CHECK(c.vehicle->system_id == std::optional<std::uint8_t>(7));
+    CHECK(c.vehicle->timeout_s == 3.0);
+
+    // to_json is the inverse of parse_config (token shown on request only).
+    CHECK(to_json(c)["command"]["token"] == "***");
+    const auto again = parse_config(to_json(c, true).dump());
+    REQUIRE(again.ok());
+    CHECK(again.config == c);
+}
+
+TEST_CASE("each invalid value is reported with its path and message", "[config]") {
+    struct Case {
+        const char* what;
+        std::function<void(json&)> edit;
+        std::string expected;
+    };
+    const std::vector<Case> cases = {
+        {"baud not standard", [](json& c) { c["gimbals"][1]["link"]["baud"] = 115201; },
+         "gimbals[1].link.baud: must be one of " + baud_list},
+        {"baud as text", [](json& c) { c["gimbals"][1]["link"]["baud"] = "115200"; },
+         "gimbals[1].link.baud: must be one of " + baud_list},
+        {"laser timeout", [](json& c) { c["laser"]["fire_timeout_s"] = 0; },
+         "laser.fire_timeout_s: must be between 0.1 and 3600"},
+        {"laser timeout type", [](json& c) { c["laser"]["fire_timeout_s"] = "5"; },
+         "laser.fire_timeout_s: must be a number between 0.1 and 3600"},
+        {"duplicate name", [](json& c) { c["gimbals"][2]["name"] = "main"; },
+         "gimbals[2].name: duplicate name \"main\" (also gimbals[0])"},
+        {"bad CIDR",
+         [](json& c) {
+             c["command"]["allow"] = {"127.0.0.0/8", "::1/128", "10.0.0.0/33"};
+         },
+         "command.allow[2]: not a CIDR"},
+        {"CIDR not a string",
+         [](json& c) {
+             c["command"]["allow"] = {"127.0.0.0/8", 10};
+         },
+         "command.allow[1]: not a CIDR"},
+        {"empty allow", [](json& c) { c["command"]["allow"] = json::array(); },
+         "command.allow: must be a non-empty array of CIDR blocks such as \"127.0.0.0/8\""},
+        {"upper-case name", [](json& c) { c["gimbals"][0]["name"] = "Main"; },
+         "gimbals[0].name: must match [a-z0-9_-]{1,32}"},
+        {"long name", [](json& c) { c["gimbals"][0]["name"] = std::string(33, 'a'); },
+         "gimbals[0].name: must match [a-z0-9_-]{1,32}"},
+        {"empty name", [](json& c) { c["gimbals"][0]["name"] = ""; },
+         "gimbals[0].name: must match [a-z0-9_-]{1,32}"},
+        {"missing name", [](json& c) { c["gimbals"][0].erase("name"); },
+         "gimbals[0].name: required"},
+        {"protocol", [](json& c) { c["gimbals"][0]["protocol"] = "trillium"; },
+         "gimbals[0].protocol: must be one of \"orion\", \"viewpro\""},
+        {"missing link", [](json& c) { c["gimbals"][0].erase("link"); },
+         "gimbals[0].link: required"},
+        {"link not an object", [](json& c) { c["gimbals"][0]["link"] = "tcp"; },
+         "gimbals[0].link: must be an object"},
+        {"link type", [](json& c) { c["gimbals"][0]["link"]["type"] = "udp"; },
+         "gimbals[0].link.type: must be one of \"tcp\", \"serial\", \"sim\""},
+        {"missing host", [](json& c) { c["gimbals"][0]["link"].erase("host"); },
+         "gimbals[0].link.host: required"},
+        {"host with space", [](json& c) { c["gimbals"][0]["link"]["host"] = "my host"; },
+         "gimbals[0].link.host: must be a host name, an IP address or \"discover\""},
+        {"missing port", [](json& c) { c["gimbals"][0]["link"].erase("port"); },
+         "gimbals[0].link.port: required"},
+        {"port zero", [](json& c) { c["gimbals"][0]["link"]["port"] = 0; },
+         "gimbals[0].link.port: must be between 1 and 65535"},
+        {"port too big", [](json& c) { c["gimbals"][0]["link"]["port"] = 65536; },
+         "gimbals[0].link.port: must be between 1 and 65535"},
+        {"port negative", [](json& c) { c["gimbals"][0]["link"]["port"] = -1; },
+         "gimbals[0].link.port: must be between 1 and 65535"},
+        {"port huge", [](json& c) { c["gimbals"][0]["link"]["port"] = 18446744073709551615ull; },
+         "gimbals[0].link.port: must be between 1 and 65535"},
+        {"port fraction", [](json& c) { c["gimbals"][0]["link"]["port"] = 8747.5; },
+         "gimbals[0].link.port: must be an integer between 1 and 65535"},
+        {"port text", [](json& c) { c["gimbals"][0]["link"]["port"] = "8747"; },
+         "gimbals[0].link.port: must be an integer between 1 and 65535"},
+        {"connect timeout", [](json& c) { c["gimbals"][0]["link"]["connect_timeout_s"] = 0; },
+         "gimbals[0].link.connect_timeout_s: must be between 0.1 and 60"},
+        {"reconnect order",
+         [](json& c) {
+             c["gimbals"][0]["link"]["reconnect_min_s"] = 2;
+             c["gimbals"][0]["link"]["reconnect_max_s"] = 1;
+         },
+         "gimbals[0].link.reconnect_max_s: must not be less than reconnect_min_s (2)"},
+        {"reconnect max", [](json& c) { c["gimbals"][1]["link"]["reconnect_max_s"] = 4000; },
+         "gimbals[1].link.reconnect_max_s: must be between 0.1 and 3600"},
+        {"silence timeout", [](json& c) { c["gimbals"][0]["link"]["silence_timeout_s"] = 0; },
+         "gimbals[0].link.silence_timeout_s: must be between 0.1 and 3600"},
+        {"discover address v6",
+         [](json& c) { c["gimbals"][0]["link"]["discover_address"] = "ff02::1"; },
+         "gimbals[0].link.discover_address: must be an IPv4 address"},
+        {"discover address text",
+         [](json& c) { c["gimbals"][0]["link"]["discover_address"] = "all"; },
+         "gimbals[0].link.discover_address: must be an IPv4 or IPv6 address"},
+        {"discover port", [](json& c) { c["gimbals"][0]["link"]["discover_port"] = 0; },
+         "gimbals[0].link.discover_port: must be between 1 and 65535"},
+        {"relative device", [](json& c) { c["gimbals"][1]["link"]["device"] = "ttyUSB0"; },
+         "gimbals[1].link.device: must be an absolute path such as /dev/ttyUSB0"},
+        {"missing baud", [](json& c) { c["gimbals"][1]["link"].erase("baud"); },
+         "gimbals[1].link.baud: required"},
+        {"shared device",
+         [](json& c) {
+             c["gimbals"][2]["link"] = {
+                 {"type", "serial"}, {"device", "/dev/ttyUSB0"}, {"baud", 9600}};
+         },
+         "gimbals[2].link.device: \"/dev/ttyUSB0\" is already used by gimbals[1]"},
+        {"viewpro section on orion", [](json& c) { c["gimbals"][0]["viewpro"] = json::object(); },
+         "gimbals[0].viewpro: only for protocol \"viewpro\""},
+        {"viewpro osd", [](json& c) { c["gimbals"][1]["viewpro"]["output"]["osd"] = "gimbal"; },
+         "gimbals[1].viewpro.output.osd: must be one of \"target\", \"uav\""},
+        {"viewpro format", [](json& c) { c["gimbals"][1]["viewpro"]["output"]["format"] = "out5"; },
+         "gimbals[1].viewpro.output.format: must be one of \"out1\", \"out2\", \"out3\", \"out4\""},
+        {"viewpro serial", [](json& c) { c["gimbals"][1]["viewpro"]["output"]["serial"] = 1; },
+         "gimbals[1].viewpro.output.serial: must be true or false"},
+        {"viewpro output type", [](json& c) { c["gimbals"][1]["viewpro"]["output"] = "out3"; },
+         "gimbals[1].viewpro.output: must be an object"},
+        {"viewpro feed", [](json& c) { c["gimbals"][1]["feed"] = "in3"; },
+         "gimbals[1].feed: must be one of \"in2\", \"in1\", \"mavlink\""},
+        {"orion feed", [](json& c) { c["gimbals"][0]["feed"] = "in2"; },
+         "gimbals[0].feed: must be an object"},
+        {"orion feed gps",
+         [](json& c) {
+             c["gimbals"][0]["feed"] = {{"gps", "yes"}};
+         },
+         "gimbals[0].feed.gps: must be true or false"},
+        {"gimbal not an object", [](json& c) { c["gimbals"][1] = "nose"; },
+         "gimbals[1]: must be an object"},
+        {"no gimbals", [](json& c) { c.erase("gimbals"); }, "gimbals: required"},
+        {"empty gimbals", [](json& c) { c["gimbals"] = json::array(); },
+         "gimbals: must list 1 to 32 gimbals"},
+        {"gimbals not an array", [](json& c) { c["gimbals"] = json::object(); },
+         "gimbals: must be an array of gimbals"},
+        {"bind", [](json& c) { c["command"]["bind"] = "localhost"; },
+         "command.bind: must be an IPv4 or IPv6 address"},
+        {"command port", [](json& c) { c["command"]["port"] = 70000; },
+         "command.port: must be between 1 and 65535"},
+        {"empty token", [](json& c) { c["command"]["token"] = ""; },
+         "command.token: must be null or a string of 1 to 256 characters"},
+        {"token number", [](json& c) { c["command"]["token"] = 1234; },
+         "command.token: must be null or a string of 1 to 256 characters"},
+        {"max subscribers", [](json& c) { c["command"]["max_subscribers"] = 0; },
+         "command.max_subscribers: must be between 1 and 1024"},
+        {"allow fire", [](json& c) { c["laser"]["allow_fire"] = "false"; },
+         "laser.allow_fire: must be true or false"},
+        {"auto ack", [](json& c) { c["stare"]["auto_ack"] = nullptr; },
+         "stare.auto_ack: must be true or false"},
+        {"stale", [](json& c) { c["telemetry"]["stale_after_s"] = 100; },
+         "telemetry.stale_after_s: must be between 0.1 and 60"},
+        {"log level", [](json& c) { c["log"]["level"] = "verbose"; },
+         "log.level: must be one of \"trace\", \"debug\", \"info\", \"warn\", \"error\""},
+        {"log format", [](json& c) { c["log"]["format"] = "xml"; },
+         "log.format: must be one of \"json\", \"text\""},
+        {"log file", [](json& c) { c["log"]["file"] = 3; },
+         "log.file: must be null or a file path"},
+        {"section not an object", [](json& c) { c["laser"] = true; }, "laser: must be an object"},
+        {"vehicle source type",
+         [](json& c) {
+             c["vehicle"]["source"] = {{"type", "tcp"}};
+         },
+         "vehicle.source.type: must be one of \"udp\", \"serial\""},
+        {"vehicle source without type",
+         [](json& c) {
+             c["vehicle"]["source"] = {{"port", 1}};
+         },
+         "vehicle.source.type: required"},
+        {"vehicle udp port",
+         [](json& c) {
+             c["vehicle"]["source"] = {{"type", "udp"}, {"port", 0}};
+         },
+         "vehicle.source.port: must be between 1 and 65535"},
+        {"vehicle serial baud",
+         [](json& c) {
+             c["vehicle"]["source"] = {{"type", "serial"}, {"device", "/dev/ttyS1"}, {"baud", 100}};
+         },
+         "vehicle.source.baud: must be one of " + baud_list},
+        {"vehicle serial shared",
+         [](json& c) {
+             c["vehicle"]["source"] = {
+                 {"type", "serial"}, {"device", "/dev/ttyUSB0"}, {"baud", 57600}};
+         },
+         "vehicle.source.device: \"/dev/ttyUSB0\" is already used by gimbals[1]"},
+        {"system id zero", [](json& c) { c["vehicle"]["system_id"] = 0; },
+         "vehicle.system_id: must be between 1 and 255"},
+        {"system id big", [](json& c) { c["vehicle"]["system_id"] = 256; },
+         "vehicle.system_id: must be between 1 and 255"},
+        {"vehicle timeout", [](json& c) { c["vehicle"]["timeout_s"] = 0.01; },
+         "vehicle.timeout_s: must be between 0.1 and 60"},
+    };
+    for (const auto& c : cases) {
+        INFO(c.what);
+        const auto problems = problems_after(c.edit);
+        INFO(joined(problems));
+        // Exactly the one expected problem: nothing missed, nothing reported twice.
+        REQUIRE(problems.size() == 1);
+        CHECK(problems[0] == c.expected);
+    }
+}
+
+TEST_CASE("every problem is reported, not just the first", "[config]") {
+    const auto problems = problems_after([](json& c) {
+        c["gimbals"][0]["name"] = "Main";
+        c["gimbals"][1]["link"]["baud"] = 1;
+        c["command"]["allow"] = {"x", "127.0.0.1/8", "y"};
+        c["laser"]["fire_timeout_s"] = 1e9;
+        c["log"]["colour"] = true;
+    });
+    CHECK(problems == std::vector<std::string>{
+                          "gimbals[0].name: must match [a-z0-9_-]{1,32}",
+                          "gimbals[1].link.baud: must be one of " + baud_list,
+                          "command.allow[0]: not a CIDR",
+                          "command.allow[2]: not a CIDR",
+                          "laser.fire_timeout_s: must be between 0.1 and 3600",
+                          "log.colour: unknown key",
+                      });
+}
+
+TEST_CASE("unknown keys are rejected in every object", "[config]") {
+    json full = read_json(source_dir + "/config/gimbald.json");
+    std::vector<std::string> paths;
+    object_paths(full, "", paths);
+    REQUIRE(paths.size() >= 15);
+    for (const auto& path : paths) {
+        json config = full;
+        at_path(config, path)["zzz_unknown"] = 1;
+        const auto problems = problem_texts(parse_config(config.dump()));
+        INFO("object: " << (path.empty() ? "(top level)" : path));
+        REQUIRE(problems.size() == 1);
+        CHECK(problems[0] == (path.empty() ? "" : path + ".") + "zzz_unknown: unknown key");
+    }
+
+    // Keys of another link type are unknown too, and typos get a suggestion.
+    CHECK(problems_after([](json& c) { c["gimbals"][0]["link"]["baud"] = 9600; }) ==
+          std::vector<std::string>{"gimbals[0].link.baud: unknown key"});
+    CHECK(problems_after([](json& c) { c["gimbals"][2]["link"]["host"] = "x"; }) ==
+          std::vector<std::string>{"gimbals[2].link.host: unknown key"});
+    CHECK(problems_after([](json& c) { c["laser"]["allow_fir"] = true; }) ==
+          std::vector<std::string>{"laser.allow_fir: unknown key (did you mean \"allow_fire\"?)"});
+    CHECK(problems_after([](json& c) { c["gimbals"][1]["link"]["buad"] = 9600; }) ==
+          std::vector<std::string>{"gimbals[1].link.buad: unknown key (did you mean \"baud\"?)"});
+}
+
+TEST_CASE("duplicate keys are rejected with their path", "[config]") {
+    const auto result = parse_config(R"({
+      "gimbals": [
+        {"name": "a", "protocol": "orion", "link": {"type": "sim"}},
+        {"name": "b", "protocol": "orion", "link": {"type": "tcp", "host": "h", "port": 1, "port": 2}}
+      ],
+      "laser": {"allow_fire": false, "allow_fire": true}
+    })");
+    CHECK(problem_texts(result) == std::vector<std::string>{"gimbals[1].link.port: duplicate key",
+                                                            "laser.allow_fire: duplicate key"});
+}
+
+TEST_CASE("JSON syntax errors give line and column", "[config]") {
+    const auto result = parse_config("{\n  \"gimbals\": [\n    {\"name\": \"a\",}\n  ]\n}\n");
+    REQUIRE(result.problems.size() == 1);
+    CHECK(result.problems[0].path.empty());
+    CHECK_THAT(result.problems[0].message, Catch::StartsWith("line 3, column 18: syntax error"));
+
+    const auto truncated = parse_config("{\"gimbals\": [");
+    REQUIRE(truncated.problems.size() == 1);
+    CHECK_THAT(truncated.problems[0].message, Catch::StartsWith("line 1, column 14: "));
+
+    CHECK(problem_texts(parse_config("[1, 2]")) ==
+          std::vector<std::string>{"the configuration must be a JSON object"});
+    CHECK(problem_texts(parse_config("")).size() == 1);
+}
+
+TEST_CASE("an unreadable file is one problem", "[config]") {
+    const auto result = load_config_file("/nonexistent/gimbald.json");
+    CHECK(problem_texts(result) ==
+          std::vector<std::string>{
+              "cannot read /nonexistent/gimbald.json: No such file or directory"});
+}
+
+TEST_CASE("under --sim the file's gimbals are not read", "[config]") {
+    json config = valid_config();
+    config["gimbals"][0]["link"]["baud"] = "nonsense";
+    config["laser"]["fire_timeout_s"] = 2;
+    CHECK_FALSE(parse_config(config.dump()).ok());
+
+    const auto result = parse_config(config.dump(), GimbalsSection::ignored);
+    REQUIRE(result.ok());
+    CHECK(result.config.gimbals.empty());
+    CHECK(result.config.laser.fire_timeout_s == 2.0);
+
+    // The other sections are still checked, and the key may be absent altogether.
+    config.erase("gimbals");
+    config["laser"]["fire_timeout_s"] = -1;
+    CHECK(problem_texts(parse_config(config.dump(), GimbalsSection::ignored)) ==
+          std::vector<std::string>{"laser.fire_timeout_s: must be between 0.1 and 3600"});
+    CHECK(parse_config("{}", GimbalsSection::ignored).ok());
+}
+
+TEST_CASE("the --sim gimbals", "[config]") {
+    const auto alone = sim_gimbals({});
+    REQUIRE(alone.size() == 1);
+    CHECK(alone[0].name == "sim");
+    CHECK(alone[0].protocol == Protocol::orion);
+    CHECK(std::holds_alternative<SimLink>(alone[0].link));
+
+    const std::vector<Protocol> both = {Protocol::orion, Protocol::viewpro};
+    const auto two = sim_gimbals(both);
+    REQUIRE(two.size() == 2);
+    CHECK(two[0].name == "sim-orion");
+    CHECK(two[0].protocol == Protocol::orion);
+    CHECK(two[1].name == "sim-viewpro");
+    CHECK(two[1].protocol == Protocol::viewpro);
+    CHECK(std::holds_alternative<SimLink>(two[1].link));
+
+    // What they produce is itself a valid configuration.
+    Config config;
+    config.gimbals = two;
+    CHECK(parse_config(to_json(config).dump()).ok());
+}
+
+TEST_CASE("CIDR blocks", "[config]") {
+    using boost::asio::ip::make_address;
+    const auto loopback = Cidr::parse("127.0.0.0/8");
+    REQUIRE(loopback);
+    CHECK(loopback->contains(make_address("127.0.0.1")));
+    CHECK(loopback->contains(make_address("127.255.255.254")));
+    CHECK_FALSE(loopback->contains(make_address("128.0.0.1")));
+    CHECK_FALSE(loopback->contains(make_address("::1")));
+    // Dual-stack sockets report IPv4 peers as IPv4-mapped IPv6 addresses.
+    CHECK(loopback->contains(make_address("::ffff:127.0.0.1")));
+    CHECK_FALSE(loopback->contains(make_address("::ffff:10.0.0.1")));
+
+    const auto host = Cidr::parse("192.168.1.77/24");
+    REQUIRE(host);
+    CHECK(host->to_string() == "192.168.1.0/24");
+    CHECK(host->contains(make_address("192.168.1.1")));
+    CHECK_FALSE(host->contains(make_address("192.168.2.1")));
+
+    const auto odd = Cidr::parse("10.0.0.0/9");
+    REQUIRE(odd);
+    CHECK(odd->contains(make_address("10.127.0.1")));
+    CHECK_FALSE(odd->contains(make_address("10.128.0.1")));
+
+    const auto link_local = Cidr::parse("fe80::/10");
+    REQUIRE(link_local);
+    CHECK(link_local->contains(make_address("fe80::1")));
+    CHECK(link_local->contains(make_address("febf::1")));
+    CHECK_FALSE(link_local->contains(make_address("fec0::1")));
+
+    const auto single = Cidr::parse("10.1.2.3");
+    REQUIRE(single);
+    CHECK(single->to_string() == "10.1.2.3/32");
+    CHECK_FALSE(single->contains(make_address("10.1.2.4")));
+
+    const auto everything = Cidr::parse("0.0.0.0/0");
+    REQUIRE(everything);
+    CHECK(everything->contains(make_address("8.8.8.8")));
+    CHECK_FALSE(everything->contains(make_address("2001:db8::1")));
+
+    for (const char* bad : {"", "/8", "10.0.0.0/", "10.0.0.0/33", "::/129", "10.0.0.0/-1",
+                            "10.0.0.0/8x", "10.0.0/8", "host/8", "10.0.0.0/0008"}) {
+        INFO(bad);
+        CHECK_FALSE(Cidr::parse(bad));
+    }
+
+    CommandConfig command;
+    CHECK(command.allowed(make_address("127.0.0.1")));
+    CHECK(command.allowed(make_address("::1")));
+    CHECK_FALSE(command.allowed(make_address("::2")));
+    CHECK_FALSE(command.allowed(make_address("192.168.1.5")));
+}
+
+TEST_CASE("links describe themselves", "[config]") {
+    auto tcp = [](std::string host) {
+        TcpLink link;
+        link.host = std::move(host);
+        link.port = 8747;
+        return link;
+    };
+    CHECK(describe(tcp("192.168.1.20")) == "192.168.1.20:8747");
+    CHECK(describe(tcp("fe80::1")) == "[fe80::1]:8747");
+    CHECK(describe(tcp("discover")) == "discover via 255.255.255.255:8745");
+    SerialLink serial;
+    serial.device = "/dev/ttyUSB0";
+    serial.baud = 115200;
+    CHECK(describe(serial) == "/dev/ttyUSB0@115200");
+    CHECK(describe(SimLink{}) == "sim");
+    CHECK(link_type(SerialLink{}) == "serial");
+}
+
+TEST_CASE("standard baud rates", "[config]") {
+    const auto rates = standard_baud_rates();
+    CHECK(rates.front() == 1200);
+    CHECK(rates.back() == 4000000);
+    CHECK(std::is_sorted(rates.begin(), rates.end()));
+    for (std::uint32_t rate : {1200u, 9600u, 115200u, 921600u, 4000000u}) {
+        INFO(rate);
+        CHECK(problems_after([rate](json& c) { c["gimbals"][1]["link"]["baud"] = rate; }).empty());
+    }
+    for (std::uint32_t rate : {0u, 300u, 600u, 115201u, 4000001u}) {
+        INFO(rate);
+        CHECK(problems_after([rate](json& c) { c["gimbals"][1]["link"]["baud"] = rate; }).size() ==
+              1);
+    }
+}

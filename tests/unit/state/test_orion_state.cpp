@@ -1,0 +1,114 @@
+// The Orion state model: packets in, STATE (contract section 5) and events out.
+#include <catch2/catch.hpp>
+
+#include "orion/framer.hpp"
+#include "orion/packets.hpp"
+#include "state/orion_state.hpp"
+
+using namespace gimbal;
+using nlohmann::json;
+
+namespace {
+
+template <class P>
+orion::Frame frame_of(const P& packet) {
+    orion::Frame f;
+    f.id = P::id;
+    orion::encode(packet, f.payload);
+    return f;
+}
+
+orion::GeolocateTelemetry telemetry(orion::Mode mode) {
+    orion::GeolocateTelemetry t;
+    t.system_time_ms = 1000;
+    t.gps_week = 2443;  // 2026-11-01 .. 2026-11-07
+    t.gps_itow_ms = 6 * 86400000u + 6 * 3600000u + 41 * 60000u + 50123u;
+    t.leap_seconds = 18;
+    t.geoid_undulation = -21.5;
+    t.lat = 45.7 * orion::pi / 180.0;
+    t.lon = -121.5 * orion::pi / 180.0;
+    t.alt = 1500;
+    t.quat = {1, 0, 0, 0};
+    t.pan = 0.5;
+    t.tilt = -0.3;
+    t.mode = mode;
+    t.los_ecef = {100, -200, -1000};
+    return t;
+}
+
+}  // namespace
+
+TEST_CASE("GPS week and time of week minus leap seconds give UTC", "[state]") {
+    // GPS week 0 starts 1980-01-06; leap seconds are subtracted.
+    CHECK(state::gps_to_utc_iso(0, 0, 0) == "1980-01-06T00:00:00.000Z");
+    CHECK(state::gps_to_utc_iso(0, 18000, 18) == "1980-01-06T00:00:00.000Z");
+    // Week 2443 starts Sunday 2026-11-01.
+    CHECK(state::gps_to_utc_iso(2443, 6 * 86400000u + 6 * 3600000u + 41 * 60000u + 50123u + 18000u,
+                                18) == "2026-11-07T06:41:50.123Z");
+}
+
+TEST_CASE("telemetry reaches STATE with derived fields", "[state]") {
+    state::OrionState s(1.0);
+    std::vector<state::Event> events;
+    CHECK(s.stale(0.0));
+    CHECK(s.snapshot(0.0)["telemetry"].is_null());
+    REQUIRE(s.apply(frame_of(telemetry(orion::Mode::geopoint)), 10.0, events));
+    CHECK(events.empty());
+    const json snap = s.snapshot(10.25);
+    const json& t = snap["telemetry"];
+    CHECK(t["lat"].get<double>() == Approx(45.7).margin(1e-6));
+    CHECK(t["lon"].get<double>() == Approx(-121.5).margin(1e-6));
+    CHECK(t["alt_msl"].get<double>() == Approx(1521.5));
+    CHECK(t["mode"] == "geopoint");
+    CHECK(t["pan"].get<double>() == Approx(0.5 * 180 / orion::pi).margin(0.01));
+    CHECK(t["roll"].get<double>() == Approx(0).margin(1e-6));
+    CHECK(t["age_s"].get<double>() == Approx(0.25));
+    CHECK(t["utc"] == "2026-11-07T06:41:32.123Z");
+    REQUIRE(t["target"].is_object());
+    CHECK(t["target"]["alt"].get<double>() < 1500.0);
+    CHECK_FALSE(s.stale(10.9));
+    for (const char* key : {"ins", "gps", "lasers", "versions", "cameras", "limits", "stare"})
+        CHECK(snap.contains(key));
+}
+
+TEST_CASE("mode changes, staleness and stare starts become events", "[state]") {
+    state::OrionState s(1.0);
+    std::vector<state::Event> events;
+    s.apply(frame_of(telemetry(orion::Mode::rate)), 0.0, events);
+    s.apply(frame_of(telemetry(orion::Mode::geopoint)), 0.1, events);
+    REQUIRE(events.size() == 1);
+    CHECK(events[0].kind == "mode");
+    CHECK(events[0].fields == json{{"from", "rate"}, {"to", "geopoint"}});
+
+    events.clear();
+    s.tick(1.0, events);
+    CHECK(events.empty());
+    s.tick(1.2, events);
+    REQUIRE(events.size() == 1);
+    CHECK(events[0].kind == "lost");
+    s.tick(2.0, events);
+    CHECK(events.size() == 1);  // once per loss
+
+    events.clear();
+    orion::StareStart stare;
+    stare.system_time_ms = 777;
+    s.apply(frame_of(stare), 2.0, events);
+    REQUIRE(events.size() == 1);
+    CHECK(events[0].kind == "stare_start");
+    CHECK(s.last_stare_time_ms() == 777u);
+    CHECK(s.snapshot(2.0)["stare"]["system_time_ms"] == 777);
+}
+
+TEST_CASE("a packet too short to decode changes nothing", "[state]") {
+    state::OrionState s(1.0);
+    std::vector<state::Event> events;
+    REQUIRE(s.apply(frame_of(telemetry(orion::Mode::rate)), 0.0, events));
+    const json before = s.snapshot(0.5);
+    orion::Frame short_frame;
+    short_frame.id = orion::pkt::geolocate_telemetry;
+    short_frame.payload.size = 10;
+    CHECK_FALSE(s.apply(short_frame, 0.4, events));
+    CHECK(s.decode_errors() == 1);
+    CHECK_THAT(s.last_decode_error(), Catch::Contains("geolocate_telemetry"));
+    CHECK(s.snapshot(0.5) == before);
+}

@@ -1,0 +1,48 @@
+// gimbal-sim's command line: what to serve, where, which faults to inject, and the simulated
+// gimbal's own settings.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "sim/orion_sim.hpp"
+
+namespace gimbal_sim {
+
+struct ToolOptions {
+    std::string protocol = "orion";
+
+    bool tcp = true;
+    std::string bind = "127.0.0.1";
+    std::uint16_t port = 8747;  // 0: any free port (printed)
+
+    bool pty = false;
+    std::string pty_link;  // symlink to the pty device, if set
+
+    bool discovery = true;
+    std::uint16_t discovery_port = 8745;
+    std::uint16_t discovery_reply_port = 8746;  // 0: the request's source port
+
+    // Faults, for tests of the receiving side.
+    double drop_after_s = 0;  // close each TCP client this long after it connected; 0 = never
+    double corrupt_fraction = 0;
+    unsigned junk_every = 0;
+    double stall_after_s = 0;  // go silent this long after a client connects ...
+    double stall_for_s = 0;    // ... for this long; 0 = never
+
+    std::string rx_log;  // JSON lines of every valid packet received
+    double tick_s = 0.01;
+
+    gimbal::sim::OrionSimOptions model;
+};
+
+// Parses argv. Returns the options, or the exit status when the program should stop now
+// (--help, --version: 0; a bad command line: 1, with the message printed).
+struct ParsedOptions {
+    std::optional<ToolOptions> options;
+    int exit_status = 0;
+};
+ParsedOptions parse_options(int argc, char** argv);
+
+}  // namespace gimbal_sim

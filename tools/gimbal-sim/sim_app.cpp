@@ -1,0 +1,151 @@
+#include "sim_app.hpp"
+
+#include <iostream>
+#include <vector>
+
+#include "sim/orion_sim.hpp"
+
+namespace gimbal_sim {
+
+namespace asio = boost::asio;
+
+namespace {
+
+gimbal::sim::FaultOptions fault_options(const ToolOptions& o) {
+    gimbal::sim::FaultOptions f;
+    f.corrupt_fraction = o.corrupt_fraction;
+    f.junk_every = o.junk_every;
+    f.seed = o.model.seed;
+    return f;
+}
+
+void note(const std::string& text) {
+    std::cerr << "gimbal-sim: " << text << std::endl;
+}
+
+}  // namespace
+
+SimApp::SimApp(asio::io_context& io, const ToolOptions& options)
+    : io_(io),
+      options_(options),
+      epoch_(std::chrono::steady_clock::now()),
+      tick_timer_(io),
+      device_(gimbal::sim::make_orion_sim(options.model)),
+      faults_(fault_options(options)) {
+    if (!options_.rx_log.empty()) rx_log_.emplace(options_.rx_log);
+
+    if (options_.tcp) {
+        tcp_.emplace(
+            io, options_.bind, options_.port,
+            [this](std::span<const std::uint8_t> b) { on_input("tcp", b); },
+            [this](bool connected, const std::string& peer) {
+                if (connected) {
+                    session_start_s_ = now_s();
+                    stall_reported_ = false;
+                } else if (rx_log_) {
+                    rx_log_->reset("tcp");
+                }
+                note(std::string(connected ? "client connected: " : "client gone: ") + peer);
+            });
+        const auto endpoint = tcp_->local_endpoint();
+        std::cout << "tcp: " << endpoint.address().to_string() << ":" << endpoint.port()
+                  << std::endl;
+    }
+    if (options_.pty) {
+        pty_.emplace(
+            io, options_.pty_link, [this](std::span<const std::uint8_t> b) { on_input("pty", b); },
+            [this](bool open) {
+                if (!open && rx_log_) rx_log_->reset("pty");
+                note(open ? "pty opened" : "pty closed");
+            });
+        std::cout << "pty: " << pty_->device() << std::endl;
+    }
+    if (options_.discovery) {
+        try {
+            discovery_.emplace(io, options_.discovery_port, options_.discovery_reply_port,
+                               gimbal::sim::orion_sim_crown_version_frame());
+            std::cout << "discovery: 0.0.0.0:" << discovery_->port() << std::endl;
+        } catch (const std::exception& e) {
+            // Another simulator may hold the port; serving without discovery beats not at all.
+            note("discovery off: udp port " + std::to_string(options_.discovery_port) + ": " +
+                 e.what());
+        }
+    }
+}
+
+double SimApp::now_s() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - epoch_).count();
+}
+
+void SimApp::start() {
+    if (tcp_) tcp_->start();
+    if (pty_) pty_->start();
+    if (discovery_) discovery_->start();
+    next_tick_ = std::chrono::steady_clock::now();
+    on_tick();
+}
+
+void SimApp::stop() {
+    stopped_ = true;
+    tick_timer_.cancel();
+    if (tcp_) tcp_->stop();
+    if (pty_) pty_->stop();
+    if (discovery_) discovery_->stop();
+}
+
+void SimApp::arm_tick() {
+    // Absolute deadlines: the tick does not drift when a handler runs late.
+    next_tick_ += std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+        std::chrono::duration<double>(options_.tick_s));
+    const auto now = std::chrono::steady_clock::now();
+    if (next_tick_ < now) next_tick_ = now;  // after a stop (SIGSTOP, debugger): no burst
+    tick_timer_.expires_at(next_tick_);
+    tick_timer_.async_wait([this](const boost::system::error_code& ec) {
+        if (!ec && !stopped_) on_tick();
+    });
+}
+
+bool SimApp::stalled(double now) const {
+    if (options_.stall_for_s <= 0) return false;
+    const double since = now - session_start_s_;
+    return since >= options_.stall_after_s && since < options_.stall_after_s + options_.stall_for_s;
+}
+
+void SimApp::on_tick() {
+    const double now = now_s();
+    if (tcp_ && tcp_->has_client() && options_.drop_after_s > 0 &&
+        now - session_start_s_ >= options_.drop_after_s) {
+        note("dropping the client (--drop-after)");
+        tcp_->drop_client();
+    }
+
+    if (stalled(now) && !stall_reported_) {
+        note("stalling (--stall-after)");
+        stall_reported_ = true;
+    }
+    deliver(now);
+    arm_tick();
+}
+
+void SimApp::deliver(double now) {
+    std::vector<std::uint8_t> out;
+    device_->advance(now, out);
+    if (out.empty() || stalled(now)) return;  // a stalled gimbal says nothing; the model runs on
+    std::vector<std::uint8_t> wire;
+    if (faults_.active()) {
+        faults_.apply(out, wire);
+    } else {
+        wire.swap(out);
+    }
+    if (tcp_) tcp_->write(wire);
+    if (pty_) pty_->write(wire);
+}
+
+void SimApp::on_input(const std::string& src, std::span<const std::uint8_t> bytes) {
+    const double now = now_s();
+    if (rx_log_) rx_log_->received(src, bytes, now);
+    device_->receive(bytes, now);
+    deliver(now);  // answers (the OrionCmd echo, requested packets) go out now, not next tick
+}
+
+}  // namespace gimbal_sim

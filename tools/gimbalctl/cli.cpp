@@ -1,0 +1,121 @@
+#include "cli.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include "exit_status.hpp"
+#include "manual.hpp"
+
+namespace gimbalctl {
+namespace {
+
+struct RawGlobals {
+    GlobalOptions values;
+    std::string gimbal;
+    std::string token;
+    std::string id;
+    CLI::Option* gimbal_option = nullptr;
+    CLI::Option* token_option = nullptr;
+    CLI::Option* id_option = nullptr;
+};
+
+void add_global_options(CLI::App& app, RawGlobals& raw) {
+    app.set_help_flag("-h,--help",
+                      "print this manual, or after a COMMAND that command's page, and exit");
+    app.set_version_flag("--version", std::string("gimbalctl ") + GIMBALD_VERSION,
+                         "print the version of gimbalctl and exit");
+    app.add_option("--host", raw.values.host,
+                   "address of gimbald's command socket: IPv4, IPv6 or host name (every "
+                   "address the name resolves to is tried in turn while they refuse)")
+        ->type_name("HOST")
+        ->default_str("127.0.0.1");
+    app.add_option("--port", raw.values.port, "UDP port of the command socket")
+        ->type_name("PORT")
+        ->check(CLI::Range(1, 65535))
+        ->default_str("8760");
+    raw.gimbal_option =
+        app.add_option("--gimbal", raw.gimbal,
+                       "gimbal to command (JSON \"gimbal\"); may be left out when the daemon "
+                       "has exactly one; never sent with ping, version and list")
+            ->type_name("NAME")
+            ->default_str("not sent");
+    raw.token_option =
+        app.add_option("--token", raw.token,
+                       "command token (JSON \"token\"), needed when the daemon's command.token "
+                       "is set")
+            ->type_name("TOKEN")
+            ->default_str("not sent");
+    app.add_option("--timeout", raw.values.timeout_s, "seconds to wait for the reply")
+        ->type_name("S")
+        ->check(CLI::PositiveNumber)
+        ->default_str("2");
+    raw.id_option = app.add_option("--id", raw.id,
+                                   "request id (JSON \"id\"), echoed in the reply; a whole "
+                                   "number is sent as a JSON number, anything else as a string")
+                        ->type_name("ID")
+                        ->default_str("random, \"gimbalctl-\" and 8 hex digits");
+    app.add_flag("--print-request", raw.values.print_request,
+                 "print the request JSON and exit 0 without sending it")
+        ->default_str("off");
+    app.add_flag("--pretty", raw.values.pretty, "indent the JSON output")->default_str("off");
+}
+
+GlobalOptions finish_globals(const RawGlobals& raw) {
+    GlobalOptions globals = raw.values;
+    if (raw.gimbal_option->count() > 0) globals.gimbal = raw.gimbal;
+    if (raw.token_option->count() > 0) globals.token = raw.token;
+    return globals;
+}
+
+// cmd, id, gimbal, token, then the parameters; `send` keeps its object and fills gaps only.
+Json make_request(const Command& command, const GlobalOptions& globals, const Json& id) {
+    Json params = command.params();
+    if (command.raw) {
+        if (!params.contains("id")) params["id"] = id;
+        if (globals.gimbal && !params.contains("gimbal")) params["gimbal"] = *globals.gimbal;
+        if (globals.token && !params.contains("token")) params["token"] = *globals.token;
+        return params;
+    }
+    Json request = {{"cmd", command.cmd}, {"id", id}};
+    if (globals.gimbal && command.takes_gimbal) request["gimbal"] = *globals.gimbal;
+    if (globals.token) request["token"] = *globals.token;
+    for (auto& [key, value] : params.items()) request[key] = value;
+    return request;
+}
+
+}  // namespace
+
+ParseResult parse_command_line(int argc, char** argv) {
+    CLI::App app("", "gimbalctl");
+    install_manual(app);
+    app.fallthrough();  // global options may follow the command
+    app.require_subcommand(1);
+
+    RawGlobals raw;
+    add_global_options(app, raw);
+    std::int64_t watch_count = 0;
+    CommandTable table(app);
+    add_common_commands(table);
+    add_orion_commands(table);
+    add_viewpro_commands(table);
+    add_watch_command(table, watch_count);
+    add_send_command(table);
+
+    try {
+        app.parse(argc, argv);
+        const Command* command = table.selected();
+        if (command == nullptr) throw CLI::RequiredError("a COMMAND");
+        Invocation invocation;
+        invocation.global = finish_globals(raw);
+        const std::optional<std::string> id =
+            raw.id_option->count() > 0 ? std::optional<std::string>(raw.id) : std::nullopt;
+        invocation.request = make_request(*command, invocation.global, request_id(id));
+        invocation.action = command->action;
+        invocation.watch_count = watch_count;
+        return ParseResult{std::move(invocation), exit_ok};
+    } catch (const CLI::ParseError& error) {
+        const int status = app.exit(error);
+        return ParseResult{std::nullopt, status == 0 ? exit_ok : exit_usage};
+    }
+}
+
+}  // namespace gimbalctl

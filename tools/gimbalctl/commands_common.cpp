@@ -1,0 +1,25 @@
+// Section 4.1 of the interface contract: commands every gimbal (or the daemon) answers.
+#include <memory>
+
+#include "command_table.hpp"
+
+namespace gimbalctl {
+
+void add_common_commands(CommandTable& table) {
+    Command& ping =
+        table.add("ping", "ping", group_any, "Check that gimbald answers; replies \"pong\": true.");
+    ping.takes_gimbal = false;
+
+    Command& version = table.add("version", "version", group_any,
+                                 "The daemon's version and the protocols it speaks.");
+    version.takes_gimbal = false;
+
+    Command& list = table.add("list", "list", group_any,
+                              "The configured gimbals with their protocol and link state.");
+    list.takes_gimbal = false;
+
+    table.add("state", "state", group_any,
+              "The full STATE object of one gimbal (telemetry, link counters, ...).");
+}
+
+}  // namespace gimbalctl

@@ -1,0 +1,41 @@
+// `watch`: the subscribe request of section 4.1, plus the client-side --count.
+#include <memory>
+
+#include <CLI/CLI.hpp>
+
+#include "command_table.hpp"
+#include "manual.hpp"
+#include "params.hpp"
+
+namespace gimbalctl {
+
+void add_watch_command(CommandTable& table, std::int64_t& count) {
+    Command& command =
+        table.add("watch", "subscribe", group_client,
+                  "Subscribe and print each state and event datagram as one JSON line until "
+                  "interrupted (SIGINT/SIGTERM: unsubscribe, exit 0) or --count datagrams.");
+    command.action = Action::watch;
+    auto p = std::make_shared<Params>(command.app);
+    command.params = [p] { return p->json(); };
+    p->number("--rate", "rate_hz", "state datagrams per second (0.1..50)")
+        ->type_name("HZ")
+        ->default_str("10");
+    p->number("--ttl", "ttl_s",
+              "subscription lifetime, seconds (1..3600); gimbalctl renews it every ttl/2")
+        ->type_name("S")
+        ->default_str("60");
+    p->flag("--events,!--no-events", "events", "also print event datagrams, or not")
+        ->default_str("events on");
+    command.app->add_option("--count", count, "exit 0 after printing this many datagrams")
+        ->type_name("N")
+        ->check(CLI::PositiveNumber)
+        ->default_str("none, until interrupted");
+    command.app->footer(manual_section(
+        "REQUEST",
+        "Sends {\"cmd\": \"subscribe\", ...} with the keys named above, again every ttl/2, "
+        "and {\"cmd\": \"unsubscribe\"} when it stops. Replies to these are not printed; an "
+        "error reply to the first subscribe ends watch with status 1, no reply with status "
+        "2."));
+}
+
+}  // namespace gimbalctl
