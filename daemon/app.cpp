@@ -9,7 +9,9 @@
 #include "logging.hpp"
 #include "notify.hpp"
 #include "session/orion_protocol.hpp"
+#include "session/viewpro_protocol.hpp"
 #include "sim/orion_sim.hpp"
+#include "sim/viewpro_sim.hpp"
 
 namespace gimbald {
 
@@ -21,14 +23,8 @@ App::App(const cfg::Config& config)
     : config_(config), signals_(io_, SIGINT, SIGTERM, SIGHUP), watchdog_timer_(io_) {
     std::vector<GimbalSession*> raw;
     for (const auto& g : config_.gimbals) {
-        gimbal::session::OrionOptions options;
-        options.stale_after_s = config_.telemetry.stale_after_s;
-        options.auto_ack_stare = config_.stare.auto_ack;
-        options.allow_fire = config_.laser.allow_fire;
-        options.allow_safety_bypass = config_.laser.allow_safety_bypass;
-        auto protocol = std::make_unique<gimbal::session::OrionProtocol>(options);
         sessions_.push_back(std::make_unique<GimbalSession>(
-            io_, g.name, std::move(protocol), make_link(g), config_.laser.fire_timeout_s,
+            io_, g.name, make_protocol(g), make_link(g), config_.laser.fire_timeout_s,
             [this](const std::string& gimbal, const gimbal::state::Event& e) {
                 if (server_) server_->publish_event(gimbal, e);
                 if (e.kind == "link") update_status();
@@ -47,6 +43,27 @@ App::App(const cfg::Config& config)
 }
 
 App::~App() = default;
+
+std::unique_ptr<gimbal::session::Protocol> App::make_protocol(const cfg::GimbalConfig& g) {
+    if (g.protocol == cfg::Protocol::viewpro) {
+        gimbal::session::ViewproOptions options;
+        options.stale_after_s = config_.telemetry.stale_after_s;
+        const auto& out = g.viewpro.output;
+        options.output.osd =
+            out.osd == cfg::ViewproOsd::uav ? gimbal::viewpro::Osd::uav : gimbal::viewpro::Osd::target;
+        options.output.serial = out.serial;
+        options.output.network = out.network;
+        // Both enumerations list out1..out4 in order.
+        options.output.format = static_cast<gimbal::viewpro::OutFormat>(out.format);
+        return std::make_unique<gimbal::session::ViewproProtocol>(options);
+    }
+    gimbal::session::OrionOptions options;
+    options.stale_after_s = config_.telemetry.stale_after_s;
+    options.auto_ack_stare = config_.stare.auto_ack;
+    options.allow_fire = config_.laser.allow_fire;
+    options.allow_safety_bypass = config_.laser.allow_safety_bypass;
+    return std::make_unique<gimbal::session::OrionProtocol>(options);
+}
 
 std::unique_ptr<Link> App::make_link(const cfg::GimbalConfig& g) {
     if (const auto* tcp = std::get_if<cfg::TcpLink>(&g.link)) {
@@ -70,10 +87,16 @@ std::unique_ptr<Link> App::make_link(const cfg::GimbalConfig& g) {
         o.reconnect_max_s = serial->reconnect_max_s;
         return std::make_unique<SerialLink>(io_, o);
     }
+    // The models read no clock: start their time at now so reported times are current.
+    const double unix_s =
+        std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+    if (g.protocol == cfg::Protocol::viewpro) {
+        gimbal::sim::ViewproSimOptions sim;
+        sim.unix_time_at_start_s = unix_s;
+        return std::make_unique<SimLink>(io_, gimbal::sim::make_viewpro_sim(sim));
+    }
     gimbal::sim::OrionSimOptions sim;
-    // The model reads no clock: start its GPS time at now so telemetry `utc` is current.
-    sim.gps_time_at_start_s = gimbal::sim::gps_time_from_unix_s(
-        std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count());
+    sim.gps_time_at_start_s = gimbal::sim::gps_time_from_unix_s(unix_s);
     return std::make_unique<SimLink>(io_, gimbal::sim::make_orion_sim(sim));
 }
 

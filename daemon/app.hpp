@@ -24,6 +24,7 @@ class App {
     int run();
 
   private:
+    std::unique_ptr<gimbal::session::Protocol> make_protocol(const gimbal::daemon::GimbalConfig& g);
     std::unique_ptr<Link> make_link(const gimbal::daemon::GimbalConfig& g);
     void on_signal(const boost::system::error_code& ec, int signo);
     void shutdown();

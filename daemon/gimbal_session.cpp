@@ -153,7 +153,10 @@ void GimbalSession::schedule_tick() {
 GimbalSession::Outcome GimbalSession::execute(std::string_view cmd, const nlohmann::json& request) {
     Outcome out;
     gimbal::command::Plan plan;
-    if (auto error = protocol_->plan(cmd, request, now_s(), plan)) {
+    const gimbal::session::Now now{
+        now_s(), std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch())
+                     .count()};
+    if (auto error = protocol_->plan(cmd, request, now, plan)) {
         out.error = std::move(error);
         return out;
     }

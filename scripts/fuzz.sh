@@ -18,9 +18,11 @@ for target in build/fuzz/tests/fuzz/fuzz_*; do
   for dir in tests/fuzz/corpus/$seeds tests/fuzz/regressions/$seeds; do
     [ -d "$dir" ] && cp -r "$dir"/. "$work"/ 2>/dev/null || true
   done
+  dict=()
+  [ -f "tests/fuzz/$seeds.dict" ] && dict=(-dict="tests/fuzz/$seeds.dict")
   echo "fuzz: $name for ${seconds}s"
   if "$target" -max_total_time="$seconds" -print_final_stats=1 -artifact_prefix="build/fuzz/$name-" \
-        "$work" >"build/fuzz/$name.log" 2>&1; then
+        "${dict[@]}" "$work" >"build/fuzz/$name.log" 2>&1; then
     runs=$(grep -o 'stat::number_of_executed_units: [0-9]*' "build/fuzz/$name.log" | grep -o '[0-9]*$' || echo '?')
     echo "fuzz: $name ok, $runs runs, corpus $(ls "$work" | wc -l) inputs"
   else

@@ -22,12 +22,22 @@ bool is_global_command(std::string_view cmd) {
 
 std::optional<EnvelopeError> parse_envelope(std::string_view datagram,
                                             bool (*known_cmd)(std::string_view), Envelope& out) {
-    if (datagram.size() > max_datagram)
-        return EnvelopeError{
+    if (datagram.size() > max_datagram) {
+        EnvelopeError too_large{
             {code::too_large, "datagram is " + std::to_string(datagram.size()) +
                                   " bytes, the limit is " + std::to_string(max_datagram)},
             std::nullopt,
             std::nullopt};
+        // Still echo id and cmd: a client that matches replies by id (gimbalctl) then sees
+        // this error instead of a timeout. The receive buffer bounds what is parsed (64 KiB).
+        const nlohmann::json j = nlohmann::json::parse(datagram, nullptr, false);
+        if (j.is_object()) {
+            if (auto it = j.find("id"); it != j.end()) too_large.id = *it;
+            if (auto c = j.find("cmd"); c != j.end() && c->is_string())
+                too_large.cmd = c->get<std::string>();
+        }
+        return too_large;
+    }
     nlohmann::json j = nlohmann::json::parse(datagram, nullptr, false);
     if (j.is_discarded() || !j.is_object())
         return EnvelopeError{

@@ -490,3 +490,5 @@ Decoded<P> decode(std::span<const std::uint8_t> data) {
 }
 
 }  // namespace gimbal::orion
+
+#undef GIMBAL_CODEC_INLINE

@@ -29,11 +29,19 @@ class Framer {
         stats_.bytes += bytes.size();
         // Complete the partial frame held from the last push, a bounded slice at a time.
         while (!pending_.empty() && !bytes.empty()) {
-            const std::size_t room = 2 * max_frame_size - pending_.size();
+            const std::size_t held = pending_.size();
+            const std::size_t room = 2 * max_frame_size - held;
             const std::size_t take = bytes.size() < room ? bytes.size() : room;
             pending_.insert(pending_.end(), bytes.begin(), bytes.begin() + static_cast<long>(take));
-            bytes = bytes.subspan(take);
             const std::size_t used = scan(pending_, on_frame);
+            if (used >= held) {
+                // Every held byte is finished with: go on in the caller's buffer (an
+                // unfinished frame at the end of the slice is simply scanned again there).
+                bytes = bytes.subspan(used - held);
+                pending_.clear();
+                break;
+            }
+            bytes = bytes.subspan(take);
             pending_.erase(pending_.begin(), pending_.begin() + static_cast<long>(used));
         }
         if (bytes.empty()) return;

@@ -52,7 +52,7 @@ bool OrionProtocol::supports(std::string_view cmd) const {
 }
 
 std::optional<command::Error> OrionProtocol::plan(std::string_view cmd,
-                                                  const nlohmann::json& request, double,
+                                                  const nlohmann::json& request, const Now&,
                                                   command::Plan& plan) {
     command::OrionContext ctx;
     ctx.allow_fire = options_.allow_fire;

@@ -31,7 +31,7 @@ class OrionProtocol final : public Protocol {
     FrameCounters counters() const override;
     bool supports(std::string_view cmd) const override;
     std::optional<command::Error> plan(std::string_view cmd, const nlohmann::json& request,
-                                       double now_s, command::Plan& plan) override;
+                                       const Now& now, command::Plan& plan) override;
 
     const state::OrionState& state() const { return state_; }
 

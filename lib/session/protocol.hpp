@@ -17,6 +17,12 @@ namespace gimbal::session {
 
 using Bytes = std::vector<std::uint8_t>;
 
+// The two clocks a command may need: monotonic seconds for timers, UTC for wire time fields.
+struct Now {
+    double mono_s = 0;
+    double unix_s = 0;
+};
+
 // Framer counters shown in the STATE `link` object.
 struct FrameCounters {
     std::uint64_t rx_packets = 0;
@@ -47,7 +53,7 @@ class Protocol {
     virtual bool supports(std::string_view cmd) const = 0;
     // Plans a command; on error returns it and plans nothing.
     virtual std::optional<command::Error> plan(std::string_view cmd, const nlohmann::json& request,
-                                               double now_s, command::Plan& plan) = 0;
+                                               const Now& now, command::Plan& plan) = 0;
 };
 
 }  // namespace gimbal::session

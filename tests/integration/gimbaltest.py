@@ -70,6 +70,15 @@ def closed_tcp_port():
     return free_port(socket.SOCK_STREAM)
 
 
+_serial = [0]
+
+
+def unique_path(workdir, prefix, suffix):
+    """A new file name in the test's private directory."""
+    _serial[0] += 1
+    return os.path.join(workdir, "%s%d%s" % (prefix, _serial[0], suffix))
+
+
 def read_json_lines(path):
     """Every complete JSON line of a file (a half-written last line is left for later)."""
     try:
@@ -87,6 +96,22 @@ def read_json_lines(path):
         except ValueError:
             out.append({"unparsed": line.decode(errors="replace")})
     return out
+
+
+def read_line(pipe, timeout):
+    """One line from a child's binary stdout pipe, or what arrived before `timeout` passed.
+    Reads byte by byte from the descriptor so no buffered data hides from select()."""
+    line = b""
+    deadline = time.monotonic() + timeout
+    while not line.endswith(b"\n"):
+        ready, _, _ = select.select([pipe], [], [], max(0.0, deadline - time.monotonic()))
+        if not ready:
+            break
+        byte = os.read(pipe.fileno(), 1)
+        if not byte:
+            break
+        line += byte
+    return line.decode(errors="replace")
 
 
 def stop_process(proc, sig=signal.SIGTERM, timeout=STOP_TIMEOUT_S):
@@ -189,7 +214,7 @@ class Sim:
     """A gimbal-sim process with an rx log; endpoints read from its stdout ("tcp: H:P")."""
 
     def __init__(self, workdir, *args, port=0, tcp=True, pty_link=None, want=None):
-        self.rx_log = tempfile.mktemp(prefix="rx-", suffix=".jsonl", dir=workdir)
+        self.rx_log = unique_path(workdir, "rx-", ".jsonl")
         cmd = [GIMBAL_SIM, "--no-discovery", "--rx-log", self.rx_log]
         cmd += ["--port", str(port)] if tcp else ["--no-tcp"]
         if pty_link:
@@ -288,7 +313,8 @@ class Daemon:
                            (self.proc.returncode, self.errors(), self.log_text()))
 
     def _launch(self):
-        self.config_path = tempfile.mktemp(prefix="gimbald-", suffix=".json", dir=self.workdir)
+        self.stopped = False  # set once stop() was called: a later exit is expected
+        self.config_path = unique_path(self.workdir, "gimbald-", ".json")
         with open(self.config_path, "w") as f:
             json.dump(self.config, f)
         self.stdout_path = self.config_path.replace(".json", ".stdout")
@@ -327,13 +353,13 @@ class Daemon:
         return None if found == "exited" else found
 
     def client(self):
-        c = Client(self.port)
-        return c
+        return Client(self.port)
 
     def running(self):
         return self.proc.poll() is None
 
     def stop(self, sig=signal.SIGTERM):
+        self.stopped = True
         code = stop_process(self.proc, sig)
         for f in (self._stdout, self._stderr):
             if not f.closed:
@@ -435,6 +461,20 @@ def is_event(kind=None):
                       (kind is None or m.get("event") == kind))
 
 
+def finish_daemon(daemon):
+    """Cleanup of every daemon a test started: unless the test stopped it (and checked the
+    exit code itself), it must still be running and must exit 0 on SIGTERM."""
+    if daemon.stopped:
+        return
+    if not daemon.running():
+        code = daemon.stop()
+        raise AssertionError("gimbald died during the test (exit %s): %s\n%s" %
+                             (code, daemon.errors()[-2000:], daemon.log_text()[-2000:]))
+    code = daemon.stop(signal.SIGTERM)
+    if code != 0:
+        raise AssertionError("gimbald exited %s on SIGTERM: %s" % (code, daemon.errors()[-2000:]))
+
+
 # --- test base -------------------------------------------------------------------------------
 
 class GimbaldTestCase(unittest.TestCase):
@@ -457,7 +497,7 @@ class GimbaldTestCase(unittest.TestCase):
     @classmethod
     def start_class_daemon(cls, config, args=()):
         daemon = Daemon(cls.class_workdir, config, args)
-        cls.addClassCleanup(daemon.stop, signal.SIGKILL)
+        cls.addClassCleanup(finish_daemon, daemon)
         return daemon
 
     def setUp(self):
@@ -473,7 +513,7 @@ class GimbaldTestCase(unittest.TestCase):
     def start_daemon(self, config, args=(), wait_started=True):
         daemon = Daemon(self.workdir, config, args, wait_started)
         self.addCleanup(self._dump_on_failure, daemon)
-        self.addCleanup(daemon.stop, signal.SIGKILL)
+        self.addCleanup(finish_daemon, daemon)
         return daemon
 
     def client(self, daemon_or_port):
@@ -501,7 +541,10 @@ class GimbaldTestCase(unittest.TestCase):
     def _dump_on_failure(self, daemon):
         # Only on failure: the daemon's log is the first thing one wants to read.
         outcome = getattr(self, "_outcome", None)
-        if outcome is not None and not getattr(outcome, "success", True):
+        result = getattr(outcome, "result", None)
+        recorded = (getattr(result, "failures", []) + getattr(result, "errors", []) +
+                    getattr(outcome, "errors", []))  # the last: Python < 3.11
+        if any(test is self and exc for test, exc in recorded):
             sys.stderr.write("--- gimbald log (%s) ---\n%s%s\n" %
                              (self.id(), daemon.log_text()[-4000:], daemon.errors()[-2000:]))
 

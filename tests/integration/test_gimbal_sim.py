@@ -130,6 +130,90 @@ def angle_between(u, v):
     return math.degrees(math.acos(max(-1.0, min(1.0, dot / (nu * nv)))))
 
 
+# --- Viewpro framing (viewpro-target-gps-protocol.md) ---------------------------------------
+
+VP_OUT_SIZES = {0xFB: 23, 0xFC: 76, 0xFD: 60}  # OUT1, OUT2, OUT3/OUT4 by id
+
+
+def vp_sum(data):
+    return sum(data) % 256
+
+
+def vp_mode(mode_byte):
+    return bytes([0xAA, 0x55, 0x0F, mode_byte, 0xFF])
+
+
+def vp_in2(lat, lon, alt_msl, yaw_deg, vel=(0.0, 0.0, 0.0), when=(2024, 7, 1, 12, 0, 0)):
+    year, month, day, hour, minute, second = when
+    body = bytes([0xF9, 0xFC]) + struct.pack("<H", year) + bytes([month, day, hour, minute, second])
+    body += struct.pack("<fff", 0.0, 0.0, math.radians(yaw_deg))
+    body += struct.pack("<iii", round(lat * 1e7), round(lon * 1e7), round(alt_msl * 1000))
+    body += struct.pack("<hhh", *(round(v * 100) for v in vel))
+    return body + bytes([vp_sum(body)])
+
+
+class ViewproDeframer:
+    """Streaming parser of the gimbal's OUTx frames: (format, bytes) out, resync after junk."""
+
+    def __init__(self):
+        self.buf = bytearray()
+        self.bad_checksums = 0
+        self.dropped = 0
+
+    def push(self, data):
+        self.buf += data
+        frames = []
+        i = 0
+        n = len(self.buf)
+        while i < n:
+            if self.buf[i] != 0xFE:
+                i += 1
+                self.dropped += 1
+                continue
+            if n - i < 2:
+                break
+            size = VP_OUT_SIZES.get(self.buf[i + 1])
+            if size is None:
+                i += 1
+                self.dropped += 1
+                continue
+            if n - i < size:
+                break
+            raw = bytes(self.buf[i:i + size])
+            if vp_sum(raw[:-1]) != raw[-1]:
+                self.bad_checksums += 1
+                self.dropped += 1
+                i += 1
+                continue
+            fmt = {0xFB: "out1", 0xFC: "out2", 0xFD: "out3"}[raw[1]]
+            if fmt == "out3" and raw[3] == 0xFF:
+                fmt = "out4"
+            frames.append((fmt, raw))
+            i += size
+        del self.buf[:i]
+        return frames
+
+
+def decode_out3(raw):
+    uav_lat, uav_lon, target_lat, target_lon = struct.unpack("<iiii", raw[43:59])
+    return {
+        "zoom": struct.unpack("<H", raw[9:11])[0],
+        "gimbal_pitch": math.degrees(struct.unpack("<f", raw[15:19])[0]),
+        "lrf": struct.unpack("<f", raw[23:27])[0],
+        "uav_yaw": math.degrees(struct.unpack("<f", raw[35:39])[0]),
+        "uav_alt": struct.unpack("<i", raw[39:43])[0] / 1000.0,
+        "uav_lat": uav_lat / 1e7, "uav_lon": uav_lon / 1e7,
+        "target_lat": target_lat / 1e7, "target_lon": target_lon / 1e7,
+    }
+
+
+def north_east_m(lat0, lon0, lat1, lon1):
+    """Small offsets between two points, metres north and east (spherical earth is enough)."""
+    r = 6371000.0
+    return (math.radians(lat1 - lat0) * r,
+            math.radians(lon1 - lon0) * r * math.cos(math.radians(lat0)))
+
+
 # --- running the simulator -------------------------------------------------------------------
 
 class Sim:
@@ -468,6 +552,120 @@ class GimbalSimLifecycle(unittest.TestCase):
             sim.proc.send_signal(signal.SIGINT)
             self.assertEqual(sim.proc.wait(timeout=5), 0)
         sim.stop()
+
+
+class GimbalSimViewpro(unittest.TestCase):
+    """--protocol viewpro: the Viewpro model over a pty (its serial port) and TCP."""
+
+    def open_pty(self, sim):
+        fd = os.open(sim.endpoints["pty"], os.O_RDWR | os.O_NOCTTY)
+        tty.setraw(fd)
+        return fd
+
+    def read_vp(self, fd, seconds, deframer=None, until=None):
+        return read_frames(fd, seconds, deframer or ViewproDeframer(), until)
+
+    def test_pty_silent_until_mode_then_out3_at_10hz_and_in2_moves_the_target(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            log_path = os.path.join(tmp, "rx.jsonl")
+            sim = Sim("--protocol", "viewpro", "--no-tcp", "--pty", "--rx-log", log_path,
+                      want=("pty",))
+            try:
+                self.assertNotIn("discovery", sim.endpoints)
+                fd = self.open_pty(sim)
+                try:
+                    self.assertEqual(self.read_vp(fd, 1.0), [])  # default mode 0x01: no output
+                    os.write(fd, vp_mode(0x51))  # target on OSD, serial, OUT3
+                    self.read_vp(fd, 0.3)  # settle
+                    deframer = ViewproDeframer()
+                    frames = self.read_vp(fd, 3.0, deframer)
+                    self.assertAlmostEqual(len(frames), 30, delta=5)
+                    self.assertEqual(deframer.bad_checksums, 0)
+                    self.assertEqual(deframer.dropped, 0)
+                    self.assertEqual({fmt for _, fmt, _ in frames}, {"out3"})
+                    before = decode_out3(frames[-1][2])
+                    self.assertAlmostEqual(before["gimbal_pitch"], -45, places=3)
+
+                    sent_in2 = vp_in2(47.3977419, 8.5455938, 600.0, 90.0, vel=(0, 20, 0))
+                    os.write(fd, sent_in2[:7])  # split across writes
+                    time.sleep(0.05)
+                    os.write(fd, sent_in2[7:])
+                    moved = lambda fs: any(abs(decode_out3(d)["uav_lat"] - 47.3977419) < 1e-6
+                                           for _, _, d in fs)
+                    frames = self.read_vp(fd, 2.0, until=moved)
+                    self.assertTrue(moved(frames))
+                    out = decode_out3(frames[-1][2])
+                finally:
+                    os.close(fd)
+                time.sleep(0.2)
+                with open(log_path) as f:
+                    lines = [json.loads(line) for line in f]
+            finally:
+                self.assertEqual(sim.stop(), 0, sim.errors())
+
+        self.assertAlmostEqual(out["uav_lon"], 8.5455938, places=6)
+        self.assertAlmostEqual(out["uav_alt"], 600.0, places=2)
+        self.assertAlmostEqual(out["uav_yaw"], 90.0, places=3)
+        self.assertGreater(abs(out["target_lat"] - before["target_lat"]), 1.0)  # it moved
+        # Heading east, gimbal 45 degrees down: the target is about 600 m east on 0 m terrain.
+        north, east = north_east_m(out["uav_lat"], out["uav_lon"],
+                                   out["target_lat"], out["target_lon"])
+        self.assertAlmostEqual(north, 0.0, delta=5.0)
+        self.assertAlmostEqual(east, 600.0, delta=5.0)
+        self.assertAlmostEqual(out["lrf"], 600.0 * math.sqrt(2), delta=2.0)
+
+        self.assertEqual([l["kind"] for l in lines], ["mode", "in2"])
+        self.assertEqual(lines[0]["hex"], vp_mode(0x51).hex())
+        self.assertEqual(lines[0]["len"], 5)
+        self.assertEqual(lines[0]["src"], "pty")
+        self.assertEqual(lines[0]["frame"], {"osd": "target", "network": False,
+                                             "serial": True, "format": "out3"})
+        self.assertEqual(lines[1]["hex"], sent_in2.hex())
+        self.assertEqual(lines[1]["len"], 40)
+        self.assertAlmostEqual(lines[1]["frame"]["lat"], 47.3977419, places=7)
+        self.assertAlmostEqual(lines[1]["frame"]["yaw"], 90.0, places=4)
+        self.assertEqual(lines[1]["frame"]["vel_ned"], [0.0, 20.0, 0.0])
+        self.assertEqual(lines[1]["frame"]["time"], "2024-07-01T12:00:00Z")
+        self.assertGreater(lines[1]["t"], lines[0]["t"])
+
+    def test_tcp_serves_each_format_and_network_only_is_silent(self):
+        sim = Sim("--protocol", "viewpro", "--port", "0", "--zoom", "77")
+        try:
+            self.assertNotIn("discovery", sim.endpoints)
+            with sim.connect() as s:
+                for mode_byte, fmt, size in ((0x11, "out1", 23), (0x31, "out2", 76),
+                                             (0x51, "out3", 60), (0x71, "out4", 60)):
+                    s.sendall(vp_mode(mode_byte))
+                    read_frames(s, 0.3, ViewproDeframer())  # the switch, then steady output
+                    frames = read_frames(s, 1.0, ViewproDeframer())
+                    self.assertGreaterEqual(len(frames), 7, fmt)
+                    self.assertEqual({f for _, f, _ in frames}, {fmt})
+                    self.assertEqual({len(d) for _, _, d in frames}, {size})
+                    if fmt == "out3":
+                        self.assertEqual(decode_out3(frames[0][2])["zoom"], 77)
+                s.sendall(vp_mode(0x69))  # RJ45 only (ICD 1.5's text): not on this port
+                read_frames(s, 0.3, ViewproDeframer())
+                self.assertEqual(read_frames(s, 1.0, ViewproDeframer()), [])
+        finally:
+            self.assertEqual(sim.stop(), 0, sim.errors())
+
+    def test_corrupt_fraction_and_junk_apply_to_viewpro_frames(self):
+        sim = Sim("--protocol", "viewpro", "--port", "0", "--corrupt-fraction", "0.3",
+                  "--junk-every", "3")
+        try:
+            with sim.connect() as s:
+                s.sendall(vp_mode(0x11))
+                deframer = ViewproDeframer()
+                frames = read_frames(s, 2.5, deframer)
+        finally:
+            self.assertEqual(sim.stop(), 0)
+        self.assertGreater(deframer.bad_checksums, 3)
+        self.assertGreater(deframer.dropped, 10)
+        self.assertGreater(len(frames), 8)
+
+    def test_unknown_protocol_exits_1(self):
+        result = subprocess.run([SIM, "--protocol", "gremsy"], capture_output=True)
+        self.assertEqual(result.returncode, 1)
 
 
 if __name__ == "__main__":

@@ -157,6 +157,17 @@ class OrionOverTcp(gt.GimbaldTestCase):
         self.assertAlmostEqual(math.sqrt(dx * dx + dy * dy + dz * dz), 1400 * math.sqrt(2),
                                delta=150.0)
 
+    def test_no_target_when_looking_above_the_horizon(self):
+        self.assertOk(self.c.request("position", pan=0, tilt=20))
+
+        def sky():
+            t = self.state()["telemetry"]
+            return t if abs(t["tilt"] - 20) < 0.5 and t["range_source"] == "none" else None
+        t = gt.wait_for(sky, 8.0, interval=0.1)
+        self.assertTrue(t, "never looked at the sky")
+        self.assertEqual(t["los_ecef"], [0.0, 0.0, 0.0])
+        self.assertIsNone(t["target"])
+
     def test_state_versions_cameras_limits_from_the_connect_requests(self):
         state = self.state()
         self.assertEqual(set(state["versions"]),

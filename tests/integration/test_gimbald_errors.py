@@ -8,8 +8,6 @@ simulator's rx log must show the marker and nothing before it.
 well-formed or malformed request can trigger it from outside - which is the point.
 """
 
-import json
-import socket
 
 import gimbaltest as gt
 
@@ -72,7 +70,14 @@ class Errors(RefusalsTestCase):
             head = '{"cmd":"ping","id":9,"pad":"'
             return (head + "x" * (size - len(head) - 2) + '"}').encode()
         self.c.send_raw(padded(9000))
-        self.assertError(self.c.recv(), "too_large")
+        reply = self.c.recv()
+        self.assertError(reply, "too_large", 9)  # the id still comes back
+        self.assertEqual(reply["cmd"], "ping")
+        self.assertIn("8192", reply["error"]["message"])
+        self.c.send_raw(b"x" * 9000)  # not even JSON: too large all the same
+        reply = self.c.recv()
+        self.assertError(reply, "too_large")
+        self.assertNotIn("id", reply)
         # The limit is 8192 bytes: exactly that is parsed (and "pad" is then unknown).
         self.c.send_raw(padded(8192))
         reply = self.c.recv()

@@ -51,6 +51,50 @@ class TcpReconnect(gt.GimbaldTestCase):
         c.request("unsubscribe")
 
 
+class LineFaults(gt.GimbaldTestCase):
+    def test_bad_checksums_and_junk_are_counted_and_survived(self):
+        sim = self.start_sim("--corrupt-fraction", "0.2", "--junk-every", "5")
+        daemon = self.start_daemon({"gimbals": [gt.orion_tcp("main", sim.port)]})
+        c = self.client(daemon)
+        self.wait_connected(c)
+
+        def counted():
+            link = c.request("state")["state"]["link"]
+            return link if link["bad_checksums"] > 0 and link["dropped_bytes"] > 0 else None
+        link = gt.wait_for(counted, 5.0, interval=0.2)
+        self.assertTrue(link, "no bad checksum or dropped byte counted")
+        self.assertIs(link["connected"], True)
+        self.assertEqual(link["reconnects"], 0)
+        state = c.request("state")["state"]
+        self.assertIs(state["stale"], False)
+        entry = daemon.wait_log(lambda e: e.get("event") == "bad_checksum")
+        self.assertTrue(entry)
+        self.assertEqual(entry["level"], "warn")
+        # Rate limited: far fewer lines than bad frames.
+        self.assertLessEqual(len(daemon.events("bad_checksum")), 3)
+        # Commands still get through whole.
+        start = len(sim.rx())
+        self.assertOk(c.request("geopoint", lat=45.7, lon=-121.5, alt=100))
+        self.assertTrue(sim.wait_rx(gt.by_name("geopoint_cmd"), start=start))
+
+    def test_a_silent_gimbal_goes_stale_and_comes_back(self):
+        sim = self.start_sim("--stall-after", "1", "--stall-for", "2")
+        daemon = self.start_daemon({"gimbals": [gt.orion_tcp("main", sim.port)],
+                                    "telemetry": {"stale_after_s": 0.5}})
+        c = self.client(daemon)
+        self.wait_connected(c)
+        self.assertOk(c.request("subscribe", rate_hz=0.1, ttl_s=30))
+        self.addCleanup(c.request, "unsubscribe")
+        lost = c.wait_message(gt.is_event("lost"), 4.0)
+        self.assertTrue(lost, "no lost event while the gimbal was silent")
+        state = c.request("state")["state"]
+        self.assertIs(state["stale"], True)
+        self.assertIs(state["link"]["connected"], True)  # silence shorter than the timeout
+        self.assertTrue(daemon.wait_log(lambda e: e.get("event") == "telemetry_lost"))
+        self.assertTrue(gt.wait_for(lambda: not c.request("state")["state"]["stale"], 4.0))
+        self.assertEqual(c.request("state")["state"]["link"]["reconnects"], 0)
+
+
 class Serial(gt.GimbaldTestCase):
     def test_orion_over_a_pty_that_vanishes_and_returns(self):
         device = os.path.join(self.workdir, "ttyGIMBAL")

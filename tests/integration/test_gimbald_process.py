@@ -5,7 +5,6 @@ import json
 import os
 import signal
 import socket
-import subprocess
 
 import gimbaltest as gt
 
@@ -177,10 +176,18 @@ class SignalsAndLogs(gt.GimbaldTestCase):
         self.assertTrue(any(e.get("id") == "after" for e in daemon.logs()))
         self.assertEqual(daemon.stop(), 0)
 
-    def test_log_level_option_overrides_the_file(self):
-        daemon = self.start_daemon({"log": {"level": "info"}}, args=["--sim", "--log-level",
-                                                                     "warn"])
+    def test_sighup_without_a_log_file_is_harmless(self):
+        daemon = self.start_daemon({}, args=["--sim"])
+        os.kill(daemon.proc.pid, signal.SIGHUP)
+        self.assertTrue(daemon.wait_log(lambda e: e.get("event") == "reopen"))
         self.assertOk(self.client(daemon).request("ping"))
+        self.assertEqual(daemon.stop(), 0)
+
+    def test_log_level_option_overrides_the_file(self):
+        daemon = self.start_daemon({"log": {"level": "info"}},
+                                   args=["--sim", "--log-level", "warn"], wait_started=False)
+        c = self.client(daemon)
+        self.assertTrue(gt.wait_for(lambda: c.request("ping", timeout=0.3), 5.0))
         self.assertEqual(daemon.stop(), 0)
         self.assertEqual(daemon.events("command"), [])
 

@@ -102,6 +102,15 @@ class Subscriptions(gt.GimbaldTestCase):
         # Two seconds after the first subscribe, states still flow.
         self.assertTrue(self.c.collect(0.5, gt.is_state))
 
+    def test_a_vanished_subscriber_does_not_disturb_others(self):
+        gone = gt.Client(self.daemon.port)
+        self.assertOk(gone.request("subscribe", rate_hz=50, ttl_s=3))
+        gone.close()  # the daemon's datagrams now draw ICMP port unreachable
+        for i in range(20):
+            self.assertOk(self.c.request("ping", id=i), i)
+            time.sleep(0.03)
+        self.assertTrue(self.daemon.running())
+
     def test_unsubscribe_stops_everything(self):
         self.assertOk(self.c.request("subscribe", rate_hz=20, ttl_s=60))
         self.assertTrue(self.c.wait_message(gt.is_state, 1.0))
@@ -113,6 +122,68 @@ class Subscriptions(gt.GimbaldTestCase):
         self.assertEqual(self.c.collect(1.0), [])
         # Unsubscribing twice is harmless.
         self.assertOk(self.c.request("unsubscribe"))
+
+
+class Stare(gt.GimbaldTestCase):
+    def start_pair(self, auto_ack):
+        self.sim = self.start_sim()
+        self.daemon = self.start_daemon({"gimbals": [gt.orion_tcp("main", self.sim.port)],
+                                         "stare": {"auto_ack": auto_ack}})
+        self.c = self.client(self.daemon)
+        self.wait_connected(self.c)
+        self.assertOk(self.c.request("subscribe", rate_hz=0.1, ttl_s=30))
+        self.addCleanup(self.c.request, "unsubscribe")
+
+    def stare_at_a_point(self):
+        """geopoint with stare: the simulator starts a stare once on target."""
+        self.assertOk(self.c.request("geopoint", lat=45.7, lon=-121.5, alt=100, stare=True))
+        event = self.c.wait_message(gt.is_event("stare_start"), 8.0)
+        self.assertTrue(event, "no stare_start event")
+        self.assertEqual(event["gimbal"], "main")
+        self.assertAlmostEqual(event["lat"], 45.7, delta=1e-4)
+        self.assertAlmostEqual(event["lon"], -121.5, delta=1e-4)
+        stare = self.c.request("state")["state"]["stare"]
+        self.assertEqual(stare["system_time_ms"], event["system_time_ms"])
+        self.assertTrue(self.daemon.wait_log(lambda e: e.get("event") == "stare_start"))
+        return event
+
+    def test_stare_start_event_and_stare_ack_of_the_latest(self):
+        self.start_pair(auto_ack=False)
+        event = self.stare_at_a_point()
+        start = len(self.sim.rx())
+        reply = self.c.request("stare_ack")  # system_time_ms defaults to the latest stare
+        self.assertEqual(reply["sent"], [{"id": 218, "len": 4}])
+        ack = self.sim.wait_rx(gt.by_name("stare_ack"), start=start)
+        self.assertEqual(ack["packet"]["echo_system_time_ms"], event["system_time_ms"])
+        self.assertEqual(len([e for e in self.sim.rx() if e["name"] == "stare_ack"]), 1)
+
+    def test_auto_ack(self):
+        self.start_pair(auto_ack=True)
+        event = self.stare_at_a_point()
+        ack = self.sim.wait_rx(gt.by_name("stare_ack"))
+        self.assertTrue(ack, "the daemon did not acknowledge the stare by itself")
+        self.assertEqual(ack["packet"]["echo_system_time_ms"], event["system_time_ms"])
+
+
+class TwoGimbals(gt.GimbaldTestCase):
+    def test_subscription_covers_all_gimbals_or_the_one_named(self):
+        sim = self.start_sim()
+        daemon = self.start_daemon({"gimbals": [
+            gt.orion_tcp("main", sim.port), gt.orion_tcp("dead", gt.closed_tcp_port())]})
+        everything = self.client(daemon)
+        only_dead = self.client(daemon)
+        self.wait_connected(everything, "main")
+        self.assertOk(everything.request("subscribe", rate_hz=5, ttl_s=5))
+        reply = only_dead.request("subscribe", gimbal="dead", rate_hz=5, ttl_s=5)
+        self.assertEqual(reply["gimbal"], "dead")
+        got = everything.collect(1.0, gt.is_state)
+        self.assertEqual({m["gimbal"] for m in got}, {"main", "dead"})
+        got = only_dead.collect(0.5, gt.is_state)
+        self.assertTrue(got)
+        self.assertEqual({m["gimbal"] for m in got}, {"dead"})
+        self.assertIs(got[0]["state"]["link"]["connected"], False)
+        for c in (everything, only_dead):
+            self.assertOk(c.request("unsubscribe"))
 
 
 class LinkEvents(gt.GimbaldTestCase):

@@ -9,11 +9,12 @@ namespace gimbal_sim {
 namespace {
 
 constexpr const char* description = R"(NAME
-       gimbal-sim - simulated Trillium Orion gimbal for tests, demos and training
+       gimbal-sim - simulated Trillium Orion and Viewpro gimbals for tests, demos
+       and training
 
 SYNOPSIS
-       gimbal-sim [--port N] [--pty [--pty-link PATH]] [--no-tcp] [fault options]
-                  [gimbal options]
+       gimbal-sim [--protocol orion|viewpro] [--port N] [--pty [--pty-link PATH]]
+                  [--no-tcp] [fault options] [gimbal options]
 
 DESCRIPTION
        Serves a simulated Orion gimbal speaking the OrionPublic protocol over TCP (one
@@ -25,6 +26,15 @@ DESCRIPTION
        step-stare, laser, retract, camera and configuration packets. Zero-length
        packets are requests for that packet. The model keeps running between
        connections. See docs/simulator.md.
+
+       --protocol viewpro serves a simulated Viewpro gimbal speaking the target
+       GPS-coordinates protocol instead (usually over --pty, as its serial port;
+       TCP works the same way; no discovery). It is silent until a mode command
+       (AA 55 0F MM FF) enables serial output, then sends the selected OUT1..OUT4
+       frame at 10 Hz. IN1/IN2/IN3 frames set the vehicle position and attitude,
+       AA 55 06/36 XX FF shift the calculated point; the target is where the line
+       of sight meets flat terrain at --terrain-alt (MSL), or the IN3 laser
+       distance along it.
 )";
 
 constexpr const char* footer = R"(OUTPUT
@@ -48,7 +58,12 @@ RX LOG
             "hex": "d00dd515...", "packet": {...}}
        t is seconds since gimbal-sim started, hex the whole frame as received
        (sync bytes to checksum), packet the decoded packet (absent when it does not
-       decode, e.g. a zero-length request).
+       decode, e.g. a zero-length request). With --protocol viewpro, one line per
+       valid IN frame or AA 55 command:
+           {"t": 1.234, "src": "pty", "kind": "in2", "len": 40, "hex": "f9fc...",
+            "frame": {...}}
+       kind is mode, yaw_shift, pitch_shift, in1, in2 or in3; frame the decoded
+       content in JSON units (degrees, metres).
 
 FAULT INJECTION
        --drop-after S closes each TCP client S seconds after it connected.
@@ -66,11 +81,28 @@ EXAMPLES
        gimbal-sim --port 0 --no-discovery
        gimbal-sim --no-tcp --pty --pty-link /tmp/orion
        gimbal-sim --corrupt-fraction 0.05 --junk-every 20 --rx-log rx.jsonl
+       gimbal-sim --protocol viewpro --no-tcp --pty --pty-link /tmp/viewpro
 )";
 
+double unix_time_now_s() {
+    return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch())
+        .count();
+}
+
 double gps_time_now_s() {
-    return gimbal::sim::gps_time_from_unix_s(
-        std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count());
+    return gimbal::sim::gps_time_from_unix_s(unix_time_now_s());
+}
+
+// The options both models understand, taken from the command line only when given there:
+// each model keeps its own defaults otherwise.
+void apply_to_viewpro(const CLI::App& app, const gimbal::sim::OrionSimOptions& m,
+                      gimbal::sim::ViewproSimOptions& v) {
+    if (app.count("--lat") > 0) v.lat_deg = m.lat_deg;
+    if (app.count("--lon") > 0) v.lon_deg = m.lon_deg;
+    if (app.count("--alt") > 0) v.alt_msl_m = m.alt_m;
+    if (app.count("--terrain-alt") > 0) v.terrain_alt_msl_m = m.terrain_alt_m;
+    if (app.count("--geoid-undulation") > 0) v.geoid_undulation_m = m.geoid_undulation_m;
+    v.seed = m.seed;
 }
 
 }  // namespace
@@ -78,7 +110,10 @@ double gps_time_now_s() {
 ParsedOptions parse_options(int argc, char** argv) {
     ToolOptions o;
     auto& m = o.model;
+    auto& v = o.viewpro_model;
     m.gps_time_at_start_s = gps_time_now_s();
+    v.unix_time_at_start_s = unix_time_now_s();
+    bool no_laser = false;
     bool no_tcp = false;
     bool no_discovery = false;
     bool no_retract = false;
@@ -90,7 +125,7 @@ ParsedOptions parse_options(int argc, char** argv) {
     app.get_formatter()->column_width(34);
 
     app.add_option("--protocol", o.protocol, "Gimbal protocol to simulate")
-        ->check(CLI::IsMember({"orion"}))
+        ->check(CLI::IsMember({"orion", "viewpro"}))
         ->capture_default_str();
     app.add_option("--bind", o.bind, "Address the TCP server listens on")->capture_default_str();
     app.add_option("--port", o.port, "TCP port; 0 picks a free one (printed)")
@@ -104,7 +139,8 @@ ParsedOptions parse_options(int argc, char** argv) {
     app.add_option("--discovery-reply-port", o.discovery_reply_port,
                    "UDP port discovery replies go to; 0 = the request's source port")
         ->capture_default_str();
-    app.add_flag("--no-discovery", no_discovery, "Do not answer discovery requests");
+    app.add_flag("--no-discovery", no_discovery,
+                 "Do not answer discovery requests (always so for viewpro)");
 
     app.add_option("--drop-after", o.drop_after_s, "Close each TCP client after S seconds")
         ->check(CLI::NonNegativeNumber);
@@ -119,13 +155,14 @@ ParsedOptions parse_options(int argc, char** argv) {
     app.add_option("--seed", m.seed, "Seed of sensor noise and faults")->capture_default_str();
     app.add_option("--rx-log", o.rx_log, "Write every packet received as a JSON line to FILE");
 
-    app.add_option("--lat", m.lat_deg, "Circle centre latitude, degrees")
+    app.add_option("--lat", m.lat_deg, "Circle centre (viewpro: vehicle) latitude, degrees")
         ->check(CLI::Range(-89.0, 89.0))
         ->capture_default_str();
-    app.add_option("--lon", m.lon_deg, "Circle centre longitude, degrees")
+    app.add_option("--lon", m.lon_deg, "Circle centre (viewpro: vehicle) longitude, degrees")
         ->check(CLI::Range(-180.0, 180.0))
         ->capture_default_str();
-    app.add_option("--alt", m.alt_m, "Flight altitude above the WGS84 ellipsoid, metres")
+    app.add_option("--alt", m.alt_m,
+                   "Flight altitude above the WGS84 ellipsoid (viewpro: MSL), metres")
         ->capture_default_str();
     app.add_option("--radius", m.radius_m, "Circle radius, metres; 0 hovers")
         ->check(CLI::NonNegativeNumber)
@@ -135,7 +172,7 @@ ParsedOptions parse_options(int argc, char** argv) {
         ->capture_default_str();
     app.add_flag("--counter-clockwise", counter_clockwise, "Circle counter-clockwise");
     app.add_option("--terrain-alt", m.terrain_alt_m,
-                   "Height of the flat terrain above the ellipsoid, metres")
+                   "Height of the flat terrain above the ellipsoid (viewpro: MSL), metres")
         ->capture_default_str();
     app.add_option("--geoid-undulation", m.geoid_undulation_m,
                    "Reported geoid height above the ellipsoid, metres")
@@ -156,6 +193,34 @@ ParsedOptions parse_options(int argc, char** argv) {
     app.add_option("--laser-password", m.laser_password,
                    "Password the lasers require (default: none)");
     app.add_flag("--no-retract", no_retract, "No retract mechanism installed");
+
+    auto* viewpro = "Viewpro gimbal (--protocol viewpro)";
+    app.add_option("--heading", v.yaw_deg, "Vehicle heading before any IN frame, degrees")
+        ->group(viewpro)
+        ->capture_default_str();
+    app.add_option("--gimbal-pitch", v.gimbal_pitch_deg,
+                   "Gimbal pitch relative to the vehicle, degrees, up positive")
+        ->group(viewpro)
+        ->check(CLI::Range(-180.0, 180.0))
+        ->capture_default_str();
+    app.add_option("--gimbal-yaw", v.gimbal_yaw_deg,
+                   "Gimbal yaw relative to the heading, degrees, right positive")
+        ->group(viewpro)
+        ->check(CLI::Range(-180.0, 180.0))
+        ->capture_default_str();
+    app.add_option("--gimbal-yaw-rate", v.gimbal_yaw_rate_dps, "Gimbal yaw sweep rate, deg/s")
+        ->group(viewpro)
+        ->capture_default_str();
+    app.add_option("--angle-noise", v.angle_noise_deg,
+                   "Noise (1 sigma) on the reported gimbal angles, degrees")
+        ->group(viewpro)
+        ->check(CLI::NonNegativeNumber)
+        ->capture_default_str();
+    app.add_option("--zoom", v.zoom_position, "Zoom position value reported")
+        ->group(viewpro)
+        ->capture_default_str();
+    app.add_flag("--no-laser", no_laser, "No laser range finder: the LRF field stays 0")
+        ->group(viewpro);
     app.add_flag("--version", version, "Print the version and exit");
 
     try {
@@ -171,6 +236,11 @@ ParsedOptions parse_options(int argc, char** argv) {
     o.discovery = !no_discovery;
     m.retract_installed = !no_retract;
     m.clockwise = !counter_clockwise;
+    v.has_laser = !no_laser;
+    if (o.protocol == "viewpro") {
+        o.discovery = false;  // the Orion SDK's broadcast discovery has no Viewpro form
+        apply_to_viewpro(app, m, v);
+    }
     if (!o.tcp && !o.pty) {
         std::cerr << "gimbal-sim: nothing to serve: --no-tcp needs --pty\n";
         return {std::nullopt, 1};

@@ -7,11 +7,12 @@
 #include <string>
 
 #include "sim/orion_sim.hpp"
+#include "sim/viewpro_sim.hpp"
 
 namespace gimbal_sim {
 
 struct ToolOptions {
-    std::string protocol = "orion";
+    std::string protocol = "orion";  // or "viewpro"
 
     bool tcp = true;
     std::string bind = "127.0.0.1";
@@ -20,7 +21,7 @@ struct ToolOptions {
     bool pty = false;
     std::string pty_link;  // symlink to the pty device, if set
 
-    bool discovery = true;
+    bool discovery = true;  // Orion only
     std::uint16_t discovery_port = 8745;
     std::uint16_t discovery_reply_port = 8746;  // 0: the request's source port
 
@@ -34,7 +35,8 @@ struct ToolOptions {
     std::string rx_log;  // JSON lines of every valid packet received
     double tick_s = 0.01;
 
-    gimbal::sim::OrionSimOptions model;
+    gimbal::sim::OrionSimOptions model;            // --protocol orion
+    gimbal::sim::ViewproSimOptions viewpro_model;  // --protocol viewpro
 };
 
 // Parses argv. Returns the options, or the exit status when the program should stop now

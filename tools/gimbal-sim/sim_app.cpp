@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "sim/orion_sim.hpp"
+#include "sim/viewpro_sim.hpp"
 
 namespace gimbal_sim {
 
@@ -19,6 +20,15 @@ gimbal::sim::FaultOptions fault_options(const ToolOptions& o) {
     return f;
 }
 
+bool is_viewpro(const ToolOptions& o) {
+    return o.protocol == "viewpro";
+}
+
+std::unique_ptr<gimbal::sim::Device> make_device(const ToolOptions& o) {
+    if (is_viewpro(o)) return gimbal::sim::make_viewpro_sim(o.viewpro_model);
+    return gimbal::sim::make_orion_sim(o.model);
+}
+
 void note(const std::string& text) {
     std::cerr << "gimbal-sim: " << text << std::endl;
 }
@@ -30,9 +40,10 @@ SimApp::SimApp(asio::io_context& io, const ToolOptions& options)
       options_(options),
       epoch_(std::chrono::steady_clock::now()),
       tick_timer_(io),
-      device_(gimbal::sim::make_orion_sim(options.model)),
-      faults_(fault_options(options)) {
-    if (!options_.rx_log.empty()) rx_log_.emplace(options_.rx_log);
+      device_(make_device(options)),
+      faults_(fault_options(options)),
+      viewpro_faults_(fault_options(options)) {
+    if (!options_.rx_log.empty()) rx_log_.emplace(options_.rx_log, options_.protocol);
 
     if (options_.tcp) {
         tcp_.emplace(
@@ -60,7 +71,7 @@ SimApp::SimApp(asio::io_context& io, const ToolOptions& options)
             });
         std::cout << "pty: " << pty_->device() << std::endl;
     }
-    if (options_.discovery) {
+    if (options_.discovery && !is_viewpro(options_)) {
         try {
             discovery_.emplace(io, options_.discovery_port, options_.discovery_reply_port,
                                gimbal::sim::orion_sim_crown_version_frame());
@@ -132,7 +143,9 @@ void SimApp::deliver(double now) {
     device_->advance(now, out);
     if (out.empty() || stalled(now)) return;  // a stalled gimbal says nothing; the model runs on
     std::vector<std::uint8_t> wire;
-    if (faults_.active()) {
+    if (is_viewpro(options_) && viewpro_faults_.active()) {
+        viewpro_faults_.apply(out, wire);
+    } else if (!is_viewpro(options_) && faults_.active()) {
         faults_.apply(out, wire);
     } else {
         wire.swap(out);

@@ -1,5 +1,5 @@
-// gimbal-sim's running parts: the model on a 10 ms tick, the TCP server, the pty, discovery,
-// fault injection and the rx log, all on one io_context.
+// gimbal-sim's running parts: the model (Orion or Viewpro) on a 10 ms tick, the TCP server,
+// the pty, discovery (Orion), fault injection and the rx log, all on one io_context.
 #pragma once
 
 #include <boost/asio/io_context.hpp>
@@ -16,6 +16,7 @@
 #include "rx_log.hpp"
 #include "sim/device.hpp"
 #include "sim/fault_injector.hpp"
+#include "sim/viewpro_sim_faults.hpp"
 #include "tcp_server.hpp"
 
 namespace gimbal_sim {
@@ -43,7 +44,8 @@ class SimApp {
     std::chrono::steady_clock::time_point next_tick_;
     boost::asio::steady_timer tick_timer_;
     std::unique_ptr<gimbal::sim::Device> device_;
-    gimbal::sim::FaultInjector faults_;
+    gimbal::sim::FaultInjector faults_;                 // Orion frames
+    gimbal::sim::ViewproFaultInjector viewpro_faults_;  // Viewpro frames
     std::optional<RxLog> rx_log_;
     std::optional<TcpServer> tcp_;
     std::optional<PtyPort> pty_;

@@ -278,6 +278,13 @@ TEST_CASE("envelope: the reply shapes and the first checks", "[command][envelope
     err = command::parse_envelope(std::string(9000, ' '), known, env);
     REQUIRE(err);
     CHECK(err->error.code == "too_large");
+    // Still JSON: the reply echoes id and cmd so a client matching replies by id sees it.
+    const std::string big = R"({"cmd": "ping", "id": 9, "pad": ")" + std::string(8200, 'x') + "\"}";
+    err = command::parse_envelope(big, known, env);
+    REQUIRE(err);
+    CHECK(err->error.code == "too_large");
+    CHECK(*err->id == 9);
+    CHECK(*err->cmd == "ping");
     err = command::parse_envelope(R"({"id": "a1"})", known, env);
     REQUIRE(err);
     CHECK(err->error.code == "unknown_cmd");

@@ -112,3 +112,23 @@ TEST_CASE("a packet too short to decode changes nothing", "[state]") {
     CHECK_THAT(s.last_decode_error(), Catch::Contains("geolocate_telemetry"));
     CHECK(s.snapshot(0.5) == before);
 }
+
+TEST_CASE("laser states become the STATE lasers array", "[state]") {
+    state::OrionState s(1.0);
+    std::vector<state::Event> events;
+    CHECK(s.snapshot(0.0)["lasers"].is_null());
+    orion::LaserStates lasers;
+    lasers.states.resize(2);
+    lasers.states[0].type = orion::LaserType::pointer;
+    lasers.states[0].enabled = true;
+    lasers.states[1].type = orion::LaserType::lightware;
+    lasers.states[1].armed = true;
+    REQUIRE(s.apply(frame_of(lasers), 3.0, events));
+    const json arr = s.snapshot(3.5)["lasers"];
+    REQUIRE(arr.is_array());
+    REQUIRE(arr.size() == 2);
+    CHECK(arr[0]["type"] == "pointer");
+    CHECK(arr[0]["enabled"] == true);
+    CHECK(arr[1]["armed"] == true);
+    CHECK(arr[1]["age_s"].get<double>() == Approx(0.5));
+}

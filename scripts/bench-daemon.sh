@@ -1,0 +1,48 @@
+#!/usr/bin/env bash
+# Builds gimbald, gimbal-sim and the latency benchmark in release mode and runs the two daemon
+# benchmarks (docs/operations.md, "Daemon benchmarks"): command latency and load (CPU, RSS).
+# Timings, not tests: nothing here fails on a missed target, it only says so.
+#
+# Environment:
+#   BUILD_DIR     an already configured release build directory to use instead of the
+#                 `release` preset's build/release
+#   JOBS          parallel build jobs (default: nproc)
+#   LATENCY_ARGS  extra arguments for bench_daemon_latency, e.g. "--count 20000 --poll busy"
+#   LOAD_ARGS     extra arguments for load_bench.py, e.g. "--window 60"
+set -euo pipefail
+cd "$(dirname "$0")/.."
+jobs=${JOBS:-$(nproc 2>/dev/null || echo 2)}
+if [[ -n "${BUILD_DIR:-}" ]]; then
+    build=$BUILD_DIR
+else
+    cmake --preset release >/dev/null
+    build=build/release
+fi
+cmake --build "$build" --target gimbald gimbal-sim bench_daemon_latency -j "$jobs"
+
+gimbald=$build/daemon/gimbald
+sim=$build/tools/gimbal-sim
+latency=$build/tests/bench/daemon/bench_daemon_latency
+out=$(mktemp -d)
+trap 'rm -rf "$out"' EXIT
+
+echo "== latency (load average $(cut -d' ' -f1-3 /proc/loadavg), $(nproc) cores)"
+# shellcheck disable=SC2086  # the extra arguments are meant to split
+"$latency" --gimbald "$gimbald" ${LATENCY_ARGS:-} | tee "$out/latency"
+echo
+echo "== load (load average $(cut -d' ' -f1-3 /proc/loadavg))"
+# shellcheck disable=SC2086
+python3 tests/bench/daemon/load_bench.py --gimbald "$gimbald" --gimbal-sim "$sim" \
+    ${LOAD_ARGS:-} | tee "$out/load"
+
+# key=value pairs of a RESULT line
+value() { grep '^RESULT' "$2" | tr ' ' '\n' | sed -n "s/^$1=//p"; }
+echo
+echo "== summary"
+printf '  latency  p50 %s us, p99 %s us (target < 200), p99.9 %s us, max %s us, lost %s of %s\n' \
+    "$(value p50_us "$out/latency")" "$(value p99_us "$out/latency")" \
+    "$(value p999_us "$out/latency")" "$(value max_us "$out/latency")" \
+    "$(value lost "$out/latency")" \
+    "$(( $(value count "$out/latency") + $(value lost "$out/latency") ))"
+printf '  load     CPU %s %% of a core (target < 1), VmRSS %s kB, VmHWM %s kB (target < 20480)\n' \
+    "$(value cpu_pct "$out/load")" "$(value rss_kb "$out/load")" "$(value hwm_kb "$out/load")"

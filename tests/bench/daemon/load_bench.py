@@ -1,0 +1,294 @@
+#!/usr/bin/env python3
+"""gimbald's CPU and memory with one gimbal at 10 Hz telemetry and 16 subscribers.
+
+Starts gimbal-sim (TCP, free port) and gimbald connected to it, subscribes 16 UDP sockets at
+rate_hz 10 (renewing well before ttl_s), drains them, and after a warm-up measures the
+daemon's CPU time (utime + stime from /proc/PID/stat) over a window, its resident memory
+(VmRSS, sampled every second, and the peak VmHWM) and what each subscriber received.
+
+A benchmark, not a test (never run by ctest). Python 3 standard library only. Usage:
+
+    load_bench.py --gimbald build/release/daemon/gimbald \\
+                  --gimbal-sim build/release/tools/gimbal-sim [--window 30]
+
+Targets (from the issue): under 1 % of one core and under 20 MB.
+"""
+
+import argparse
+import json
+import os
+import re
+import select
+import signal
+import socket
+import subprocess
+import sys
+import tempfile
+import time
+
+CPU_TARGET_PCT = 1.0
+RSS_TARGET_KB = 20 * 1024
+CLOCK_TICKS = os.sysconf("SC_CLK_TCK")
+
+
+def parse_args():
+    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    p.add_argument("--gimbald", required=True, help="path of the gimbald executable")
+    p.add_argument("--gimbal-sim", required=True, help="path of the gimbal-sim executable")
+    p.add_argument("--subscribers", type=int, default=16)
+    p.add_argument("--rate-hz", type=float, default=10.0, help="subscription rate_hz")
+    p.add_argument("--ttl", type=float, default=10.0, help="subscription ttl_s (renewed at 1/3)")
+    p.add_argument("--warmup", type=float, default=5.0, help="seconds before measuring")
+    p.add_argument("--window", type=float, default=30.0, help="seconds measured")
+    p.add_argument("--log-level", default="info", help="gimbald --log-level")
+    p.add_argument("--keep", action="store_true", help="keep the temp dir (config, logs)")
+    return p.parse_args()
+
+
+# --- /proc -------------------------------------------------------------------------------------
+
+def cpu_seconds(pid):
+    """utime + stime of a process, in seconds."""
+    with open("/proc/%d/stat" % pid) as f:
+        fields = f.read().rsplit(")", 1)[1].split()
+    # After "pid (comm)": fields[0] is field 3 (state); utime and stime are fields 14 and 15.
+    return (int(fields[11]) + int(fields[12])) / CLOCK_TICKS
+
+
+def memory_kb(pid):
+    """{'VmRSS': kB, 'VmHWM': kB, ...} from /proc/PID/status."""
+    out = {}
+    with open("/proc/%d/status" % pid) as f:
+        for line in f:
+            m = re.match(r"(Vm\w+|Rss\w+):\s+(\d+) kB", line)
+            if m:
+                out[m.group(1)] = int(m.group(2))
+    return out
+
+
+def load_average():
+    with open("/proc/loadavg") as f:
+        return " ".join(f.read().split()[:3])
+
+
+# --- processes ---------------------------------------------------------------------------------
+
+def start_sim(path, workdir):
+    err = open(os.path.join(workdir, "gimbal-sim.err"), "wb")
+    proc = subprocess.Popen([path, "--port", "0", "--no-discovery"], stdout=subprocess.PIPE,
+                            stderr=err, text=True)
+    deadline = time.monotonic() + 10
+    while time.monotonic() < deadline:
+        ready, _, _ = select.select([proc.stdout], [], [], 0.5)
+        if ready:
+            line = proc.stdout.readline()
+            m = re.match(r"tcp: ([\d.]+):(\d+)", line)
+            if m:
+                return proc, int(m.group(2))
+            if not line:
+                break
+    proc.kill()
+    sys.exit("load_bench: gimbal-sim did not print its TCP port (see %s)" % err.name)
+
+
+def free_udp_port():
+    with socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def start_daemon(args, workdir, sim_port, command_port):
+    config = os.path.join(workdir, "gimbald.json")
+    with open(config, "w") as f:
+        json.dump({"gimbals": [{"name": "main", "protocol": "orion",
+                                "link": {"type": "tcp", "host": "127.0.0.1", "port": sim_port}}],
+                   "command": {"bind": "127.0.0.1", "port": command_port}}, f)
+    log = open(os.path.join(workdir, "gimbald.log"), "wb")
+    return subprocess.Popen([args.gimbald, "-c", config, "--log-level", args.log_level],
+                            stdout=log, stderr=subprocess.STDOUT)
+
+
+def stop(proc):
+    if proc.poll() is not None:
+        return
+    proc.send_signal(signal.SIGTERM)
+    try:
+        proc.wait(timeout=5)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        proc.wait()
+
+
+# --- the command socket ------------------------------------------------------------------------
+
+def request(sock, address, message, timeout=1.0):
+    """Sends one request and returns its reply (other datagrams on the socket are skipped)."""
+    message = dict(message, id="req-%f" % time.monotonic())
+    sock.sendto(json.dumps(message).encode(), address)
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        ready, _, _ = select.select([sock], [], [], max(0.0, deadline - time.monotonic()))
+        if not ready:
+            break
+        reply = json.loads(sock.recv(65536))
+        if reply.get("id") == message["id"]:
+            return reply
+    return None
+
+
+def wait_connected(address, daemon, timeout=10.0):
+    with socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as s:
+        s.bind(("127.0.0.1", 0))
+        deadline = time.monotonic() + timeout
+        while time.monotonic() < deadline:
+            if daemon.poll() is not None:
+                sys.exit("load_bench: gimbald exited (code %s) during start-up" % daemon.returncode)
+            reply = request(s, address, {"cmd": "state"}, timeout=0.2)
+            if reply and reply.get("ok") and reply["state"]["link"]["connected"] \
+                    and reply["state"].get("telemetry"):
+                return
+            time.sleep(0.05)
+    sys.exit("load_bench: gimbald did not connect to gimbal-sim within %.0f s" % timeout)
+
+
+class Subscriber:
+    """One UDP socket subscribed to every gimbal; counts what arrives."""
+
+    def __init__(self, address, rate_hz, ttl_s):
+        self.sock = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
+        self.sock.bind(("127.0.0.1", 0))
+        self.sock.setblocking(False)
+        self.address = address
+        self.rate_hz = rate_hz
+        self.ttl_s = ttl_s
+        self.renew_at = 0.0
+        self.counts = {"state": 0, "event": 0, "reply": 0, "error": 0}
+        self.state_bytes = 0
+
+    def renew_if_due(self, now):
+        if now < self.renew_at:
+            return
+        msg = {"cmd": "subscribe", "rate_hz": self.rate_hz, "ttl_s": self.ttl_s}
+        self.sock.sendto(json.dumps(msg).encode(), self.address)
+        self.renew_at = now + self.ttl_s / 3.0
+
+    def drain(self):
+        while True:
+            try:
+                data = self.sock.recv(65536)
+            except BlockingIOError:
+                return
+            msg = json.loads(data)
+            kind = msg.get("type")
+            if kind == "state":
+                self.counts["state"] += 1
+                self.state_bytes += len(data)
+            elif kind == "event":
+                self.counts["event"] += 1
+            elif msg.get("ok"):
+                self.counts["reply"] += 1
+            else:
+                self.counts["error"] += 1
+
+    def snapshot(self):
+        return dict(self.counts), self.state_bytes
+
+
+def main():
+    args = parse_args()
+    workdir = tempfile.mkdtemp(prefix="gimbald-load-")
+    sim, sim_port = start_sim(args.gimbal_sim, workdir)
+    command_port = free_udp_port()
+    daemon = start_daemon(args, workdir, sim_port, command_port)
+    address = ("127.0.0.1", command_port)
+    subscribers = []
+    ok = False
+    try:
+        wait_connected(address, daemon)
+        subscribers = [Subscriber(address, args.rate_hz, args.ttl)
+                       for _ in range(args.subscribers)]
+        socks = {s.sock: s for s in subscribers}
+        load_before = load_average()
+
+        start = time.monotonic()
+        measure_at = start + args.warmup
+        end = measure_at + args.window
+        next_sample = measure_at
+        cpu0 = sim_cpu0 = None
+        base = {}
+        rss_samples = []
+        while True:
+            now = time.monotonic()
+            if now >= end:
+                break
+            if daemon.poll() is not None:
+                sys.exit("load_bench: gimbald exited (code %s)" % daemon.returncode)
+            for s in subscribers:
+                s.renew_if_due(now)
+            ready, _, _ = select.select(list(socks), [], [], 0.02)
+            for sock in ready:
+                socks[sock].drain()
+            if cpu0 is None and now >= measure_at:
+                cpu0, sim_cpu0, t0 = cpu_seconds(daemon.pid), cpu_seconds(sim.pid), now
+                base = {s: s.snapshot() for s in subscribers}
+            if cpu0 is not None and now >= next_sample:
+                rss_samples.append(memory_kb(daemon.pid)["VmRSS"])
+                next_sample += 1.0
+        cpu1, sim_cpu1, t1 = cpu_seconds(daemon.pid), cpu_seconds(sim.pid), time.monotonic()
+        for s in subscribers:
+            s.drain()
+        mem = memory_kb(daemon.pid)
+        rss_samples.append(mem["VmRSS"])
+        load_after = load_average()
+        ok = True
+    finally:
+        if not ok:
+            print("load_bench: logs kept in %s" % workdir, file=sys.stderr)
+        for s in subscribers:
+            s.sock.close()
+        stop(daemon)
+        stop(sim)
+
+    elapsed = t1 - t0
+    cpu_pct = 100.0 * (cpu1 - cpu0) / elapsed
+    sim_pct = 100.0 * (sim_cpu1 - sim_cpu0) / elapsed
+    states, events, errors, state_bytes = [], [], 0, 0
+    for s in subscribers:
+        counts, nbytes = s.snapshot()
+        before, before_bytes = base[s]
+        states.append(counts["state"] - before["state"])
+        events.append(counts["event"] - before["event"])
+        errors += counts["error"]
+        state_bytes += nbytes - before_bytes
+    total_states = sum(states)
+    rss_peak = max(rss_samples)
+
+    print("gimbald load: 1 gimbal (gimbal-sim, GeolocateTelemetry 10 Hz), %d subscribers at "
+          "%g Hz" % (len(subscribers), args.rate_hz))
+    print("  window %.1f s after %.0f s warm-up, log level %s, load average %s -> %s"
+          % (elapsed, args.warmup, args.log_level, load_before, load_after))
+    print("  gimbald CPU: %.2f %% of one core (%.3f s in %.1f s); gimbal-sim %.2f %%"
+          % (cpu_pct, cpu1 - cpu0, elapsed, sim_pct))
+    print("  gimbald memory: VmRSS %d kB (peak sample %d kB), VmHWM %d kB"
+          % (mem["VmRSS"], rss_peak, mem["VmHWM"]))
+    print("  STATE datagrams per subscriber in the window (expected %.0f): %s"
+          % (args.rate_hz * elapsed, " ".join(str(n) for n in states)))
+    print("  %.1f STATE/s in total, %.0f bytes each on average; events per subscriber: %s; "
+          "error replies: %d"
+          % (total_states / elapsed, state_bytes / max(1, total_states),
+             " ".join(str(n) for n in events), errors))
+    print("  targets: CPU < %g %%: %s; RSS < %d MB: %s"
+          % (CPU_TARGET_PCT, "met" if cpu_pct < CPU_TARGET_PCT else "MISSED",
+             RSS_TARGET_KB // 1024, "met" if mem["VmHWM"] < RSS_TARGET_KB else "MISSED"))
+    print("RESULT cpu_pct=%.2f rss_kb=%d hwm_kb=%d states_min=%d states_max=%d sim_cpu_pct=%.2f"
+          % (cpu_pct, mem["VmRSS"], mem["VmHWM"], min(states), max(states), sim_pct))
+    if args.keep:
+        print("kept %s (config, logs)" % workdir)
+    else:
+        for name in os.listdir(workdir):
+            os.unlink(os.path.join(workdir, name))
+        os.rmdir(workdir)
+
+
+if __name__ == "__main__":
+    main()
