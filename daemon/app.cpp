@@ -40,6 +40,15 @@ App::App(const cfg::Config& config)
         return config_.command.allowed(a);
     };
     server_ = std::make_unique<CommandServer>(io_, std::move(options), std::move(raw));
+    // The vehicle feed: its events go to every gimbal's subscribers.
+    vehicle_ = std::make_unique<VehicleFeed>(io_, config_.vehicle, [this](const auto& e) {
+        for (const auto& s : sessions_) server_->publish_event(s->name(), e);
+    });
+    for (std::size_t i = 0; i < sessions_.size(); ++i) {
+        auto& session = *sessions_[i];
+        vehicle_->add_gimbal(session, config_.gimbals[i]);
+        session.set_vehicle_snapshot([this, &session] { return vehicle_->snapshot(session); });
+    }
 }
 
 App::~App() = default;
@@ -49,8 +58,8 @@ std::unique_ptr<gimbal::session::Protocol> App::make_protocol(const cfg::GimbalC
         gimbal::session::ViewproOptions options;
         options.stale_after_s = config_.telemetry.stale_after_s;
         const auto& out = g.viewpro.output;
-        options.output.osd =
-            out.osd == cfg::ViewproOsd::uav ? gimbal::viewpro::Osd::uav : gimbal::viewpro::Osd::target;
+        options.output.osd = out.osd == cfg::ViewproOsd::uav ? gimbal::viewpro::Osd::uav
+                                                             : gimbal::viewpro::Osd::target;
         options.output.serial = out.serial;
         options.output.network = out.network;
         // Both enumerations list out1..out4 in order.
@@ -117,6 +126,7 @@ void App::shutdown() {
     if (stopping_) return;
     stopping_ = true;
     notify::stopping();
+    vehicle_->stop();
     // Sessions first: their cease-fire goes out before the links close.
     for (auto& s : sessions_) s->stop();
     server_->stop();
@@ -149,6 +159,7 @@ void App::arm_watchdog() {
 int App::run() {
     for (auto& s : sessions_) s->start();
     server_->start();
+    vehicle_->start();
     signals_.async_wait([this](const boost::system::error_code& e, int s) { on_signal(e, s); });
     const auto local = server_->local_endpoint();
     nlohmann::json gimbals = nlohmann::json::array();

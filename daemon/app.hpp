@@ -11,6 +11,7 @@
 #include "command_server.hpp"
 #include "config.hpp"
 #include "gimbal_session.hpp"
+#include "vehicle_feed.hpp"
 
 namespace gimbald {
 
@@ -37,6 +38,7 @@ class App {
     boost::asio::steady_timer watchdog_timer_;
     std::vector<std::unique_ptr<GimbalSession>> sessions_;
     std::unique_ptr<CommandServer> server_;
+    std::unique_ptr<VehicleFeed> vehicle_;
     bool stopping_ = false;
 };
 

@@ -1,6 +1,7 @@
 #include "command_server.hpp"
 
 #include <boost/asio/ip/address.hpp>
+#include <boost/asio/post.hpp>
 
 #include "command/envelope.hpp"
 #include "command/orion_commands.hpp"
@@ -81,7 +82,12 @@ void CommandServer::on_receive(const boost::system::error_code& ec, std::size_t 
                          {{"src", to_string(from)}});
         } else {
             nlohmann::json reply = handle(std::string_view(buffer_.data(), n), from);
-            send(from, reply.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
+            // Posted after the link's write of whatever handle() queued for the gimbal (the
+            // link posts its writes too), so the packet goes out first: the reply is not part
+            // of the command's latency, and `ok: true` then follows the write.
+            boost::asio::post(io_, [this, from, reply = std::move(reply)] {
+                send(from, reply.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
+            });
         }
     } else {
         // ICMP port unreachable from an earlier reply surfaces here on Linux; keep serving.
@@ -146,13 +152,17 @@ nlohmann::json CommandServer::handle(std::string_view datagram, const Endpoint& 
     else
         reply = cmdns::ok_reply(env.id, *cmd_name, reply_gimbal, std::move(reply));
 
-    log::info("command", error ? error->message : "ok",
-              {{"src", to_string(from)},
-               {"id", env.id ? *env.id : nlohmann::json(nullptr)},
-               {"cmd", cmd_name ? nlohmann::json(*cmd_name) : nlohmann::json(nullptr)},
-               {"gimbal", reply_gimbal ? nlohmann::json(*reply_gimbal) : nlohmann::json(nullptr)},
-               {"ok", !error},
-               {"error", error ? nlohmann::json(error->code) : nlohmann::json(nullptr)}});
+    // Logged from a posted handler, after the link's write of the packets queued above: the
+    // log line (formatted, then written and flushed to stdout) is not part of the latency.
+    nlohmann::json fields = {
+        {"src", to_string(from)},
+        {"id", env.id ? *env.id : nlohmann::json(nullptr)},
+        {"cmd", cmd_name ? nlohmann::json(*cmd_name) : nlohmann::json(nullptr)},
+        {"gimbal", reply_gimbal ? nlohmann::json(*reply_gimbal) : nlohmann::json(nullptr)},
+        {"ok", !error},
+        {"error", error ? nlohmann::json(error->code) : nlohmann::json(nullptr)}};
+    boost::asio::post(io_, [msg = error ? error->message : std::string("ok"),
+                            fields = std::move(fields)] { log::info("command", msg, fields); });
     return reply;
 }
 

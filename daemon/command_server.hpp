@@ -47,7 +47,8 @@ class CommandServer {
     void publish_event(const std::string& gimbal, const gimbal::state::Event& event);
     std::size_t subscribers() const { return subscriptions_.size(); }
 
-    // Handles one datagram and returns the reply (exposed for tests).
+    // Handles one datagram and returns the reply; its `command` log line is written from a
+    // posted handler, after the link has written what the command queued.
     nlohmann::json handle(std::string_view datagram, const Endpoint& from);
 
   private:

@@ -154,8 +154,8 @@ GimbalSession::Outcome GimbalSession::execute(std::string_view cmd, const nlohma
     Outcome out;
     gimbal::command::Plan plan;
     const gimbal::session::Now now{
-        now_s(), std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch())
-                     .count()};
+        now_s(),
+        std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count()};
     if (auto error = protocol_->plan(cmd, request, now, plan)) {
         out.error = std::move(error);
         return out;
@@ -245,7 +245,12 @@ nlohmann::json GimbalSession::snapshot() const {
                             {"stale", protocol_->stale(now)}};
     nlohmann::json keys = protocol_->snapshot(now);  // named: items() of a temporary dangles
     for (auto& [key, value] : keys.items()) state[key] = std::move(value);
+    if (vehicle_snapshot_) state["vehicle"] = vehicle_snapshot_();
     return state;
+}
+
+bool GimbalSession::send_feed(std::vector<std::uint8_t> bytes) {
+    return link_->connected() && link_->send(std::move(bytes));
 }
 
 std::string GimbalSession::status() const {

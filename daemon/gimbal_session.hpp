@@ -50,6 +50,13 @@ class GimbalSession {
 
     // STATE (contract section 5).
     nlohmann::json snapshot() const;
+    // The vehicle feed: writes one feed packet when the link is up (false otherwise), beside
+    // the commands on the same ordered queue.
+    bool send_feed(std::vector<std::uint8_t> bytes);
+    // Fills STATE's top-level `vehicle` key.
+    void set_vehicle_snapshot(std::function<nlohmann::json()> vehicle_snapshot) {
+        vehicle_snapshot_ = std::move(vehicle_snapshot);
+    }
     // Short text for systemd's STATUS= line.
     std::string status() const;
 
@@ -78,6 +85,7 @@ class GimbalSession {
     gimbal::log::RateLimitedLog decode_errors_;
     std::uint64_t reported_bad_checksums_ = 0;
     std::uint64_t reported_decode_errors_ = 0;
+    std::function<nlohmann::json()> vehicle_snapshot_;
 };
 
 }  // namespace gimbald

@@ -1,6 +1,7 @@
 #include "subscriptions.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace gimbald {
 
@@ -47,10 +48,10 @@ std::vector<Subscriptions::Endpoint> Subscriptions::due_state(const std::string&
 void Subscriptions::mark_sent(double now_s) {
     for (auto& [who, s] : subs_) {
         if (s.next_state_s > now_s) continue;
+        // The next multiple of the period: subscribers of one rate then fall due together and
+        // share one snapshot, and after a stall the missed datagrams are skipped, not burst.
         const double period = 1.0 / s.rate_hz;
-        s.next_state_s += period;
-        // After a stall, skip the missed datagrams instead of sending a burst.
-        if (s.next_state_s <= now_s) s.next_state_s = now_s + period;
+        s.next_state_s = (std::floor(now_s / period + 1e-6) + 1.0) * period;
     }
 }
 

@@ -27,7 +27,7 @@ for target in build/fuzz/tests/fuzz/fuzz_*; do
     echo "fuzz: $name ok, $runs runs, corpus $(ls "$work" | wc -l) inputs"
   else
     echo "fuzz: $name FAILED, see build/fuzz/$name.log" >&2
-    grep -E '^fuzz_orion|ERROR|runtime error' "build/fuzz/$name.log" | head -5 >&2 || true
+    grep -E '^fuzz_|ERROR|runtime error' "build/fuzz/$name.log" | head -5 >&2 || true
     status=1
   fi
   rm -rf "$work"

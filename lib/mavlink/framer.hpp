@@ -16,6 +16,8 @@
 #include <span>
 #include <vector>
 
+#include "framing/pending_bytes.hpp"
+
 #include "mavlink/framing.hpp"
 #include "mavlink/messages.hpp"
 
@@ -47,19 +49,8 @@ class Framer {
     template <class F>
     void push(std::span<const std::uint8_t> bytes, F&& on_message) {
         stats_.bytes += bytes.size();
-        // Complete the partial frame held from the last push, a bounded slice at a time.
-        while (!pending_.empty() && !bytes.empty()) {
-            const std::size_t room = 2 * max_frame_size - pending_.size();
-            const std::size_t take = bytes.size() < room ? bytes.size() : room;
-            pending_.insert(pending_.end(), bytes.begin(), bytes.begin() + static_cast<long>(take));
-            bytes = bytes.subspan(take);
-            const std::size_t used = scan(pending_, on_message);
-            pending_.erase(pending_.begin(), pending_.begin() + static_cast<long>(used));
-        }
-        if (bytes.empty()) return;
-        // Fast path: scan the caller's buffer in place, keep only an unfinished tail.
-        const std::size_t used = scan(bytes, on_message);
-        pending_.assign(bytes.begin() + static_cast<long>(used), bytes.end());
+        pending_.feed(bytes, max_frame_size,
+                      [&](std::span<const std::uint8_t> data) { return scan(data, on_message); });
     }
 
     std::vector<Message> push(std::span<const std::uint8_t> bytes) {
@@ -69,10 +60,7 @@ class Framer {
     }
 
     // Forget a partial frame (after a reconnect the old bytes belong to nothing).
-    void reset() {
-        stats_.dropped_bytes += pending_.size();
-        pending_.clear();
-    }
+    void reset() { stats_.dropped_bytes += pending_.clear(); }
 
     const FramerStats& stats() const { return stats_; }
     std::size_t pending_bytes() const { return pending_.size(); }
@@ -128,7 +116,7 @@ class Framer {
     }
 
     FramerOptions options_;
-    std::vector<std::uint8_t> pending_;
+    framing::PendingBytes pending_;
     Message message_;
     FramerStats stats_;
 };

@@ -19,7 +19,7 @@ std::string printable(std::string_view s) {
     out.reserve(s.size());
     for (const char ch : s) {
         const auto c = static_cast<unsigned char>(ch);
-        out.push_back((c >= 0x20 && c < 0x7F) || ch == '\n' || ch == '\t' ? ch : '?');
+        out.push_back(c >= 0x20 && c < 0x7F ? ch : '?');
     }
     return out;
 }

@@ -9,6 +9,7 @@
 #include <span>
 #include <vector>
 
+#include "framing/pending_bytes.hpp"
 #include "orion/framing.hpp"
 
 namespace gimbal::orion {
@@ -27,27 +28,8 @@ class Framer {
     template <class F>
     void push(std::span<const std::uint8_t> bytes, F&& on_frame) {
         stats_.bytes += bytes.size();
-        // Complete the partial frame held from the last push, a bounded slice at a time.
-        while (!pending_.empty() && !bytes.empty()) {
-            const std::size_t held = pending_.size();
-            const std::size_t room = 2 * max_frame_size - held;
-            const std::size_t take = bytes.size() < room ? bytes.size() : room;
-            pending_.insert(pending_.end(), bytes.begin(), bytes.begin() + static_cast<long>(take));
-            const std::size_t used = scan(pending_, on_frame);
-            if (used >= held) {
-                // Every held byte is finished with: go on in the caller's buffer (an
-                // unfinished frame at the end of the slice is simply scanned again there).
-                bytes = bytes.subspan(used - held);
-                pending_.clear();
-                break;
-            }
-            bytes = bytes.subspan(take);
-            pending_.erase(pending_.begin(), pending_.begin() + static_cast<long>(used));
-        }
-        if (bytes.empty()) return;
-        // Fast path: scan the caller's buffer in place, keep only an unfinished tail.
-        const std::size_t used = scan(bytes, on_frame);
-        pending_.assign(bytes.begin() + static_cast<long>(used), bytes.end());
+        pending_.feed(bytes, max_frame_size,
+                      [&](std::span<const std::uint8_t> data) { return scan(data, on_frame); });
     }
 
     std::vector<Frame> push(std::span<const std::uint8_t> bytes) {
@@ -57,10 +39,7 @@ class Framer {
     }
 
     // Forget a partial frame (after a reconnect the old bytes belong to nothing).
-    void reset() {
-        stats_.dropped_bytes += pending_.size();
-        pending_.clear();
-    }
+    void reset() { stats_.dropped_bytes += pending_.clear(); }
 
     const FramerStats& stats() const { return stats_; }
     std::size_t pending_bytes() const { return pending_.size(); }
@@ -119,7 +98,7 @@ class Framer {
         return i;
     }
 
-    std::vector<std::uint8_t> pending_;
+    framing::PendingBytes pending_;
     Frame frame_;
     FramerStats stats_;
 };

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <set>
 #include <string>
 #include <type_traits>
@@ -129,9 +130,11 @@ class JsonReader {
                 scalar((*j)[i], member[i], enc, s, unit, path(key) + "[" + std::to_string(i) + "]");
         } else if constexpr (is_std_vector<T>) {
             if (!j->is_array()) return fail("bad_request", path(key) + ": must be an array");
-            if (j->size() > pending_max_)
+            const std::size_t max = pending_max_.value_or(0);
+            pending_max_.reset();
+            if (j->size() > max)
                 return fail("out_of_range",
-                            path(key) + ": at most " + std::to_string(pending_max_) + " items");
+                            path(key) + ": at most " + std::to_string(max) + " items");
             member.resize(j->size());
             for (std::size_t i = 0; i < member.size() && ok(); ++i) {
                 typename T::value_type item{};
@@ -175,9 +178,16 @@ class JsonReader {
         const nlohmann::json* j = find(key);
         if (!j) return;
         if (!j->is_array()) return fail("bad_request", path(key) + ": must be an array");
-        if (j->size() > pending_max_)
+        if (!pending_max_) {
+            // A fixed repeat (no count field before it): the declaration sized the vector.
+            if (j->size() != items.size())
+                return fail("bad_request", path(key) + ": must hold exactly " +
+                                               std::to_string(items.size()) + " items");
+        } else if (j->size() > *pending_max_) {
             return fail("out_of_range",
-                        path(key) + ": at most " + std::to_string(pending_max_) + " items");
+                        path(key) + ": at most " + std::to_string(*pending_max_) + " items");
+        }
+        pending_max_.reset();
         items.assign(j->size(), G{});
         for (std::size_t i = 0; i < items.size() && ok(); ++i) {
             const std::string where = path(key) + "[" + std::to_string(i) + "]";
@@ -326,7 +336,7 @@ class JsonReader {
     const nlohmann::json& obj_;
     std::string prefix_;
     std::set<std::string> seen_;
-    std::size_t pending_max_ = 0;
+    std::optional<std::size_t> pending_max_;  // set by count(), used by the next repeat
     JsonError error_{};
 };
 

@@ -4,8 +4,8 @@
 
 #include "session/protocol.hpp"
 #include "state/viewpro_state.hpp"
-#include "viewpro/output_framer.hpp"
 #include "viewpro/mode.hpp"
+#include "viewpro/output_framer.hpp"
 
 namespace gimbal::session {
 
@@ -15,7 +15,7 @@ struct ViewproOptions {
 };
 
 class ViewproProtocol final : public Protocol {
-public:
+  public:
     explicit ViewproProtocol(const ViewproOptions& options);
 
     std::string_view name() const override { return "viewpro"; }
@@ -30,7 +30,7 @@ public:
     std::optional<command::Error> plan(std::string_view cmd, const nlohmann::json& request,
                                        const Now& now, command::Plan& plan) override;
 
-private:
+  private:
     ViewproOptions options_;
     viewpro::OutputFramer framer_;
     state::ViewproState state_;

@@ -9,7 +9,7 @@
 namespace gimbal::sim {
 
 class Device {
-public:
+  public:
     virtual ~Device() = default;
     // Bytes written by the controller (the daemon) at time now_s (seconds, any epoch,
     // monotonic). Arbitrary chunking: the device frames them itself.

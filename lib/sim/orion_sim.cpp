@@ -280,6 +280,9 @@ void OrionSim::handle(const orion::Frame& frame) {
         case pkt::gps_data:
             if (auto g = orion::decode<orion::GpsData>(data)) on_gps(g.value);
             break;
+        case pkt::autopilot_data:
+            if (auto ap = orion::decode<orion::AutopilotData>(data)) on_autopilot(ap.value);
+            break;
         case pkt::uart_config:
             if (data.size() == 1) {  // the one-byte form asks for one port's configuration
                 answer_uart_config(data[0]);
@@ -387,6 +390,14 @@ void OrionSim::on_laser(const orion::LaserCmd& c) {
     r.safety_bypass = c.safety_bypass;
     lasers_.command(r);
     send(laser_states());  // the states packet is the gimbal's answer
+}
+
+void OrionSim::on_autopilot(const orion::AutopilotData& ap) {
+    LaserInterlocks locks;
+    locks.altitude = ap.agl < 0 || ap.agl < options_.laser_min_agl_m;
+    locks.ap_comm = !ap.comm_good;
+    locks.ap_flying = !ap.is_flying;
+    lasers_.set_interlocks(locks);
 }
 
 void OrionSim::on_stare_ack(const orion::StareAck& ack) {

@@ -40,6 +40,8 @@ struct OrionSimOptions {
     // Lasers by index; an empty password means none is needed.
     std::vector<orion::LaserType> lasers{orion::LaserType::pointer, orion::LaserType::lightware};
     std::string laser_password;
+    // Once OrionAutopilotData arrives, fire needs Agl at least this (and CommGood, IsFlying).
+    double laser_min_agl_m = 30;
     bool retract_installed = true;
 
     // GPS time (seconds since 1980-01-06, leap seconds included) when the model starts, and

@@ -66,6 +66,7 @@ class OrionSim final : public Device {
     void on_geopoint(const orion::GeopointCmd& cmd);
     void on_path(const orion::Path& path);
     void on_laser(const orion::LaserCmd& cmd);
+    void on_autopilot(const orion::AutopilotData& ap);
     void on_stare_ack(const orion::StareAck& ack);
     void on_gps(const orion::GpsData& gps);
 

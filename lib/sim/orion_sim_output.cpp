@@ -248,6 +248,9 @@ orion::LaserStates OrionSim::laser_states() const {
         s.active = unit.active;
         s.password_lock = unit.password_lock;
         s.bypass_enabled = unit.bypass;
+        s.altitude_lock = unit.altitude_lock;
+        s.ap_comm_lock = unit.ap_comm_lock;
+        s.ap_flying_lock = unit.ap_flying_lock;
         states.states.push_back(s);
     }
     return states;

@@ -12,7 +12,7 @@
 namespace gimbal::state {
 
 class ViewproState {
-public:
+  public:
     explicit ViewproState(double stale_after_s = 1.0) : stale_after_s_(stale_after_s) {}
 
     // Applies one checksum-valid frame; false (and nothing changed) if it does not decode.
@@ -24,7 +24,7 @@ public:
     nlohmann::json snapshot(double now_s) const;
     std::uint64_t decode_errors() const { return decode_errors_; }
 
-private:
+  private:
     double stale_after_s_;
     std::optional<viewpro::Output> output_;
     double received_s_ = 0;

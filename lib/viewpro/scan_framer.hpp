@@ -15,6 +15,8 @@
 #include <span>
 #include <vector>
 
+#include "framing/pending_bytes.hpp"
+
 namespace gimbal::viewpro {
 
 struct FramerStats {
@@ -42,19 +44,8 @@ class ScanFramer {
     template <class F>
     void push(std::span<const std::uint8_t> bytes, F&& on_frame) {
         stats_.bytes += bytes.size();
-        // Complete the partial frame held from the last push, a bounded slice at a time.
-        while (!pending_.empty() && !bytes.empty()) {
-            const std::size_t room = 2 * Rules::max_frame - pending_.size();
-            const std::size_t take = bytes.size() < room ? bytes.size() : room;
-            pending_.insert(pending_.end(), bytes.begin(), bytes.begin() + static_cast<long>(take));
-            bytes = bytes.subspan(take);
-            const std::size_t used = scan(pending_, on_frame);
-            pending_.erase(pending_.begin(), pending_.begin() + static_cast<long>(used));
-        }
-        if (bytes.empty()) return;
-        // Fast path: scan the caller's buffer in place, keep only an unfinished tail.
-        const std::size_t used = scan(bytes, on_frame);
-        pending_.assign(bytes.begin() + static_cast<long>(used), bytes.end());
+        pending_.feed(bytes, Rules::max_frame,
+                      [&](std::span<const std::uint8_t> data) { return scan(data, on_frame); });
     }
 
     std::vector<Frame> push(std::span<const std::uint8_t> bytes) {
@@ -64,10 +55,7 @@ class ScanFramer {
     }
 
     // Forget a partial frame (after a reconnect the old bytes belong to nothing).
-    void reset() {
-        stats_.dropped_bytes += pending_.size();
-        pending_.clear();
-    }
+    void reset() { stats_.dropped_bytes += pending_.clear(); }
 
     const FramerStats& stats() const { return stats_; }
     std::size_t pending_bytes() const { return pending_.size(); }
@@ -106,7 +94,7 @@ class ScanFramer {
         return i;
     }
 
-    std::vector<std::uint8_t> pending_;
+    framing::PendingBytes pending_;
     Frame frame_{};
     FramerStats stats_;
 };

@@ -106,17 +106,6 @@ inline bool contains_null(const json& j) {
     return false;
 }
 
-inline bool contains_control(const json& j) {
-    if (j.is_string())
-        return std::ranges::any_of(j.get_ref<const std::string&>(),
-                                   [](char c) { return static_cast<unsigned char>(c) < 0x20; });
-    if (j.is_structured())
-        for (const auto& item : j) {
-            if (contains_control(item)) return true;
-        }
-    return false;
-}
-
 inline Bytes bytes_of(const orion::Payload& p) {
     return Bytes(p.bytes.begin(), p.bytes.begin() + static_cast<long>(p.size));
 }
@@ -144,12 +133,6 @@ std::string check_json_to_wire(const P& packet, const json& source) {
     orion::JsonError error;
     if (!orion::from_json(once, again, error)) {
         if (contains_null(once)) return {};  // a non-finite float has no JSON number
-        // Known asymmetry: to_json keeps \n and \t from the wire, from_json takes only
-        // printable ASCII (0x20..0x7E).
-        if (error.message.ends_with("printable ASCII only") && contains_control(once)) return {};
-        // Known asymmetry: JsonReader::group() takes at most the preceding count's maximum,
-        // so a fixed-size repeat of structures (no count) cannot be read from JSON.
-        if (error.message.ends_with("at most 0 items")) return {};
         return name + ": its own JSON is rejected (" + error.code + ": " + error.message +
                "): " + once.dump();
     }

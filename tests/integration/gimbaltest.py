@@ -208,6 +208,53 @@ def angle_diff_deg(a, b):
     return abs((a - b + 180.0) % 360.0 - 180.0)
 
 
+# --- Viewpro wire, computed independently of the product (viewpro-target-gps-protocol.md) ---
+
+VIEWPRO_FORMATS = ("out1", "out2", "out3", "out4")
+
+
+def viewpro_serial(name, device, baud=115200, output=None, **link):
+    """A Viewpro gimbal on a serial device; `output` is gimbals[].viewpro.output."""
+    gimbal = {"name": name, "protocol": "viewpro",
+              "link": dict({"type": "serial", "device": device, "baud": baud}, **link)}
+    if output is not None:
+        gimbal["viewpro"] = {"output": output}
+    return gimbal
+
+
+def viewpro_tcp(name, port, host="127.0.0.1", output=None, **link):
+    gimbal = {"name": name, "protocol": "viewpro",
+              "link": dict({"type": "tcp", "host": host, "port": port}, **link)}
+    if output is not None:
+        gimbal["viewpro"] = {"output": output}
+    return gimbal
+
+
+def viewpro_mode_byte(osd, serial, network, format):
+    """ICD section 1: bit 0 OSD shows the target, bit 3 network, bit 4 serial, bits 5-7 OUTx."""
+    return ((VIEWPRO_FORMATS.index(format) << 5) | (0x01 if osd == "target" else 0) |
+            (0x08 if network else 0) | (0x10 if serial else 0))
+
+
+def viewpro_command(set_id, value):
+    """An `AA 55 ID XX FF` command; a negative value is its int8 byte."""
+    return bytes([0xAA, 0x55, set_id, value & 0xFF, 0xFF])
+
+
+def viewpro_mode(osd="target", serial=True, network=False, format="out3"):
+    return viewpro_command(0x0F, viewpro_mode_byte(osd, serial, network, format))
+
+
+def sum8(data):
+    """The Viewpro checksum: the low byte of the sum of the bytes before it."""
+    return sum(data) & 0xFF
+
+
+def by_kind(kind):
+    """An rx-log predicate for gimbal-sim --protocol viewpro lines."""
+    return lambda entry: entry.get("kind") == kind
+
+
 # --- gimbal-sim ------------------------------------------------------------------------------
 
 class Sim:

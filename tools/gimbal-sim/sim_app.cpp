@@ -42,7 +42,7 @@ SimApp::SimApp(asio::io_context& io, const ToolOptions& options)
       tick_timer_(io),
       device_(make_device(options)),
       faults_(fault_options(options)),
-      viewpro_faults_(fault_options(options)) {
+      viewpro_faults_(fault_options(options), gimbal::sim::viewpro_output_frames()) {
     if (!options_.rx_log.empty()) rx_log_.emplace(options_.rx_log, options_.protocol);
 
     if (options_.tcp) {

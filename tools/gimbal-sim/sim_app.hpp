@@ -16,7 +16,6 @@
 #include "rx_log.hpp"
 #include "sim/device.hpp"
 #include "sim/fault_injector.hpp"
-#include "sim/viewpro_sim_faults.hpp"
 #include "tcp_server.hpp"
 
 namespace gimbal_sim {
@@ -44,8 +43,8 @@ class SimApp {
     std::chrono::steady_clock::time_point next_tick_;
     boost::asio::steady_timer tick_timer_;
     std::unique_ptr<gimbal::sim::Device> device_;
-    gimbal::sim::FaultInjector faults_;                 // Orion frames
-    gimbal::sim::ViewproFaultInjector viewpro_faults_;  // Viewpro frames
+    gimbal::sim::FaultInjector faults_;          // Orion frames
+    gimbal::sim::FaultInjector viewpro_faults_;  // Viewpro frames
     std::optional<RxLog> rx_log_;
     std::optional<TcpServer> tcp_;
     std::optional<PtyPort> pty_;

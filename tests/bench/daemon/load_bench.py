@@ -2,9 +2,10 @@
 """gimbald's CPU and memory with one gimbal at 10 Hz telemetry and 16 subscribers.
 
 Starts gimbal-sim (TCP, free port) and gimbald connected to it, subscribes 16 UDP sockets at
-rate_hz 10 (renewing well before ttl_s), drains them, and after a warm-up measures the
-daemon's CPU time (utime + stime from /proc/PID/stat) over a window, its resident memory
-(VmRSS, sampled every second, and the peak VmHWM) and what each subscriber received.
+rate_hz 10 (spread over --stagger seconds, renewing well before ttl_s), drains them, and after
+a warm-up measures the daemon's CPU time (utime + stime from /proc/PID/stat) over a window,
+its resident memory (VmRSS, sampled every second, and the peak VmHWM) and what each
+subscriber received.
 
 A benchmark, not a test (never run by ctest). Python 3 standard library only. Usage:
 
@@ -38,6 +39,10 @@ def parse_args():
     p.add_argument("--subscribers", type=int, default=16)
     p.add_argument("--rate-hz", type=float, default=10.0, help="subscription rate_hz")
     p.add_argument("--ttl", type=float, default=10.0, help="subscription ttl_s (renewed at 1/3)")
+    p.add_argument("--stagger", type=float, default=1.0,
+                   help="spread the first subscribes evenly over this many seconds, as clients "
+                        "that start independently do (0: all in the same instant, which lets "
+                        "the daemon share one snapshot among all of them)")
     p.add_argument("--warmup", type=float, default=5.0, help="seconds before measuring")
     p.add_argument("--window", type=float, default=30.0, help="seconds measured")
     p.add_argument("--log-level", default="info", help="gimbald --log-level")
@@ -211,6 +216,8 @@ def main():
         load_before = load_average()
 
         start = time.monotonic()
+        for i, s in enumerate(subscribers):
+            s.renew_at = start + args.stagger * i / len(subscribers)
         measure_at = start + args.warmup
         end = measure_at + args.window
         next_sample = measure_at
@@ -265,8 +272,9 @@ def main():
 
     print("gimbald load: 1 gimbal (gimbal-sim, GeolocateTelemetry 10 Hz), %d subscribers at "
           "%g Hz" % (len(subscribers), args.rate_hz))
-    print("  window %.1f s after %.0f s warm-up, log level %s, load average %s -> %s"
-          % (elapsed, args.warmup, args.log_level, load_before, load_after))
+    print("  window %.1f s after %.0f s warm-up (subscribes spread over %g s), log level %s, "
+          "load average %s -> %s"
+          % (elapsed, args.warmup, args.stagger, args.log_level, load_before, load_after))
     print("  gimbald CPU: %.2f %% of one core (%.3f s in %.1f s); gimbal-sim %.2f %%"
           % (cpu_pct, cpu1 - cpu0, elapsed, sim_pct))
     print("  gimbald memory: VmRSS %d kB (peak sample %d kB), VmHWM %d kB"

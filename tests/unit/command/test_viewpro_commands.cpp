@@ -44,9 +44,10 @@ TEST_CASE("viewpro_output encodes the mode byte from its bit fields", "[command]
     REQUIRE_FALSE(p.error);
     CHECK(p.plan.packets[0].frame == Bytes{0xAA, 0x55, 0x0F, 0x30, 0xFF});
 
-    require_error(plan("viewpro_output", {{"osd", "target"}, {"serial", true}, {"network", true},
-                                          {"format", "out5"}}),
-                  "bad_request", "format");
+    require_error(
+        plan("viewpro_output",
+             {{"osd", "target"}, {"serial", true}, {"network", true}, {"format", "out5"}}),
+        "bad_request", "format");
     require_error(plan("viewpro_output", {{"osd", "target"}, {"serial", true}, {"format", "out1"}}),
                   "bad_request", "network");
 }
@@ -59,7 +60,9 @@ TEST_CASE("viewpro_adjust splits shifts into steps of at most one degree, yaw fi
     REQUIRE(p.plan.packets.size() == 7);
     CHECK(p.plan.packets[0].frame == Bytes{0xAA, 0x55, 0x06, 0x9C, 0xFF});  // yaw -1.00
     CHECK(p.plan.packets[0].sent == json{{"frame", "yaw_shift"}, {"len", 5}});
-    for (int i = 1; i <= 5; ++i) CHECK(p.plan.packets[static_cast<std::size_t>(i)].frame == Bytes{0xAA, 0x55, 0x36, 0x64, 0xFF});
+    for (int i = 1; i <= 5; ++i)
+        CHECK(p.plan.packets[static_cast<std::size_t>(i)].frame ==
+              Bytes{0xAA, 0x55, 0x36, 0x64, 0xFF});
     CHECK(p.plan.packets[6].frame == Bytes{0xAA, 0x55, 0x36, 0x32, 0xFF});
     CHECK(p.plan.result["steps"] == 7);
 
@@ -74,8 +77,13 @@ TEST_CASE("viewpro_adjust splits shifts into steps of at most one degree, yaw fi
 }
 
 TEST_CASE("vehicle sends IN2 with vel_ned, IN1 without", "[command][viewpro]") {
-    const json base{{"time", "2026-11-21T06:41:50Z"}, {"roll", 1.5}, {"pitch", -2.0},
-                    {"yaw", 90.0}, {"lat", 45.7}, {"lon", -121.5}, {"alt_msl", 1500.0}};
+    const json base{{"time", "2026-11-21T06:41:50Z"},
+                    {"roll", 1.5},
+                    {"pitch", -2.0},
+                    {"yaw", 90.0},
+                    {"lat", 45.7},
+                    {"lon", -121.5},
+                    {"alt_msl", 1500.0}};
     auto p = plan("vehicle", base);
     REQUIRE_FALSE(p.error);
     REQUIRE(p.plan.packets.size() == 1);

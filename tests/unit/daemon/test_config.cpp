@@ -17,7 +17,7 @@ using nlohmann::json;
 
 namespace {
 
-const std::string source_dir = std::string(GIMBAL_TEST_DATA) + "/../..";
+const std::string source_dir = GIMBAL_SOURCE_DIR;
 
 std::string read_text(const std::string& path) {
     std::ifstream in(path);

@@ -22,7 +22,7 @@ using nlohmann::json;
 
 namespace {
 
-const std::string source_dir = std::string(GIMBAL_TEST_DATA) + "/../..";
+const std::string source_dir = GIMBAL_SOURCE_DIR;
 const std::string example_config = source_dir + "/config/gimbald.json";
 
 struct Parsed {

@@ -23,3 +23,31 @@ TEST_CASE("GeopointCmd encodes degrees as radians x 180e7/pi", "[orion][codec]")
     CHECK(to_json(back.value)["lat"].get<double>() == Approx(45.7));
     CHECK(to_json(back.value)["options"] == "stare");
 }
+
+TEST_CASE("a fixed repeat of structures reads back from its own JSON", "[orion][codec]") {
+    Vibration v;
+    REQUIRE(v.fft_data.size() == 16);
+    v.fft_data[3].frequency = 50.0;
+    const nlohmann::json j = to_json(v);
+    Vibration back;
+    JsonError err;
+    REQUIRE(from_json(j, back, err));
+    CHECK(back.fft_data.size() == 16);
+    CHECK(back.fft_data[3].frequency == Approx(50.0));
+    nlohmann::json short_list = j;
+    short_list["fft_data"].erase(0);
+    CHECK_FALSE(from_json(short_list, back, err));
+    CHECK(err.code == "bad_request");
+    CHECK_THAT(err.message, Catch::Contains("exactly 16"));
+}
+
+TEST_CASE("wire text keeps printable ASCII only, so its JSON reads back", "[orion][codec]") {
+    CHECK(printable(std::string("ok\tline\n\x01\xC3\xA9.", 12)) == "ok?line????.");
+    DebugString d;
+    d.description = "line one\nline two";
+    const nlohmann::json j = to_json(d);
+    CHECK(j["description"] == "line one?line two");
+    DebugString back;
+    JsonError err;
+    CHECK(from_json(j, back, err));
+}

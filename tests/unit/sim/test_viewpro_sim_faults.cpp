@@ -2,7 +2,7 @@
 // the output framer must count and skip without losing the frames around them.
 #include <catch2/catch.hpp>
 
-#include "sim/viewpro_sim_faults.hpp"
+#include "sim/fault_injector.hpp"
 #include "viewpro/output.hpp"
 #include "viewpro/output_framer.hpp"
 
@@ -27,7 +27,7 @@ Bytes stream_of_frames(int n) {
 }  // namespace
 
 TEST_CASE("no faults: the bytes pass unchanged", "[sim][viewpro][faults]") {
-    sim::ViewproFaultInjector faults({});
+    sim::FaultInjector faults({}, sim::viewpro_output_frames());
     CHECK_FALSE(faults.active());
     const Bytes in = stream_of_frames(20);
     Bytes out;
@@ -40,7 +40,7 @@ TEST_CASE("corrupted frames fail their checksum; the rest come through", "[sim][
     sim::FaultOptions o;
     o.corrupt_fraction = 0.3;
     o.seed = 5;
-    sim::ViewproFaultInjector faults(o);
+    sim::FaultInjector faults(o, sim::viewpro_output_frames());
     Bytes out;
     faults.apply(stream_of_frames(400), out);
     viewpro::OutputFramer framer;
@@ -56,7 +56,7 @@ TEST_CASE("junk between frames is dropped and every frame survives", "[sim][view
     sim::FaultOptions o;
     o.junk_every = 3;
     o.seed = 9;
-    sim::ViewproFaultInjector faults(o);
+    sim::FaultInjector faults(o, sim::viewpro_output_frames());
     const Bytes in = stream_of_frames(300);
     Bytes out;
     faults.apply(in, out);

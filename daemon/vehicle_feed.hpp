@@ -1,0 +1,73 @@
+// The vehicle feed (issue 5): reads the aircraft's MAVLink (VehicleSource) into a
+// VehicleState and, on a 50 ms schedule, sends every gimbal what it needs: Orion
+// AutopilotData at 1 Hz (at once when the feed is lost or back) and GPS_DATA at 4 Hz when
+// `feed.gps`; Viewpro IN2/IN1 or forwarded MAVLink at 10 Hz while the feed is fresh.
+// Without a `vehicle` section it only serves the STATE `vehicle` object (never connected).
+#pragma once
+
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/steady_timer.hpp>
+#include <chrono>
+#include <functional>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <vector>
+
+#include "config.hpp"
+#include "gimbal_session.hpp"
+#include "state/event.hpp"
+#include "vehicle/vehicle_state.hpp"
+#include "vehicle_source.hpp"
+
+namespace gimbald {
+
+class VehicleFeed {
+  public:
+    using EventSink = std::function<void(const gimbal::state::Event&)>;
+
+    // Binds the vehicle source when `config` has one (throws like VehicleSource).
+    VehicleFeed(boost::asio::io_context& io,
+                const std::optional<gimbal::daemon::VehicleConfig>& config, EventSink on_event);
+    ~VehicleFeed();
+
+    // A gimbal to feed, as its configuration says.
+    void add_gimbal(GimbalSession& session, const gimbal::daemon::GimbalConfig& config);
+
+    void start();
+    void stop();
+
+    // The STATE `vehicle` object for `session` (with what that gimbal was fed).
+    nlohmann::json snapshot(const GimbalSession& session) const;
+
+  private:
+    struct Target {
+        GimbalSession* session = nullptr;
+        gimbal::daemon::GimbalConfig config;
+        std::uint8_t mavlink_seq = 0;
+        std::uint64_t sent = 0;
+        std::string kind;  // what it is fed: "orion", "in2", "in1", "mavlink"
+    };
+
+    double now_s() const;
+    double unix_now_s() const;
+    void on_message(const gimbal::mavlink::Message& message);
+    void check_connection(double now);
+    void schedule_tick();
+    void on_tick();
+    void send_autopilot_data(Target& target, double now);
+    void send(Target& target, std::vector<std::uint8_t> bytes);
+
+    boost::asio::io_context& io_;
+    gimbal::vehicle::VehicleState state_;
+    std::unique_ptr<VehicleSource> source_;
+    EventSink on_event_;
+    std::vector<Target> targets_;
+    boost::asio::steady_timer timer_;
+    std::chrono::steady_clock::time_point epoch_;
+    std::chrono::steady_clock::time_point next_tick_;
+    std::uint64_t ticks_ = 0;
+    bool stopped_ = true;
+};
+
+}  // namespace gimbald

@@ -1,0 +1,86 @@
+#include "vehicle_source.hpp"
+
+#include "link/serial_link.hpp"
+#include "logging.hpp"
+
+namespace gimbald {
+
+namespace cfg = gimbal::daemon;
+namespace log = gimbal::log;
+
+VehicleSource::VehicleSource(boost::asio::io_context& io, const cfg::VehicleConfig& config,
+                             MessageHandler on_message)
+    : on_message_(std::move(on_message)) {
+    if (const auto* udp = std::get_if<cfg::UdpSource>(&config.source)) {
+        const boost::asio::ip::udp::endpoint local(udp->bind, udp->port);
+        socket_ = std::make_unique<boost::asio::ip::udp::socket>(io);
+        socket_->open(local.protocol());
+        socket_->bind(local);
+        const auto bound = socket_->local_endpoint();
+        const auto a = bound.address();
+        description_ = "udp " + (a.is_v6() ? "[" + a.to_string() + "]" : a.to_string()) + ":" +
+                       std::to_string(bound.port());
+        return;
+    }
+    const auto& serial = std::get<cfg::SerialSource>(config.source);
+    SerialLinkOptions o;
+    o.device = serial.device;
+    o.baud = serial.baud;
+    serial_ = std::make_unique<SerialLink>(io, o);
+    description_ = "serial " + serial.device + "@" + std::to_string(serial.baud);
+}
+
+VehicleSource::~VehicleSource() {
+    stop();
+}
+
+std::string VehicleSource::describe() const {
+    return description_;
+}
+
+void VehicleSource::start() {
+    stopped_ = false;
+    if (socket_) {
+        do_receive();
+        return;
+    }
+    serial_->start(
+        [this](std::span<const std::uint8_t> bytes) { on_bytes(bytes); },
+        [this](bool up) {
+            framer_.reset();  // a partial frame from before belongs to nothing
+            log::write(up ? log::Level::info : log::Level::warn,
+                       up ? "vehicle_link_up" : "vehicle_link_down",
+                       up ? "vehicle serial port open" : "vehicle serial port lost",
+                       {{"source", description_}});
+        },
+        [this](std::string_view what, std::string_view detail) {
+            log::warn("vehicle_link_error", detail, {{"source", description_}, {"what", what}});
+        });
+}
+
+void VehicleSource::stop() {
+    if (stopped_) return;
+    stopped_ = true;
+    if (socket_) {
+        boost::system::error_code ignored;
+        socket_->close(ignored);
+    }
+    if (serial_) serial_->stop();
+}
+
+void VehicleSource::do_receive() {
+    socket_->async_receive_from(boost::asio::buffer(buffer_), sender_,
+                                [this](const boost::system::error_code& ec, std::size_t n) {
+                                    if (stopped_ || ec == boost::asio::error::operation_aborted)
+                                        return;
+                                    if (!ec)
+                                        on_bytes(std::span<const std::uint8_t>(buffer_.data(), n));
+                                    do_receive();
+                                });
+}
+
+void VehicleSource::on_bytes(std::span<const std::uint8_t> bytes) {
+    framer_.push(bytes, [this](const gimbal::mavlink::Message& m) { on_message_(m); });
+}
+
+}  // namespace gimbald

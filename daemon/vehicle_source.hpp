@@ -1,0 +1,50 @@
+// Where the aircraft's MAVLink comes from (config `vehicle.source`): a UDP port the daemon
+// listens on like a GCS, or a serial device. Bytes go through a mavlink::Framer; every decoded
+// message is handed on. No state here: VehicleFeed owns it.
+#pragma once
+
+#include <array>
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/ip/udp.hpp>
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "config.hpp"
+#include "link/link.hpp"
+#include "mavlink/framer.hpp"
+
+namespace gimbald {
+
+class VehicleSource {
+  public:
+    using MessageHandler = std::function<void(const gimbal::mavlink::Message&)>;
+
+    // Binds the UDP socket (throws boost::system::system_error when it cannot) or prepares
+    // the serial link (opened, and reopened, by start()).
+    VehicleSource(boost::asio::io_context& io, const gimbal::daemon::VehicleConfig& config,
+                  MessageHandler on_message);
+    ~VehicleSource();
+
+    void start();
+    void stop();
+
+    // "udp 127.0.0.1:14550", "serial /dev/ttyACM0@57600"
+    std::string describe() const;
+    const gimbal::mavlink::FramerStats& stats() const { return framer_.stats(); }
+
+  private:
+    void do_receive();
+    void on_bytes(std::span<const std::uint8_t> bytes);
+
+    MessageHandler on_message_;
+    gimbal::mavlink::Framer framer_;
+    std::unique_ptr<boost::asio::ip::udp::socket> socket_;  // udp source
+    boost::asio::ip::udp::endpoint sender_;
+    std::array<std::uint8_t, 65536> buffer_{};
+    std::unique_ptr<Link> serial_;  // serial source
+    std::string description_;
+    bool stopped_ = true;
+};
+
+}  // namespace gimbald
