@@ -7,10 +7,13 @@ and for the MAVLink forward from a plain TCP server standing in for the Viewpro.
 """
 
 import math
+import os
 import socket
 import struct
+import tempfile
 import threading
 import time
+import tty
 import unittest
 
 import gimbaltest as gt
@@ -147,6 +150,32 @@ class Vehicle:
         self.sending.set()
         self.thread.join(2)
         self.sock.close()
+
+
+class PtyVehicle(Vehicle):
+    """The same autopilot on a serial line: a pseudo-terminal whose slave the daemon opens
+    through a symlink, as it would a USB telemetry radio."""
+
+    def __init__(self, link_path, sysid=1):
+        self.master, self.slave = os.openpty()
+        tty.setraw(self.slave)
+        os.symlink(os.ttyname(self.slave), link_path)
+        self.link_path = link_path
+        super().__init__(port=0, sysid=sysid)
+
+    def _send(self, msgid, payload):
+        try:
+            os.write(self.master, mavlink_v2(msgid, payload, self.seq & 0xFF, self.sysid))
+        except OSError:
+            pass  # nobody has the line open yet: a radio talks into the void too
+        self.seq += 1
+
+    def close(self):
+        super().close()
+        os.close(self.master)
+        os.close(self.slave)
+        if os.path.islink(self.link_path):
+            os.unlink(self.link_path)
 
 
 class RawTcpGimbal:
@@ -409,6 +438,28 @@ class VehicleFeedTest(gt.GimbaldTestCase):
         n = len(parse_v1(raw.received()))
         time.sleep(1.0)
         self.assertEqual(len(parse_v1(raw.received())), n, "MAVLink still forwarded when lost")
+
+    def test_serial_vehicle_source(self):
+        sim = self.start_sim()
+        link = os.path.join(tempfile.mkdtemp(prefix="gimbald-mav-"), "ttyMAV")
+        car = PtyVehicle(link)
+        self.addCleanup(car.close)
+        daemon = self.start_daemon({
+            "gimbals": [gt.orion_tcp("main", sim.port)],
+            "vehicle": {"source": {"type": "serial", "device": link, "baud": 57600},
+                        "timeout_s": 0.5}})
+        client = self.client(daemon)
+        self.wait_connected(client, "main")
+        car.start()
+        s = self.wait_state(client, "main", lambda s: s["vehicle"]["connected"],
+                            "vehicle connected over the serial source")["vehicle"]
+        self.assertIn(link, s["source"])
+        fed = sim.wait_rx(lambda e: e.get("name") == "autopilot_data" and
+                          e["packet"]["comm_good"], timeout=5)
+        self.assertTrue(fed, "no AutopilotData with CommGood from the serial feed")
+        car.pause()
+        self.wait_state(client, "main", lambda s: not s["vehicle"]["connected"],
+                        "vehicle lost after the serial feed stopped")
 
     def test_without_vehicle_section_state_shows_no_feed(self):
         sim = self.start_sim()
