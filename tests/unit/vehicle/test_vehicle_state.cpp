@@ -5,6 +5,7 @@
 
 #include "mavlink/mavlink.hpp"
 #include "vehicle/vehicle_state.hpp"
+#include "vehicle_fixtures.hpp"
 
 using namespace gimbal;
 using vehicle::VehicleOptions;
@@ -12,23 +13,8 @@ using vehicle::VehicleState;
 
 namespace {
 
-VehicleOptions options(std::optional<std::uint8_t> system_id = std::nullopt, double timeout_s = 1.0,
-                       std::string source = "") {
-    VehicleOptions o;
-    o.system_id = system_id;
-    o.timeout_s = timeout_s;
-    o.source = std::move(source);
-    return o;
-}
-
-mavlink::Message from(std::uint8_t sysid, mavlink::Payload payload, std::uint8_t compid = 1) {
-    mavlink::Message m;
-    m.sysid = sysid;
-    m.compid = compid;
-    m.msgid = mavlink::message_id(payload);
-    m.payload = std::move(payload);
-    return m;
-}
+using vehicle_fixtures::from;
+using vehicle_fixtures::options;
 
 mavlink::Heartbeat autopilot_heartbeat(bool armed, mavlink::MavState state) {
     mavlink::Heartbeat hb;
