@@ -26,23 +26,29 @@ App::App(const cfg::Config& config)
         sessions_.push_back(std::make_unique<GimbalSession>(
             io_, g.name, make_protocol(g), make_link(g), config_.laser.fire_timeout_s,
             [this](const std::string& gimbal, const gimbal::state::Event& e) {
-                if (server_) server_->publish_event(gimbal, e);
+                events_.publish(gimbal, e);
                 if (e.kind == "link") update_status();
             }));
         raw.push_back(sessions_.back().get());
     }
+    RequestPathOptions path_options;
+    path_options.token = config_.command.token;
+    request_path_ = std::make_unique<RequestPath>(io_, std::move(path_options), std::move(raw));
+
     CommandServerOptions options;
     options.bind = config_.command.bind.to_string();
     options.port = config_.command.port;
-    options.token = config_.command.token;
     options.max_subscribers = config_.command.max_subscribers;
     options.allowed = [this](const boost::asio::ip::address& a) {
         return config_.command.allowed(a);
     };
-    server_ = std::make_unique<CommandServer>(io_, std::move(options), std::move(raw));
-    // The vehicle feed: its events go to every gimbal's subscribers.
+    server_ = std::make_unique<CommandServer>(io_, std::move(options), *request_path_);
+    events_.add([this](const std::string& gimbal, const gimbal::state::Event& e) {
+        server_->publish_event(gimbal, e);
+    });
+    // The vehicle feed: its events go to every gimbal's streams.
     vehicle_ = std::make_unique<VehicleFeed>(io_, config_.vehicle, [this](const auto& e) {
-        for (const auto& s : sessions_) server_->publish_event(s->name(), e);
+        for (const auto& s : sessions_) events_.publish(s->name(), e);
     });
     for (std::size_t i = 0; i < sessions_.size(); ++i) {
         auto& session = *sessions_[i];

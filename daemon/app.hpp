@@ -10,7 +10,9 @@
 
 #include "command_server.hpp"
 #include "config.hpp"
+#include "event_hub.hpp"
 #include "gimbal_session.hpp"
+#include "request_path.hpp"
 #include "vehicle_feed.hpp"
 
 namespace gimbald {
@@ -37,6 +39,8 @@ class App {
     boost::asio::signal_set signals_;
     boost::asio::steady_timer watchdog_timer_;
     std::vector<std::unique_ptr<GimbalSession>> sessions_;
+    EventHub events_;
+    std::unique_ptr<RequestPath> request_path_;
     std::unique_ptr<CommandServer> server_;
     std::unique_ptr<VehicleFeed> vehicle_;
     bool stopping_ = false;

@@ -1,13 +1,12 @@
 // The JSON command socket (contract section 4): one UDP socket, one reply per accepted
-// datagram, subscriptions fed with STATE and events. Parsing and validation are pure
-// (lib/command); this class only moves datagrams and routes requests to gimbal sessions.
+// datagram, subscriptions fed with STATE and events. Requests go through the one request path
+// (request_path.hpp); this class only moves datagrams and feeds its subscribers.
 #pragma once
 
 #include <array>
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/ip/udp.hpp>
 #include <boost/asio/steady_timer.hpp>
-#include <chrono>
 #include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -15,9 +14,8 @@
 #include <string>
 #include <vector>
 
-#include "command/result.hpp"
-#include "gimbal_session.hpp"
 #include "logging.hpp"
+#include "request_path.hpp"
 #include "state/event.hpp"
 #include "subscriptions.hpp"
 
@@ -26,10 +24,11 @@ namespace gimbald {
 struct CommandServerOptions {
     std::string bind = "127.0.0.1";
     std::uint16_t port = 8760;
-    std::optional<std::string> token;
     std::size_t max_subscribers = 64;
     // command.allow: true when a datagram from this address may be answered.
     std::function<bool(const boost::asio::ip::address&)> allowed;
+    // Signs a push to a signed subscription with its key; empty: pushes go out plain.
+    std::function<std::string(const std::string& key_id, const nlohmann::json& message)> sign;
 };
 
 class CommandServer {
@@ -37,8 +36,7 @@ class CommandServer {
     using Endpoint = boost::asio::ip::udp::endpoint;
 
     // Binds the socket; throws boost::system::system_error when it cannot (exit code 2).
-    CommandServer(boost::asio::io_context& io, CommandServerOptions options,
-                  std::vector<GimbalSession*> sessions);
+    CommandServer(boost::asio::io_context& io, CommandServerOptions options, RequestPath& path);
 
     void start();
     void stop();
@@ -46,10 +44,7 @@ class CommandServer {
     Endpoint local_endpoint() const { return socket_.local_endpoint(); }
     void publish_event(const std::string& gimbal, const gimbal::state::Event& event);
     std::size_t subscribers() const { return subscriptions_.size(); }
-
-    // Handles one datagram and returns the reply; its `command` log line is written from a
-    // posted handler, after the link has written what the command queued.
-    nlohmann::json handle(std::string_view datagram, const Endpoint& from);
+    std::uint64_t dropped_sources() const { return dropped_sources_; }
 
   private:
     void do_receive();
@@ -57,29 +52,22 @@ class CommandServer {
     void send(const Endpoint& to, std::string payload);
     void schedule_publish();
     void publish_states();
-    double now_s() const;
-
-    struct Routed {
-        GimbalSession* session = nullptr;
-        std::optional<gimbal::command::Error> error;
-    };
-    Routed route(const std::optional<std::string>& gimbal) const;
-    nlohmann::json dispatch(const std::string& cmd, const nlohmann::json& request,
-                            const std::optional<std::string>& gimbal, const Endpoint& from,
-                            std::optional<gimbal::command::Error>& error,
-                            std::optional<std::string>& reply_gimbal);
+    std::string payload_for(const Endpoint& to, const nlohmann::json& message) const;
 
     boost::asio::io_context& io_;
     CommandServerOptions options_;
-    std::vector<GimbalSession*> sessions_;
+    RequestPath& path_;
     boost::asio::ip::udp::socket socket_;
     boost::asio::steady_timer publish_timer_;
     std::array<char, 65536> buffer_{};
     Endpoint sender_;
     Subscriptions subscriptions_;
-    std::chrono::steady_clock::time_point epoch_;
     gimbal::log::RateLimitedLog dropped_;
+    std::uint64_t dropped_sources_ = 0;
     bool stopped_ = false;
 };
+
+// "127.0.0.1:5000", "[::1]:5000"
+std::string to_string(const boost::asio::ip::udp::endpoint& endpoint);
 
 }  // namespace gimbald

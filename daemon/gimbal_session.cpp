@@ -246,6 +246,7 @@ nlohmann::json GimbalSession::snapshot() const {
     nlohmann::json keys = protocol_->snapshot(now);  // named: items() of a temporary dangles
     for (auto& [key, value] : keys.items()) state[key] = std::move(value);
     if (vehicle_snapshot_) state["vehicle"] = vehicle_snapshot_();
+    for (const auto& [key, fill] : state_keys_) state[key] = fill();
     return state;
 }
 

@@ -57,6 +57,11 @@ class GimbalSession {
     void set_vehicle_snapshot(std::function<nlohmann::json()> vehicle_snapshot) {
         vehicle_snapshot_ = std::move(vehicle_snapshot);
     }
+    // A daemon-level top-level STATE key (`command`, `mavlink`, `mqtt`, `record`), filled at
+    // every snapshot.
+    void add_state_key(std::string key, std::function<nlohmann::json()> fill) {
+        state_keys_.emplace_back(std::move(key), std::move(fill));
+    }
     // Short text for systemd's STATUS= line.
     std::string status() const;
 
@@ -86,6 +91,7 @@ class GimbalSession {
     std::uint64_t reported_bad_checksums_ = 0;
     std::uint64_t reported_decode_errors_ = 0;
     std::function<nlohmann::json()> vehicle_snapshot_;
+    std::vector<std::pair<std::string, std::function<nlohmann::json()>>> state_keys_;
 };
 
 }  // namespace gimbald

@@ -45,6 +45,11 @@ std::vector<Subscriptions::Endpoint> Subscriptions::due_state(const std::string&
     return due;
 }
 
+const Subscription* Subscriptions::find(const Endpoint& who) const {
+    const auto it = subs_.find(who);
+    return it == subs_.end() ? nullptr : &it->second;
+}
+
 void Subscriptions::mark_sent(double now_s) {
     for (auto& [who, s] : subs_) {
         if (s.next_state_s > now_s) continue;

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <boost/asio/ip/udp.hpp>
+#include <chrono>
 #include <cstddef>
 #include <map>
 #include <optional>
@@ -12,11 +13,19 @@
 
 namespace gimbald {
 
+// The clock of the subscriber table: steady seconds, the same for every caller.
+inline double steady_seconds() {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
+        .count();
+}
+
 struct Subscription {
     std::optional<std::string> gimbal;  // nullopt: every gimbal
     double rate_hz = 10.0;
     double ttl_s = 60.0;
     bool events = true;
+    std::vector<std::string> keys;      // STATE keys to send; empty: all (subscribe.keys)
+    std::optional<std::string> key_id;  // signed subscription: pushes are signed with this key
     double expires_s = 0;
     double next_state_s = 0;
 };
@@ -37,6 +46,7 @@ class Subscriptions {
     // Subscribers due a STATE datagram for `gimbal` at now_s. Call once per gimbal, then
     // mark_sent() once per tick.
     std::vector<Endpoint> due_state(const std::string& gimbal, double now_s) const;
+    const Subscription* find(const Endpoint& who) const;
     void mark_sent(double now_s);
     // Subscribers that want events of `gimbal`.
     std::vector<Endpoint> event_targets(const std::string& gimbal) const;
@@ -44,6 +54,7 @@ class Subscriptions {
     std::optional<double> next_due() const;
 
     std::size_t size() const { return subs_.size(); }
+    std::size_t capacity() const { return max_; }
 
   private:
     static bool covers(const Subscription& s, const std::string& gimbal) {

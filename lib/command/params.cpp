@@ -8,7 +8,8 @@ namespace {
 
 // Keys every request may carry; they are handled by the command server, not by commands.
 bool is_envelope(std::string_view key) {
-    return key == "cmd" || key == "id" || key == "gimbal" || key == "token";
+    return key == "cmd" || key == "id" || key == "gimbal" || key == "token" || key == "ts" ||
+           key == "nonce";
 }
 
 }  // namespace

@@ -17,7 +17,7 @@ namespace gimbal::command {
 
 class Params {
   public:
-    // `params` is the request object; `envelope` keys (cmd, id, gimbal, token) are not
+    // `params` is the request object; `envelope` keys (cmd, id, gimbal, token, ts, nonce) are not
     // parameters and are ignored here.
     explicit Params(const nlohmann::json& params);
 

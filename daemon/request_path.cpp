@@ -1,0 +1,244 @@
+#include "request_path.hpp"
+
+#include <boost/asio/post.hpp>
+
+#include "command/envelope.hpp"
+#include "command/orion_commands.hpp"
+#include "command/params.hpp"
+#include "command/viewpro_commands.hpp"
+#include "logging.hpp"
+#include "state/messages.hpp"
+
+namespace gimbald {
+
+namespace cmdns = gimbal::command;
+namespace log = gimbal::log;
+using cmdns::Error;
+namespace code = gimbal::command::code;
+using nlohmann::json;
+
+namespace {
+
+bool known_command(std::string_view cmd) {
+    return cmdns::is_common_command(cmd) || cmdns::is_orion_command(cmd) ||
+           cmdns::is_viewpro_command(cmd);
+}
+
+json or_null(const std::optional<std::string>& s) {
+    return s ? json(*s) : json(nullptr);
+}
+
+}  // namespace
+
+// One request on its way through the path: what was read of it, and what it came to.
+struct RequestPath::Outcome {
+    cmdns::Envelope env;
+    std::optional<std::string> cmd;
+    std::optional<std::string> gimbal;  // the gimbal the reply names
+    std::optional<Error> error;
+    json results = json::object();
+    std::chrono::steady_clock::time_point received = std::chrono::steady_clock::now();
+
+    json fail(Error e) {
+        error = std::move(e);
+        return json::object();
+    }
+};
+
+RequestPath::RequestPath(boost::asio::io_context& io, RequestPathOptions options,
+                         std::vector<GimbalSession*> sessions)
+    : io_(io), options_(std::move(options)), sessions_(std::move(sessions)) {}
+
+void RequestPath::set_subscriptions(Subscriptions* table, SubscriptionsChanged changed) {
+    subscriptions_ = table;
+    subscriptions_changed_ = std::move(changed);
+}
+
+GimbalSession* RequestPath::find(const std::string& name) const {
+    for (auto* s : sessions_)
+        if (s->name() == name) return s;
+    return nullptr;
+}
+
+std::optional<std::string> RequestPath::handle(std::string_view bytes, const RequestSource& from) {
+    Outcome o;
+    if (auto bad = cmdns::parse_envelope(bytes, known_command, o.env)) {
+        o.error = bad->error;
+        o.cmd = bad->cmd;
+        o.env.id = bad->id;
+    } else {
+        o.cmd = o.env.cmd;
+        if (options_.token && !cmdns::is_open_command(o.env.cmd) && o.env.token != options_.token) {
+            o.error =
+                Error{code::forbidden, o.env.token ? "wrong token" : "this command needs 'token'"};
+        } else {
+            run(o, from, true);
+        }
+    }
+    return finish(o, from, bytes);
+}
+
+json RequestPath::execute(const json& request, const RequestSource& from) {
+    Outcome o;
+    const std::string text = request.dump(-1, ' ', false, json::error_handler_t::replace);
+    if (auto bad = cmdns::parse_envelope(text, known_command, o.env)) {
+        o.error = bad->error;
+        o.cmd = bad->cmd;
+        o.env.id = bad->id;
+    } else {
+        o.cmd = o.env.cmd;
+        run(o, from, true);
+    }
+    const std::string reply = finish(o, from, text);
+    return json::parse(reply, nullptr, false);
+}
+
+void RequestPath::run(Outcome& o, const RequestSource& from, bool /*authenticated*/) {
+    try {
+        o.results = dispatch(o, from);
+    } catch (const std::exception& e) {
+        // A bug must not take the daemon (or the next client) down.
+        log::error("internal_error", e.what(), {{"cmd", o.env.cmd}});
+        o.error = Error{code::internal, "internal error, see the daemon log"};
+    }
+}
+
+std::string RequestPath::finish(Outcome& o, const RequestSource& from,
+                                std::string_view request_bytes) {
+    json reply = o.error ? cmdns::error_reply(o.env.id, o.cmd, *o.error)
+                         : cmdns::ok_reply(o.env.id, *o.cmd, o.gimbal, std::move(o.results));
+    std::string text = reply.dump(-1, ' ', false, json::error_handler_t::replace);
+
+    const CompletedRequest done{
+        from.transport, o.cmd, o.error ? o.error->code : std::string("ok"),
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - o.received).count()};
+    for (const auto& observe : observers_) observe(done);
+    for (const auto& tap : taps_) tap(from, request_bytes, text);
+
+    // Logged from a posted handler, after the link's write of the packets queued above: the
+    // log line (formatted, then written and flushed) is not part of the command's latency.
+    json fields = {
+        {"src", from.address},   {"id", o.env.id ? *o.env.id : json(nullptr)},
+        {"cmd", or_null(o.cmd)}, {"gimbal", or_null(o.gimbal)},
+        {"ok", !o.error},        {"error", o.error ? json(o.error->code) : json(nullptr)}};
+    if (from.transport != "udp") fields["transport"] = from.transport;
+    boost::asio::post(io_, [msg = o.error ? o.error->message : std::string("ok"),
+                            fields = std::move(fields)] { log::info("command", msg, fields); });
+    return text;
+}
+
+json RequestPath::dispatch(Outcome& o, const RequestSource& from) {
+    const std::string& cmd = o.env.cmd;
+    const json& request = o.env.request;
+    json results = json::object();
+    cmdns::Params params(request);
+
+    if (cmd == "ping" || cmd == "version" || cmd == "list") {
+        params.reject_unknown();
+        if (!params.ok()) return o.fail(params.error());
+        if (cmd == "ping") results["pong"] = true;
+        if (cmd == "version") {
+            results["version"] = GIMBALD_VERSION;
+            results["protocols"] = {"orion", "viewpro"};
+        }
+        if (cmd == "list") {
+            auto list = json::array();
+            for (auto* s : sessions_)
+                list.push_back(
+                    {{"name", s->name()},
+                     {"protocol", std::string(s->protocol())},
+                     {"link", {{"type", s->link_type()}, {"connected", s->connected()}}}});
+            results["gimbals"] = std::move(list);
+        }
+        return results;
+    }
+
+    if (cmd == "subscribe" || cmd == "unsubscribe") return subscription(o, from);
+
+    // Route to the gimbal.
+    GimbalSession* session = nullptr;
+    if (o.env.gimbal) {
+        session = find(*o.env.gimbal);
+        if (!session)
+            return o.fail(Error{code::unknown_gimbal, "no gimbal named '" + *o.env.gimbal + "'"});
+    } else if (sessions_.size() == 1) {
+        session = sessions_.front();
+    } else {
+        return o.fail(Error{
+            code::unknown_gimbal,
+            std::to_string(sessions_.size()) + " gimbals are configured: name one with 'gimbal'"});
+    }
+    o.gimbal = session->name();
+
+    if (cmd == "state") {
+        std::vector<std::string> keys;
+        if (const json* k = params.raw("keys")) {
+            if (auto problem = gimbal::state::parse_state_keys(*k, keys); !problem.empty())
+                return o.fail(Error{code::bad_request, problem});
+        }
+        params.reject_unknown();
+        if (!params.ok()) return o.fail(params.error());
+        results["state"] = gimbal::state::select_keys(session->snapshot(), keys);
+        return results;
+    }
+    if (!session->supports(cmd)) {
+        return o.fail(Error{code::unsupported, "'" + cmd + "' is not a command of " +
+                                                   std::string(session->protocol()) + " gimbals"});
+    }
+    auto outcome = session->execute(cmd, request);
+    if (outcome.error) o.error = std::move(outcome.error);
+    return std::move(outcome.results);
+}
+
+json RequestPath::subscription(Outcome& o, const RequestSource& from) {
+    const std::string& cmd = o.env.cmd;
+    cmdns::Params params(o.env.request);
+    json results = json::object();
+    if (!from.udp || !subscriptions_)
+        return o.fail(Error{code::unsupported,
+                            "'" + cmd + "' is for the UDP command socket; " + from.transport +
+                                " clients get STATE and events from their own stream"});
+    if (o.env.gimbal) {
+        if (!find(*o.env.gimbal))
+            return o.fail(Error{code::unknown_gimbal, "no gimbal named '" + *o.env.gimbal + "'"});
+        o.gimbal = o.env.gimbal;
+    }
+    if (cmd == "unsubscribe") {
+        params.reject_unknown();
+        if (!params.ok()) return o.fail(params.error());
+        if (subscriptions_->unsubscribe(*from.udp))
+            log::info("subscriber", "subscriber removed",
+                      {{"src", from.address}, {"reason", "unsubscribe"}});
+        results["subscribed"] = false;
+        return results;
+    }
+    Subscription s;
+    s.gimbal = o.env.gimbal;
+    s.rate_hz = params.number_or("rate_hz", 0.1, 50.0, 10.0);
+    s.ttl_s = params.number_or("ttl_s", 1.0, 3600.0, 60.0);
+    s.events = params.boolean_or("events", true);
+    if (const json* k = params.raw("keys")) {
+        if (auto problem = gimbal::state::parse_state_keys(*k, s.keys); !problem.empty())
+            return o.fail(Error{code::bad_request, problem});
+    }
+    params.reject_unknown();
+    if (!params.ok()) return o.fail(params.error());
+    const auto outcome = subscriptions_->subscribe(*from.udp, s, steady_seconds());
+    if (outcome == Subscriptions::Result::full)
+        return o.fail(Error{code::busy, "subscriber table full (command.max_subscribers = " +
+                                            std::to_string(subscriptions_->capacity()) + ")"});
+    if (outcome == Subscriptions::Result::added)
+        log::info("subscriber", "subscriber added",
+                  {{"src", from.address},
+                   {"rate_hz", s.rate_hz},
+                   {"ttl_s", s.ttl_s},
+                   {"gimbal", or_null(o.env.gimbal)}});
+    results["rate_hz"] = s.rate_hz;
+    results["ttl_s"] = s.ttl_s;
+    results["events"] = s.events;
+    if (!s.keys.empty()) results["keys"] = s.keys;
+    if (subscriptions_changed_) subscriptions_changed_();
+    return results;
+}
+
+}  // namespace gimbald

@@ -1,0 +1,87 @@
+// The one request path (ARCHITECTURE "Round two"): every transport - the UDP socket, MQTT,
+// HTTP, MAVLink - hands its requests here and only moves bytes. This is where a request is
+// size-checked, rate-limited, authenticated (token or signature, roles), parsed, checked
+// against the laser rules, routed to its gimbal, logged (`command`) and audited (`audit`).
+#pragma once
+
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/ip/udp.hpp>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "command/result.hpp"
+#include "gimbal_session.hpp"
+#include "subscriptions.hpp"
+
+namespace gimbald {
+
+struct RequestSource {
+    std::string transport;  // "udp", "mqtt", "http", "mavlink"
+    // The log's `src` and the rate-limit key: "127.0.0.1:40000" (udp), "mqtt:<client>",
+    // "http:127.0.0.1:5555", "mavlink:255/190".
+    std::string address;
+    std::optional<boost::asio::ip::udp::endpoint> udp;  // UDP only: subscriptions need it
+};
+
+// Handed to observers after every request (metrics).
+struct CompletedRequest {
+    std::string transport;
+    std::optional<std::string> cmd;  // null when the request could not be parsed
+    std::string result;              // "ok" or the error code
+    double seconds = 0;              // received -> reply built
+};
+
+struct RequestPathOptions {
+    std::optional<std::string> token;  // command.token (auth "none")
+};
+
+class RequestPath {
+  public:
+    using Observer = std::function<void(const CompletedRequest&)>;
+    using Tap =
+        std::function<void(const RequestSource&, std::string_view request, std::string_view reply)>;
+    // Called after a subscription was added or renewed (the UDP server reschedules its timer).
+    using SubscriptionsChanged = std::function<void()>;
+
+    RequestPath(boost::asio::io_context& io, RequestPathOptions options,
+                std::vector<GimbalSession*> sessions);
+
+    // One request exactly as received (a JSON object, plain or signed envelope). Returns the
+    // reply text to send back, or nullopt when nothing must be sent.
+    std::optional<std::string> handle(std::string_view bytes, const RequestSource& from);
+
+    // A request object built by an adapter that authenticates by its own means (MAVLink
+    // signing): no token or signature check; the same validation, laser rules, logging and
+    // audit. Returns the reply object.
+    nlohmann::json execute(const nlohmann::json& request, const RequestSource& from);
+
+    void add_observer(Observer observer) { observers_.push_back(std::move(observer)); }
+    void add_tap(Tap tap) { taps_.push_back(std::move(tap)); }
+    // The UDP socket's subscriber table; subscribe/unsubscribe from other transports are
+    // `unsupported` (they stream on their own: MQTT topics, WebSocket).
+    void set_subscriptions(Subscriptions* table, SubscriptionsChanged changed);
+
+    const std::vector<GimbalSession*>& sessions() const { return sessions_; }
+    GimbalSession* find(const std::string& name) const;
+
+  private:
+    struct Outcome;
+    void run(Outcome& o, const RequestSource& from, bool authenticated);
+    nlohmann::json dispatch(Outcome& o, const RequestSource& from);
+    nlohmann::json subscription(Outcome& o, const RequestSource& from);
+    std::string finish(Outcome& o, const RequestSource& from, std::string_view request_bytes);
+
+    boost::asio::io_context& io_;
+    RequestPathOptions options_;
+    std::vector<GimbalSession*> sessions_;
+    std::vector<Observer> observers_;
+    std::vector<Tap> taps_;
+    Subscriptions* subscriptions_ = nullptr;
+    SubscriptionsChanged subscriptions_changed_;
+};
+
+}  // namespace gimbald

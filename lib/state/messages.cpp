@@ -1,0 +1,82 @@
+#include "state/messages.hpp"
+
+#include <algorithm>
+#include <iterator>
+
+namespace gimbal::state {
+
+namespace {
+
+// Every top-level STATE key of contract sections 5, 8-12 and 10 (`command`).
+constexpr std::string_view known_keys[] = {"protocol",
+                                           "link",
+                                           "stale",
+                                           "telemetry",
+                                           "ins",
+                                           "gps",
+                                           "lasers",
+                                           "diagnostics",
+                                           "performance",
+                                           "software",
+                                           "network_diagnostics",
+                                           "vibration",
+                                           "retract",
+                                           "stare",
+                                           "cameras",
+                                           "limits",
+                                           "network_settings",
+                                           "network_video",
+                                           "uart_config",
+                                           "ins_options",
+                                           "versions",
+                                           "reset_source",
+                                           "boards",
+                                           "output",
+                                           "vehicle",
+                                           "command",
+                                           "mavlink",
+                                           "mqtt",
+                                           "record"};
+
+bool always_kept(std::string_view key) {
+    return key == "protocol" || key == "link" || key == "stale";
+}
+
+}  // namespace
+
+nlohmann::json state_message(const std::string& gimbal, nlohmann::json state) {
+    return {{"type", "state"}, {"gimbal", gimbal}, {"state", std::move(state)}};
+}
+
+nlohmann::json event_message(const std::string& gimbal, const Event& event) {
+    nlohmann::json msg = {{"type", "event"}, {"gimbal", gimbal}, {"event", event.kind}};
+    for (const auto& [k, v] : event.fields.items()) msg[k] = v;
+    return msg;
+}
+
+bool is_state_key(std::string_view key) {
+    return std::find(std::begin(known_keys), std::end(known_keys), key) != std::end(known_keys);
+}
+
+nlohmann::json select_keys(const nlohmann::json& state, const std::vector<std::string>& keys) {
+    if (keys.empty() || !state.is_object()) return state;
+    nlohmann::json out = nlohmann::json::object();
+    for (const auto& [k, v] : state.items())
+        if (always_kept(k) || std::find(keys.begin(), keys.end(), k) != keys.end()) out[k] = v;
+    return out;
+}
+
+std::string parse_state_keys(const nlohmann::json& value, std::vector<std::string>& out) {
+    if (!value.is_array()) return "'keys' must be an array of STATE key names";
+    std::vector<std::string> names;
+    for (const auto& k : value) {
+        if (!k.is_string()) return "'keys' must be an array of STATE key names";
+        const auto& name = k.get_ref<const std::string&>();
+        if (!is_state_key(name)) return "'keys': unknown STATE key '" + name + "'";
+        if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+    }
+    out = std::move(names);
+    return {};
+}
+
+}  // namespace gimbal::state

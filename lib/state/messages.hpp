@@ -1,0 +1,30 @@
+// The datagrams every stream shares (contract section 4.1): STATE and event messages, and
+// STATE restricted to the top-level keys a subscriber asked for (`subscribe.keys`).
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "state/event.hpp"
+
+namespace gimbal::state {
+
+// {"type":"state","gimbal":NAME,"state":STATE}
+nlohmann::json state_message(const std::string& gimbal, nlohmann::json state);
+// {"type":"event","gimbal":NAME,"event":KIND, ...fields}
+nlohmann::json event_message(const std::string& gimbal, const Event& event);
+
+// True for a name that is a top-level key of some gimbal's STATE (either protocol, plus the
+// daemon-level keys such as `vehicle`, `command`, `mavlink`, `mqtt`, `record`).
+bool is_state_key(std::string_view key);
+// STATE restricted to `keys`; `protocol`, `link` and `stale` are always kept. An empty list
+// keeps everything.
+nlohmann::json select_keys(const nlohmann::json& state, const std::vector<std::string>& keys);
+
+// Reads a `keys` parameter: an array of known STATE key names. Returns an error message, or
+// an empty string when `value` is valid (then `out` holds the names).
+std::string parse_state_keys(const nlohmann::json& value, std::vector<std::string>& out);
+
+}  // namespace gimbal::state
