@@ -33,6 +33,15 @@ App::App(const cfg::Config& config)
     }
     RequestPathOptions path_options;
     path_options.token = config_.command.token;
+    path_options.signed_only = config_.command.auth == cfg::AuthMode::signed_requests;
+    for (const auto& k : config_.command.keys) {
+        gimbal::auth::Key key{k.id, k.secret, {}};
+        for (const auto& role : k.roles) key.roles.add(*gimbal::auth::parse_role(role));
+        path_options.keys.push_back(std::move(key));
+    }
+    path_options.max_skew_s = config_.command.max_skew_s;
+    path_options.rate_per_source_hz = config_.command.rate_limit.per_source_hz;
+    path_options.rate_burst = config_.command.rate_limit.burst;
     request_path_ = std::make_unique<RequestPath>(io_, std::move(path_options), std::move(raw));
 
     CommandServerOptions options;
@@ -42,7 +51,19 @@ App::App(const cfg::Config& config)
     options.allowed = [this](const boost::asio::ip::address& a) {
         return config_.command.allowed(a);
     };
+    options.sign = [this](const std::string& key_id, const nlohmann::json& message) {
+        return request_path_->sign_message(key_id, message);
+    };
     server_ = std::make_unique<CommandServer>(io_, std::move(options), *request_path_);
+    // STATE `command` (contract section 10): the request path's counters, daemon-wide.
+    for (auto& session : sessions_)
+        session->add_state_key("command", [this] {
+            const auto& c = request_path_->counters();
+            return nlohmann::json{{"requests", c.requests},
+                                  {"rejected", c.rejected},
+                                  {"rate_limited", c.rate_limited},
+                                  {"dropped_source", server_->dropped_sources()}};
+        });
     events_.add([this](const std::string& gimbal, const gimbal::state::Event& e) {
         server_->publish_event(gimbal, e);
     });

@@ -1,8 +1,13 @@
 #include "config.hpp"
 
+#include "auth/roles.hpp"
+#include "auth/secret.hpp"
+#include "secret_file.hpp"
+
 #include <fmt/format.h>
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -491,6 +496,81 @@ void read_gimbals(Fields& root, Config& config) {
     }
 }
 
+bool valid_key_id(const std::string& id) {
+    if (id.empty() || id.size() > 64) return false;
+    return std::all_of(id.begin(), id.end(), [](char c) {
+        return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_' || c == '-' || c == '.';
+    });
+}
+
+CommandKey read_key(Fields& f) {
+    CommandKey key;
+    if (f.string("id", key.id, Presence::required) && !valid_key_id(key.id))
+        f.problem("id", "must be 1 to 64 characters of A-Z a-z 0-9 _ - .");
+    if (f.string("secret_file", key.secret_file, Presence::required)) {
+        const auto text = read_private_file(key.secret_file);
+        if (!read_ok(text)) {
+            f.problem("secret_file", std::get<1>(text));
+        } else {
+            auto secret = gimbal::auth::parse_secret(std::get<0>(text));
+            if (auto* bytes = std::get_if<std::vector<std::uint8_t>>(&secret))
+                key.secret = std::move(*bytes);
+            else
+                f.problem("secret_file", key.secret_file + ": " + std::get<std::string>(secret));
+        }
+    }
+    if (const json* roles = f.required("roles")) {
+        if (!roles->is_array() || roles->empty()) {
+            f.problem("roles", "must be a non-empty array of \"observe\", \"control\", \"laser\"");
+        } else {
+            for (std::size_t i = 0; i < roles->size(); ++i) {
+                const json& r = (*roles)[i];
+                if (r.is_string() && gimbal::auth::parse_role(r.get_ref<const std::string&>()))
+                    key.roles.push_back(r.get<std::string>());
+                else
+                    f.problems().add(index_path(f.path("roles"), i),
+                                     "must be \"observe\", \"control\" or \"laser\"");
+            }
+        }
+    }
+    f.finish();
+    return key;
+}
+
+void read_auth(Fields& f, CommandConfig& command) {
+    std::string auth;
+    if (f.choice("auth", auth, {"none", "signed"}))
+        command.auth = auth == "signed" ? AuthMode::signed_requests : AuthMode::none;
+    if (const json* keys = f.find("keys"); keys != nullptr && !keys->is_null()) {
+        if (!keys->is_array()) {
+            f.problem("keys", "must be an array of {\"id\", \"secret_file\", \"roles\"}");
+        } else {
+            for (std::size_t i = 0; i < keys->size(); ++i) {
+                Fields k((*keys)[i], index_path(f.path("keys"), i), f.problems());
+                if (!k.is_object()) continue;
+                CommandKey key = read_key(k);
+                const bool duplicate =
+                    std::any_of(command.keys.begin(), command.keys.end(),
+                                [&key](const CommandKey& other) { return other.id == key.id; });
+                if (duplicate)
+                    f.problems().add(index_path(f.path("keys"), i) + ".id",
+                                     "duplicate key id \"" + key.id + "\"");
+                command.keys.push_back(std::move(key));
+            }
+        }
+    }
+    f.number("max_skew_s", command.max_skew_s, {1, 3600});
+    if (auto rate = f.object("rate_limit")) {
+        rate->number("per_source_hz", command.rate_limit.per_source_hz, {0.1, 100000});
+        rate->number("burst", command.rate_limit.burst, {1, 1000000});
+        rate->finish();
+    }
+    if (command.token && !command.keys.empty())
+        f.problem("keys", "\"token\" and \"keys\" may not both be set: choose one");
+    if (command.auth == AuthMode::signed_requests && command.keys.empty())
+        f.problem("auth", "\"signed\" needs at least one key in command.keys");
+}
+
 void read_command(Fields& f, CommandConfig& command) {
     read_address(f, "bind", command.bind);
     f.integer("port", command.port, {1, 65535});
@@ -520,6 +600,7 @@ void read_command(Fields& f, CommandConfig& command) {
         }
     }
     f.integer("max_subscribers", command.max_subscribers, {1, 1024});
+    read_auth(f, command);
 }
 
 void read_log(Fields& f, LogConfig& log) {
@@ -755,6 +836,13 @@ ConfigResult parse_config(std::string_view text, GimbalsSection gimbals) {
     section(root, "vehicle", [&](Fields& f) { config.vehicle = read_vehicle(f); });
     root.finish();
     check_serial_devices_unique(config, problems);
+    if (config.laser.allow_fire && !config.command.bind.is_loopback() &&
+        config.command.auth == AuthMode::none)
+        problems.add("command.auth",
+                     "laser.allow_fire is true and command.bind (" +
+                         config.command.bind.to_string() +
+                         ") is not a loopback address: anyone on that network could fire the "
+                         "laser; set command.auth to \"signed\" or bind to 127.0.0.1");
     return result;
 }
 
@@ -865,6 +953,10 @@ json to_json(const Config& config, bool show_token) {
     for (const auto& cidr : config.command.allow) allow.push_back(cidr.to_string());
     json token = nullptr;
     if (config.command.token) token = show_token ? *config.command.token : "***";
+    // Secrets stay in their files: only where they are is shown.
+    json keys = json::array();
+    for (const auto& key : config.command.keys)
+        keys.push_back({{"id", key.id}, {"secret_file", key.secret_file}, {"roles", key.roles}});
 
     json out = {
         {"gimbals", gimbals},
@@ -873,7 +965,13 @@ json to_json(const Config& config, bool show_token) {
           {"port", config.command.port},
           {"allow", allow},
           {"token", token},
-          {"max_subscribers", config.command.max_subscribers}}},
+          {"max_subscribers", config.command.max_subscribers},
+          {"auth", config.command.auth == AuthMode::signed_requests ? "signed" : "none"},
+          {"keys", keys},
+          {"max_skew_s", config.command.max_skew_s},
+          {"rate_limit",
+           {{"per_source_hz", config.command.rate_limit.per_source_hz},
+            {"burst", config.command.rate_limit.burst}}}}},
         {"laser",
          {{"allow_fire", config.laser.allow_fire},
           {"fire_timeout_s", config.laser.fire_timeout_s},

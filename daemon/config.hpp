@@ -110,12 +110,34 @@ struct Cidr {
     bool operator==(const Cidr&) const = default;
 };
 
+// command.auth (contract section 10).
+enum class AuthMode { none, signed_requests };
+
+// One key of command.keys; `secret` is read from `secret_file` when the file is loaded.
+struct CommandKey {
+    std::string id;
+    std::string secret_file;
+    std::vector<std::string> roles;  // observe, control, laser
+    std::vector<std::uint8_t> secret;
+    bool operator==(const CommandKey&) const = default;
+};
+
+struct RateLimitConfig {
+    double per_source_hz = 200;
+    double burst = 400;
+    bool operator==(const RateLimitConfig&) const = default;
+};
+
 struct CommandConfig {
     boost::asio::ip::address bind = boost::asio::ip::make_address_v4("127.0.0.1");
     std::uint16_t port = 8760;
     std::vector<Cidr> allow = default_allow();
     std::optional<std::string> token;
     unsigned max_subscribers = 64;
+    AuthMode auth = AuthMode::none;
+    std::vector<CommandKey> keys;
+    double max_skew_s = 30;
+    RateLimitConfig rate_limit;
 
     // True when a datagram from `source` may be answered (it lies in one of `allow`).
     bool allowed(const boost::asio::ip::address& source) const;

@@ -2,6 +2,8 @@
 
 #include <boost/asio/post.hpp>
 
+#include "auth/hmac.hpp"
+#include "auth/signed_envelope.hpp"
 #include "command/envelope.hpp"
 #include "command/orion_commands.hpp"
 #include "command/params.hpp"
@@ -28,6 +30,23 @@ json or_null(const std::optional<std::string>& s) {
     return s ? json(*s) : json(nullptr);
 }
 
+std::int64_t system_unix_ms() {
+    return std::chrono::duration_cast<std::chrono::milliseconds>(
+               std::chrono::system_clock::now().time_since_epoch())
+        .count();
+}
+
+// The commands that move, configure or feed a gimbal (the audit trail's subject).
+bool reaches_gimbal(std::string_view cmd) {
+    return !cmdns::is_common_command(cmd);
+}
+
+// The rate limit's key: a UDP client's address without its port (one host, one bucket),
+// else the transport's own name for the client.
+std::string rate_key(const RequestSource& from) {
+    return from.udp ? from.udp->address().to_string() : from.address;
+}
+
 }  // namespace
 
 // One request on its way through the path: what was read of it, and what it came to.
@@ -38,6 +57,10 @@ struct RequestPath::Outcome {
     std::optional<Error> error;
     json results = json::object();
     std::chrono::steady_clock::time_point received = std::chrono::steady_clock::now();
+    // A signed request: its key (null until verified) and nonce, for the signed reply.
+    const gimbal::auth::Key* key = nullptr;
+    std::string nonce;
+    std::string payload;  // the signed payload text, parsed as the request
 
     json fail(Error e) {
         error = std::move(e);
@@ -47,7 +70,13 @@ struct RequestPath::Outcome {
 
 RequestPath::RequestPath(boost::asio::io_context& io, RequestPathOptions options,
                          std::vector<GimbalSession*> sessions)
-    : io_(io), options_(std::move(options)), sessions_(std::move(sessions)) {}
+    : io_(io),
+      options_(std::move(options)),
+      sessions_(std::move(sessions)),
+      verifier_(options_.keys, options_.max_skew_s),
+      limiter_(options_.rate_per_source_hz, options_.rate_burst) {
+    if (!options_.unix_ms) options_.unix_ms = system_unix_ms;
+}
 
 void RequestPath::set_subscriptions(Subscriptions* table, SubscriptionsChanged changed) {
     subscriptions_ = table;
@@ -61,24 +90,107 @@ GimbalSession* RequestPath::find(const std::string& name) const {
 }
 
 std::optional<std::string> RequestPath::handle(std::string_view bytes, const RequestSource& from) {
-    Outcome o;
-    if (auto bad = cmdns::parse_envelope(bytes, known_command, o.env)) {
-        o.error = bad->error;
-        o.cmd = bad->cmd;
-        o.env.id = bad->id;
-    } else {
-        o.cmd = o.env.cmd;
-        if (options_.token && !cmdns::is_open_command(o.env.cmd) && o.env.token != options_.token) {
-            o.error =
-                Error{code::forbidden, o.env.token ? "wrong token" : "this command needs 'token'"};
-        } else {
-            run(o, from, true);
+    ++counters_.requests;
+    switch (limiter_.admit(rate_key(from), steady_seconds())) {
+        case gimbal::auth::RateLimiter::Decision::admit:
+            break;
+        case gimbal::auth::RateLimiter::Decision::limited_silent:
+            ++counters_.rate_limited;
+            return std::nullopt;
+        case gimbal::auth::RateLimiter::Decision::limited_reply: {
+            ++counters_.rate_limited;
+            // Once a second per source: parsing the id is affordable at that rate.
+            Outcome o;
+            cmdns::Envelope ignored;
+            if (auto bad = cmdns::parse_envelope(bytes, known_command, ignored)) {
+                o.env.id = bad->id;
+                o.cmd = bad->cmd;
+            } else {
+                o.env.id = ignored.id;
+                o.cmd = ignored.cmd;
+            }
+            o.error = Error{code::rate_limited,
+                            "more than command.rate_limit allows from " + rate_key(from) +
+                                "; this request and the others over the limit in the next "
+                                "second were not executed"};
+            return finish(o, from, bytes);
         }
     }
+
+    Outcome o;
+    authenticate(o, bytes);
+    if (!o.error) authorize(o);
+    if (!o.error) run(o, from, true);
     return finish(o, from, bytes);
 }
 
+void RequestPath::authenticate(Outcome& o, std::string_view bytes) {
+    std::string_view request_text = bytes;
+    if (bytes.size() <= cmdns::max_datagram) {
+        const json doc = json::parse(bytes, nullptr, false);
+        if (auto envelope = gimbal::auth::read_signed(doc)) {
+            if (const auto* problem = std::get_if<std::string>(&*envelope)) {
+                o.error = Error{code::bad_request, *problem};
+                return;
+            }
+            auto result = verifier_.verify(std::get<gimbal::auth::SignedEnvelope>(*envelope),
+                                           options_.unix_ms());
+            if (const auto* rejected = std::get_if<gimbal::auth::Rejected>(&result)) {
+                o.error = Error{rejected->kind == gimbal::auth::Rejected::Kind::bad_json
+                                    ? code::bad_json
+                                    : code::forbidden,
+                                rejected->reason};
+                // The unsigned refusal still echoes id and cmd, so the client can match it;
+                // nothing else of an unverified payload is used.
+                cmdns::Envelope unverified;
+                const auto& payload = std::get<gimbal::auth::SignedEnvelope>(*envelope).payload;
+                if (auto bad = cmdns::parse_envelope(payload, known_command, unverified)) {
+                    o.env.id = bad->id;
+                    o.cmd = bad->cmd;
+                } else {
+                    o.env.id = unverified.id;
+                    o.cmd = unverified.cmd;
+                }
+                return;
+            }
+            auto& verified = std::get<gimbal::auth::Verified>(result);
+            o.key = verified.key;
+            o.nonce = std::move(verified.nonce);
+            o.payload = std::get<gimbal::auth::SignedEnvelope>(*envelope).payload;
+            request_text = o.payload;
+        }
+    }
+    if (auto bad = cmdns::parse_envelope(request_text, known_command, o.env)) {
+        o.error = bad->error;
+        o.cmd = bad->cmd;
+        o.env.id = bad->id;
+        return;
+    }
+    o.cmd = o.env.cmd;
+}
+
+void RequestPath::authorize(Outcome& o) {
+    const auto role = gimbal::auth::required_role(o.env.cmd, o.env.request);
+    if (!role) return;  // ping, version, list: open to every allowed source
+    if (o.key) {
+        if (!o.key->roles.has(*role))
+            o.error = Error{code::forbidden, "key '" + o.key->id + "' lacks the '" +
+                                                 std::string(gimbal::auth::to_string(*role)) +
+                                                 "' role that '" + o.env.cmd + "' needs"};
+        return;
+    }
+    if (options_.signed_only) {
+        o.error = Error{code::forbidden,
+                        "command.auth is \"signed\": '" + o.env.cmd + "' must be signed by a key"};
+        return;
+    }
+    if (options_.token && !cmdns::is_open_command(o.env.cmd) && o.env.token != options_.token)
+        o.error =
+            Error{code::forbidden, o.env.token ? "wrong token" : "this command needs 'token'"};
+}
+
 json RequestPath::execute(const json& request, const RequestSource& from) {
+    ++counters_.requests;
     Outcome o;
     const std::string text = request.dump(-1, ' ', false, json::error_handler_t::replace);
     if (auto bad = cmdns::parse_envelope(text, known_command, o.env)) {
@@ -107,7 +219,18 @@ std::string RequestPath::finish(Outcome& o, const RequestSource& from,
                                 std::string_view request_bytes) {
     json reply = o.error ? cmdns::error_reply(o.env.id, o.cmd, *o.error)
                          : cmdns::ok_reply(o.env.id, *o.cmd, o.gimbal, std::move(o.results));
-    std::string text = reply.dump(-1, ' ', false, json::error_handler_t::replace);
+    if (o.error && o.error->code != code::rate_limited) ++counters_.rejected;
+    std::string text;
+    if (o.key) {
+        // The reply to a signed request is signed with the same key and carries its nonce.
+        reply["nonce"] = o.nonce;
+        reply["ts"] = options_.unix_ms();
+        text = gimbal::auth::sign(o.key->id, o.key->secret,
+                                  reply.dump(-1, ' ', false, json::error_handler_t::replace));
+    } else {
+        text = reply.dump(-1, ' ', false, json::error_handler_t::replace);
+    }
+    if (o.cmd && reaches_gimbal(*o.cmd)) audit(o, from);
 
     const CompletedRequest done{
         from.transport, o.cmd, o.error ? o.error->code : std::string("ok"),
@@ -125,6 +248,45 @@ std::string RequestPath::finish(Outcome& o, const RequestSource& from,
     boost::asio::post(io_, [msg = o.error ? o.error->message : std::string("ok"),
                             fields = std::move(fields)] { log::info("command", msg, fields); });
     return text;
+}
+
+void RequestPath::audit(const Outcome& o, const RequestSource& from) const {
+    json fields = {{"src", from.address},
+                   {"transport", from.transport},
+                   {"key", o.key ? json(o.key->id) : json(nullptr)},
+                   {"cmd", or_null(o.cmd)},
+                   {"gimbal", o.gimbal ? json(*o.gimbal) : or_null(o.env.gimbal)},
+                   {"ok", !o.error},
+                   {"error", o.error ? json(o.error->code) : json(nullptr)}};
+    if (o.cmd == "laser" && o.env.request.is_object()) {
+        // Every laser flag as the client sent it (absent ones as null).
+        for (const char* flag : {"index", "enable", "arm", "fire", "safety_bypass"}) {
+            const auto it = o.env.request.find(flag);
+            fields[flag] = it == o.env.request.end() ? json(nullptr) : *it;
+        }
+    }
+    const bool fire = fields.contains("fire") && fields["fire"] == true;
+    boost::asio::post(io_, [fire, msg = o.error ? o.error->message : std::string("ok"),
+                            fields = std::move(fields)] {
+        if (fire)
+            log::warn("audit", msg, fields);
+        else
+            log::info("audit", msg, fields);
+    });
+}
+
+std::string RequestPath::random_nonce() {
+    return gimbal::auth::to_hex(gimbal::auth::random_bytes(12));
+}
+
+std::string RequestPath::sign_message(const std::string& key_id, const json& message) {
+    const auto* key = verifier_.find(key_id);
+    if (key == nullptr) return message.dump(-1, ' ', false, json::error_handler_t::replace);
+    json payload = message;
+    payload["ts"] = options_.unix_ms();
+    payload["nonce"] = random_nonce();
+    return gimbal::auth::sign(key->id, key->secret,
+                              payload.dump(-1, ' ', false, json::error_handler_t::replace));
 }
 
 json RequestPath::dispatch(Outcome& o, const RequestSource& from) {
@@ -214,6 +376,7 @@ json RequestPath::subscription(Outcome& o, const RequestSource& from) {
     }
     Subscription s;
     s.gimbal = o.env.gimbal;
+    if (o.key) s.key_id = o.key->id;
     s.rate_hz = params.number_or("rate_hz", 0.1, 50.0, 10.0);
     s.ttl_s = params.number_or("ttl_s", 1.0, 3600.0, 60.0);
     s.events = params.boolean_or("events", true);

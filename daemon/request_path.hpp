@@ -13,6 +13,8 @@
 #include <string_view>
 #include <vector>
 
+#include "auth/rate_limiter.hpp"
+#include "auth/verifier.hpp"
 #include "command/result.hpp"
 #include "gimbal_session.hpp"
 #include "subscriptions.hpp"
@@ -36,7 +38,21 @@ struct CompletedRequest {
 };
 
 struct RequestPathOptions {
-    std::optional<std::string> token;  // command.token (auth "none")
+    std::optional<std::string> token;     // command.token (auth "none")
+    bool signed_only = false;             // command.auth "signed"
+    std::vector<gimbal::auth::Key> keys;  // command.keys, secrets loaded
+    double max_skew_s = 30;
+    double rate_per_source_hz = 200;  // command.rate_limit
+    double rate_burst = 400;
+    // Unix time in milliseconds (signed requests' `ts`); tests may pin it.
+    std::function<std::int64_t()> unix_ms;
+};
+
+// STATE `command` (contract section 10): what the request path has seen since start.
+struct RequestCounters {
+    std::uint64_t requests = 0;      // every request that reached the path
+    std::uint64_t rejected = 0;      // answered with ok:false (rate limits not included)
+    std::uint64_t rate_limited = 0;  // refused by command.rate_limit, answered or not
 };
 
 class RequestPath {
@@ -65,6 +81,10 @@ class RequestPath {
     // `unsupported` (they stream on their own: MQTT topics, WebSocket).
     void set_subscriptions(Subscriptions* table, SubscriptionsChanged changed);
 
+    // A message for a signed subscriber: signed with `key_id`, with a fresh ts and nonce.
+    std::string sign_message(const std::string& key_id, const nlohmann::json& message);
+
+    const RequestCounters& counters() const { return counters_; }
     const std::vector<GimbalSession*>& sessions() const { return sessions_; }
     GimbalSession* find(const std::string& name) const;
 
@@ -74,6 +94,10 @@ class RequestPath {
     nlohmann::json dispatch(Outcome& o, const RequestSource& from);
     nlohmann::json subscription(Outcome& o, const RequestSource& from);
     std::string finish(Outcome& o, const RequestSource& from, std::string_view request_bytes);
+    void authenticate(Outcome& o, std::string_view bytes);
+    void authorize(Outcome& o);
+    void audit(const Outcome& o, const RequestSource& from) const;
+    std::string random_nonce();
 
     boost::asio::io_context& io_;
     RequestPathOptions options_;
@@ -82,6 +106,9 @@ class RequestPath {
     std::vector<Tap> taps_;
     Subscriptions* subscriptions_ = nullptr;
     SubscriptionsChanged subscriptions_changed_;
+    gimbal::auth::Verifier verifier_;
+    gimbal::auth::RateLimiter limiter_;
+    RequestCounters counters_;
 };
 
 }  // namespace gimbald

@@ -6,7 +6,7 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config
   libboost-dev libspdlog-dev libfmt-dev nlohmann-json3-dev libcli11-dev catch2
-  libsystemd-dev libgeographiclib-dev
+  libsystemd-dev libgeographiclib-dev libssl-dev
   libbenchmark-dev clang libclang-rt-14-dev
   socat python3 systemd
 )

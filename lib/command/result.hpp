@@ -22,6 +22,7 @@ inline constexpr const char* unavailable = "unavailable";
 inline constexpr const char* link_down = "link_down";
 inline constexpr const char* forbidden = "forbidden";
 inline constexpr const char* busy = "busy";
+inline constexpr const char* rate_limited = "rate_limited";
 inline constexpr const char* internal = "internal";
 }  // namespace code
 

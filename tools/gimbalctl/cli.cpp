@@ -13,6 +13,10 @@ struct RawGlobals {
     std::string gimbal;
     std::string token;
     std::string id;
+    std::string key_file;
+    std::string key_id;
+    CLI::Option* key_file_option = nullptr;
+    CLI::Option* key_id_option = nullptr;
     CLI::Option* gimbal_option = nullptr;
     CLI::Option* token_option = nullptr;
     CLI::Option* id_option = nullptr;
@@ -44,6 +48,19 @@ void add_global_options(CLI::App& app, RawGlobals& raw) {
                        "is set")
             ->type_name("TOKEN")
             ->default_str("not sent");
+    raw.key_file_option =
+        app.add_option("--key-file", raw.key_file,
+                       "sign every request with the secret in FILE (contract section 10; "
+                       "make one with `gimbalctl keygen FILE`); replies and subscription "
+                       "datagrams must then carry a valid signature of the same key, else "
+                       "exit 2 \"unauthenticated reply\". Needs --key-id")
+            ->type_name("FILE")
+            ->default_str("requests are not signed");
+    raw.key_id_option =
+        app.add_option("--key-id", raw.key_id, "the id of that key in the daemon's command.keys")
+            ->type_name("ID")
+            ->needs(raw.key_file_option);
+    raw.key_file_option->needs(raw.key_id_option);
     app.add_option("--timeout", raw.values.timeout_s, "seconds to wait for the reply")
         ->type_name("S")
         ->check(CLI::PositiveNumber)
@@ -63,6 +80,8 @@ GlobalOptions finish_globals(const RawGlobals& raw) {
     GlobalOptions globals = raw.values;
     if (raw.gimbal_option->count() > 0) globals.gimbal = raw.gimbal;
     if (raw.token_option->count() > 0) globals.token = raw.token;
+    if (raw.key_file_option->count() > 0) globals.key_file = raw.key_file;
+    if (raw.key_id_option->count() > 0) globals.key_id = raw.key_id;
     return globals;
 }
 
@@ -99,6 +118,7 @@ ParseResult parse_command_line(int argc, char** argv) {
     add_viewpro_commands(table);
     add_watch_command(table, watch_count);
     add_send_command(table);
+    add_keygen_command(table);
 
     try {
         app.parse(argc, argv);

@@ -15,6 +15,8 @@ struct GlobalOptions {
     std::uint16_t port = 8760;
     std::optional<std::string> gimbal;
     std::optional<std::string> token;
+    std::optional<std::string> key_file;  // --key-file and --key-id: sign every request
+    std::optional<std::string> key_id;
     double timeout_s = 2.0;
     bool print_request = false;
     bool pretty = false;

@@ -16,6 +16,7 @@ namespace gimbalctl {
 enum class Action {
     exchange,  // send one request, print its reply
     watch,     // subscribe and print state/event datagrams
+    keygen,    // write a new secret file; nothing is sent
 };
 
 struct Command {
@@ -54,6 +55,7 @@ void add_common_commands(CommandTable& table);   // 4.1: ping, version, list, st
 void add_orion_commands(CommandTable& table);    // 4.2
 void add_viewpro_commands(CommandTable& table);  // 4.3
 void add_send_command(CommandTable& table);      // raw JSON
+void add_keygen_command(CommandTable& table);    // keygen FILE
 // subscribe/unsubscribe; `count` receives --count (0 when not given).
 void add_watch_command(CommandTable& table, std::int64_t& count);
 

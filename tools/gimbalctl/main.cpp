@@ -4,6 +4,7 @@
 #include "exchange.hpp"
 #include "exit_status.hpp"
 #include "output.hpp"
+#include "signing.hpp"
 #include "watch.hpp"
 
 int main(int argc, char** argv) {
@@ -12,6 +13,7 @@ int main(int argc, char** argv) {
     if (!parsed.invocation) return parsed.exit_status;
     const Invocation& invocation = *parsed.invocation;
 
+    if (invocation.action == Action::keygen) return run_keygen(invocation.request.at("file"));
     if (invocation.global.print_request) {
         print_json(invocation.request, invocation.global.pretty);
         return exit_ok;

@@ -11,6 +11,7 @@
 #include "duration.hpp"
 #include "exit_status.hpp"
 #include "output.hpp"
+#include "signing.hpp"
 #include "transport.hpp"
 
 namespace gimbalctl {
@@ -40,8 +41,10 @@ Json unsubscribe_for(const Json& subscribe) {
 
 class Watch {
   public:
-    Watch(const GlobalOptions& globals, const Json& subscribe, std::int64_t count)
+    Watch(const GlobalOptions& globals, const Json& subscribe, std::int64_t count,
+          std::optional<SigningKey> key)
         : globals_(globals),
+          sealer_(std::move(key)),
           subscribe_(subscribe),
           count_(count),
           transport_(
@@ -75,7 +78,7 @@ class Watch {
 
   private:
     void send_subscribe() {
-        transport_.send(format_json(subscribe_, false));
+        transport_.send(sealer_.seal(subscribe_));
         renew_timer_.expires_after(seconds(renew_period_s(subscribe_)));
         renew_timer_.async_wait([this](const boost::system::error_code& error) {
             if (!error) send_subscribe();
@@ -83,8 +86,23 @@ class Watch {
     }
 
     void on_datagram(std::string_view text) {
-        const auto datagram = parse_datagram(text);
+        auto datagram = parse_datagram(text);
         if (!datagram) return;
+        const auto opened = sealer_.open(*datagram);
+        // Signing on: only what our key signed is shown (an unsigned refusal of the
+        // subscribe itself excepted, see on_reply).
+        if (opened == Sealer::Opened::forged ||
+            (sealer_.signing() && opened == Sealer::Opened::plain &&
+             !(is_reply_to(*datagram, subscribe_) && !datagram->value("ok", true)))) {
+            if (!warned_unauthenticated_)
+                print_diagnostic("unauthenticated datagram from " + transport_.peer() + " dropped");
+            warned_unauthenticated_ = true;
+            return;
+        }
+        if (opened == Sealer::Opened::authentic) {
+            datagram->erase("nonce");
+            datagram->erase("ts");
+        }
         if (is_reply_to(*datagram, subscribe_)) {
             on_reply(*datagram);
         } else if (is_subscription_datagram(*datagram)) {
@@ -128,7 +146,7 @@ class Watch {
 
     // A normal end: tell the daemon to stop sending, then stop.
     void finish(int status) {
-        transport_.send(format_json(unsubscribe_for(subscribe_), false));
+        transport_.send(sealer_.seal(unsubscribe_for(subscribe_)));
         stop(status);
     }
 
@@ -143,6 +161,8 @@ class Watch {
     }
 
     const GlobalOptions& globals_;
+    Sealer sealer_;
+    bool warned_unauthenticated_ = false;
     const Json& subscribe_;
     const std::int64_t count_;
     asio::io_context io_;
@@ -159,7 +179,16 @@ class Watch {
 }  // namespace
 
 int run_watch(const GlobalOptions& globals, const Json& subscribe, std::int64_t count) {
-    Watch watch(globals, subscribe, count);
+    std::optional<SigningKey> key;
+    if (globals.key_file) {
+        std::string problem;
+        key = load_signing_key(*globals.key_file, globals.key_id.value_or(""), problem);
+        if (!key) {
+            print_diagnostic(problem);
+            return exit_usage;
+        }
+    }
+    Watch watch(globals, subscribe, count, std::move(key));
     return watch.run();
 }
 

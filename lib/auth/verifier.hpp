@@ -1,0 +1,55 @@
+// Checks signed requests against the configured keys (contract section 10): key known, MAC
+// right, payload a JSON object with `ts` within max_skew_s of the clock and a fresh `nonce`.
+// The role check happens once the command is known (roles.hpp). Time is passed in.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "auth/nonce_window.hpp"
+#include "auth/roles.hpp"
+#include "auth/signed_envelope.hpp"
+
+namespace gimbal::auth {
+
+struct Key {
+    std::string id;
+    std::vector<std::uint8_t> secret;
+    Roles roles;
+};
+
+struct Verified {
+    const Key* key = nullptr;
+    nlohmann::json request;  // the payload, parsed
+    std::string nonce;
+};
+
+struct Rejected {
+    enum class Kind { forbidden, bad_json };
+    Kind kind = Kind::forbidden;
+    std::string reason;  // the reply's message: names what was wrong
+};
+
+class Verifier {
+  public:
+    Verifier(std::vector<Key> keys, double max_skew_s, std::size_t nonces_per_key = 65536);
+
+    std::variant<Verified, Rejected> verify(const SignedEnvelope& envelope,
+                                            std::int64_t now_unix_ms);
+    const Key* find(const std::string& id) const;
+    bool empty() const { return keys_.empty(); }
+
+  private:
+    std::vector<Key> keys_;
+    std::int64_t max_skew_ms_;
+    std::map<std::string, NonceWindow> nonces_;
+};
+
+inline constexpr std::size_t min_nonce_chars = 8;
+inline constexpr std::size_t max_nonce_chars = 64;
+
+}  // namespace gimbal::auth
