@@ -2,7 +2,10 @@
 // path and message, unknown keys at every level, CIDR matching and the --sim gimbals.
 #include <catch2/catch.hpp>
 
+#include <sys/stat.h>
+
 #include <algorithm>
+#include <cstdlib>
 #include <fstream>
 #include <functional>
 #include <nlohmann/json.hpp>
@@ -225,11 +228,14 @@ TEST_CASE("given values are read", "[config]") {
     config["gimbals"][1]["viewpro"] = {
         {"output", {{"osd", "uav"}, {"serial", false}, {"network", true}, {"format", "out1"}}}};
     config["gimbals"][1]["feed"] = "mavlink";
-    config["command"] = {{"bind", "::"},
+    // Loopback: laser fire on another address would need signed commands (section 10).
+    config["command"] = {{"bind", "::1"},
                          {"port", 9000},
                          {"allow", {"10.0.0.0/8"}},
                          {"token", "s3cret"},
-                         {"max_subscribers", 5}};
+                         {"max_subscribers", 5},
+                         {"max_skew_s", 12},
+                         {"rate_limit", {{"per_source_hz", 50}, {"burst", 60}}}};
     config["laser"] = {
         {"allow_fire", true}, {"fire_timeout_s", 0.5}, {"allow_safety_bypass", true}};
     config["stare"] = {{"auto_ack", true}};
@@ -258,7 +264,9 @@ TEST_CASE("given values are read", "[config]") {
     CHECK(c.gimbals[1].viewpro.output ==
           ViewproOutput{ViewproOsd::uav, false, true, ViewproFormat::out1});
     CHECK(c.gimbals[1].viewpro_feed == ViewproFeed::mavlink);
-    CHECK(c.command.bind.to_string() == "::");
+    CHECK(c.command.bind.to_string() == "::1");
+    CHECK(c.command.max_skew_s == 12);
+    CHECK(c.command.rate_limit == RateLimitConfig{50, 60});
     CHECK(c.command.port == 9000);
     CHECK(c.command.token == std::optional<std::string>("s3cret"));
     CHECK(c.command.max_subscribers == 5);
@@ -670,4 +678,98 @@ TEST_CASE("standard baud rates", "[config]") {
         CHECK(problems_after([rate](json& c) { c["gimbals"][1]["link"]["baud"] = rate; }).size() ==
               1);
     }
+}
+
+namespace {
+
+// A secret file in a fresh temporary directory, with the given text and mode.
+std::string secret_file(const std::string& name, const std::string& text, unsigned mode) {
+    static const std::string dir = [] {
+        char pattern[] = "/tmp/gimbald-config-test-XXXXXX";
+        return std::string(::mkdtemp(pattern));
+    }();
+    const std::string path = dir + "/" + name;
+    std::ofstream(path) << text;
+    ::chmod(path.c_str(), mode);
+    return path;
+}
+
+const std::string hex_secret = std::string(64, 'a') + "\n";
+
+json with_key(const std::string& file, json roles = {"observe", "control"}) {
+    json config = valid_config();
+    config["command"] = {{"auth", "signed"},
+                         {"keys", {{{"id", "ops"}, {"secret_file", file}, {"roles", roles}}}}};
+    return config;
+}
+
+}  // namespace
+
+TEST_CASE("signed commands: keys are read with their secrets", "[config][auth]") {
+    const auto file = secret_file("good.key", hex_secret, 0600);
+    const auto result = parse_config(with_key(file, {"observe", "control", "laser"}).dump());
+    INFO(joined(problem_texts(result)));
+    REQUIRE(result.ok());
+    const auto& command = result.config.command;
+    CHECK(command.auth == AuthMode::signed_requests);
+    REQUIRE(command.keys.size() == 1);
+    CHECK(command.keys[0].secret == std::vector<std::uint8_t>(32, 0xaa));
+    CHECK(command.keys[0].roles == std::vector<std::string>{"observe", "control", "laser"});
+    // The secret never appears in the configuration dump.
+    const auto dumped = to_json(result.config).dump();
+    CHECK(dumped.find("aaaaaaaa") == std::string::npos);
+    CHECK(dumped.find(file) != std::string::npos);
+}
+
+TEST_CASE("signed commands: bad keys stop the start with path and reason", "[config][auth]") {
+    const auto open = secret_file("open.key", hex_secret, 0644);
+    const auto short_key = secret_file("short.key", std::string(40, 'a'), 0600);
+    const auto not_hex = secret_file("nothex.key", std::string(64, 'x'), 0400);
+    auto problems = [](const json& config) {
+        return joined(problem_texts(parse_config(config.dump())));
+    };
+    CHECK_THAT(problems(with_key(open)),
+               Catch::Contains("command.keys[0].secret_file: " + open +
+                               ": readable by group or others (mode 0644)"));
+    CHECK_THAT(problems(with_key(short_key)), Catch::Contains(short_key + ": too short"));
+    CHECK_THAT(problems(with_key(not_hex)), Catch::Contains(not_hex + ": not hex"));
+    CHECK_THAT(problems(with_key("/nonexistent/ops.key")),
+               Catch::Contains("/nonexistent/ops.key: missing"));
+    const auto good = secret_file("good2.key", hex_secret, 0400);
+    CHECK_THAT(problems(with_key(good, {"observe", "root"})),
+               Catch::Contains("command.keys[0].roles[1]"));
+    CHECK_THAT(problems(with_key(good, json::array())), Catch::Contains("command.keys[0].roles"));
+
+    json duplicate = with_key(good);
+    duplicate["command"]["keys"].push_back(duplicate["command"]["keys"][0]);
+    CHECK_THAT(problems(duplicate), Catch::Contains("duplicate key id"));
+
+    json both = with_key(good);
+    both["command"]["token"] = "s3cret";
+    CHECK_THAT(problems(both), Catch::Contains("may not both be set"));
+
+    json no_keys = valid_config();
+    no_keys["command"] = {{"auth", "signed"}};
+    CHECK_THAT(problems(no_keys), Catch::Contains("command.auth"));
+    json typo = valid_config();
+    typo["command"] = {{"auth", "hmac"}};
+    CHECK_THAT(problems(typo), Catch::Contains("command.auth: must be one of"));
+    json rate = valid_config();
+    rate["command"] = {{"rate_limit", {{"per_source_hz", 0}, {"brust", 5}}}};
+    const auto rate_problems = problems(rate);
+    CHECK_THAT(rate_problems, Catch::Contains("command.rate_limit.per_source_hz"));
+    CHECK_THAT(rate_problems, Catch::Contains("command.rate_limit.brust: unknown key"));
+}
+
+TEST_CASE("laser fire on a non-loopback socket needs signed commands", "[config][auth]") {
+    json config = valid_config();
+    config["laser"] = {{"allow_fire", true}};
+    config["command"] = {{"bind", "0.0.0.0"}};
+    CHECK_THAT(joined(problem_texts(parse_config(config.dump()))),
+               Catch::Contains("command.auth: laser.allow_fire is true and command.bind"));
+    config["command"]["bind"] = "127.0.0.1";
+    CHECK(parse_config(config.dump()).ok());
+    config["command"] = with_key(secret_file("fire.key", hex_secret, 0600))["command"];
+    config["command"]["bind"] = "0.0.0.0";
+    CHECK(parse_config(config.dump()).ok());
 }
