@@ -2,6 +2,7 @@
 #include <memory>
 
 #include "command_table.hpp"
+#include "params.hpp"
 
 namespace gimbalctl {
 
@@ -18,8 +19,15 @@ void add_common_commands(CommandTable& table) {
                               "The configured gimbals with their protocol and link state.");
     list.takes_gimbal = false;
 
-    table.add("state", "state", group_any,
-              "The full STATE object of one gimbal (telemetry, link counters, ...).");
+    Command& state = table.add(
+        "state", "state", group_any,
+        "The STATE object of one gimbal (telemetry, link counters, ...), whole or --keys.");
+    auto p = std::make_shared<Params>(state.app);
+    state.params = [p] { return p->json(); };
+    p->names("--keys", "keys",
+             "only these top-level STATE keys (protocol, link and stale always come), e.g. "
+             "--keys telemetry,gps")
+        ->default_str("every key");
 }
 
 }  // namespace gimbalctl

@@ -26,6 +26,10 @@ void add_watch_command(CommandTable& table, std::int64_t& count) {
         ->default_str("60");
     p->flag("--events,!--no-events", "events", "also print event datagrams, or not")
         ->default_str("events on");
+    p->names("--keys", "keys",
+             "only these top-level STATE keys (protocol, link and stale always come), e.g. "
+             "--keys telemetry,lasers")
+        ->default_str("every key");
     command.app->add_option("--count", count, "exit 0 after printing this many datagrams")
         ->type_name("N")
         ->check(CLI::PositiveNumber)

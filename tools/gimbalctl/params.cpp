@@ -45,6 +45,15 @@ CLI::Option* Params::text(const std::string& names, const std::string& key,
     return option;
 }
 
+CLI::Option* Params::names(const std::string& names, const std::string& key,
+                           const std::string& description) {
+    std::vector<std::string>& value = string_lists_.emplace_back();
+    CLI::Option* option = app_->add_option(names, value, description);
+    option->type_name("NAME,...")->delimiter(',');
+    custom(key, option, [&value] { return Json(value); });
+    return option;
+}
+
 CLI::Option* Params::flag(const std::string& names, const std::string& key,
                           const std::string& description, bool always) {
     bool& value = bools_.emplace_back(false);

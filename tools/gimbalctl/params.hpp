@@ -38,6 +38,9 @@ class Params {
                          const std::string& description);
     CLI::Option* text(const std::string& names, const std::string& key,
                       const std::string& description);
+    // A comma-separated list of names sent as a JSON array of strings (--keys a,b).
+    CLI::Option* names(const std::string& names, const std::string& key,
+                       const std::string& description);
     // A boolean flag; "--x,!--no-x" gives a pair. Sent only when given, unless `always`
     // (then a flag left out is sent as false).
     CLI::Option* flag(const std::string& names, const std::string& key,
