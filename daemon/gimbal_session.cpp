@@ -16,8 +16,7 @@ constexpr auto tick_period = std::chrono::milliseconds(100);
 GimbalSession::GimbalSession(boost::asio::io_context& io, std::string name,
                              std::unique_ptr<gimbal::session::Protocol> protocol,
                              std::unique_ptr<Link> link, double fire_timeout_s, EventSink on_event)
-    : io_(io),
-      name_(std::move(name)),
+    : name_(std::move(name)),
       protocol_(std::move(protocol)),
       link_(std::move(link)),
       lasers_(fire_timeout_s),

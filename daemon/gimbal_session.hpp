@@ -76,7 +76,6 @@ class GimbalSession {
     void on_deadman();
     void report_counters();
 
-    boost::asio::io_context& io_;
     std::string name_;
     std::unique_ptr<gimbal::session::Protocol> protocol_;
     std::unique_ptr<Link> link_;

@@ -44,8 +44,7 @@ std::string feed_kind(const cfg::GimbalConfig& g) {
 
 VehicleFeed::VehicleFeed(boost::asio::io_context& io,
                          const std::optional<cfg::VehicleConfig>& config, EventSink on_event)
-    : io_(io),
-      state_(options_of(config)),
+    : state_(options_of(config)),
       on_event_(std::move(on_event)),
       timer_(io),
       epoch_(std::chrono::steady_clock::now()) {

@@ -58,7 +58,6 @@ class VehicleFeed {
     void send_autopilot_data(Target& target, double now);
     void send(Target& target, std::vector<std::uint8_t> bytes);
 
-    boost::asio::io_context& io_;
     gimbal::vehicle::VehicleState state_;
     std::unique_ptr<VehicleSource> source_;
     EventSink on_event_;
