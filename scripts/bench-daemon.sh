@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Builds gimbald, gimbal-sim and the latency benchmark in release mode and runs the two daemon
-# benchmarks (docs/operations.md, "Daemon benchmarks"): command latency and load (CPU, RSS).
+# Builds gimbald, gimbal-sim and the latency benchmark in release mode and runs the daemon
+# benchmarks (docs/operations.md, "Daemon benchmarks"): command latency, load (CPU, RSS) and
+# the size of STATE datagrams.
 # Timings, not tests: nothing here fails on a missed target, it only says so.
 #
 # Environment:
@@ -34,6 +35,9 @@ echo "== load (load average $(cut -d' ' -f1-3 /proc/loadavg))"
 # shellcheck disable=SC2086
 python3 tests/bench/daemon/load_bench.py --gimbald "$gimbald" --gimbal-sim "$sim" \
     ${LOAD_ARGS:-} | tee "$out/load"
+echo
+echo "== STATE size (full, and subscribe keys=[telemetry])"
+python3 tests/bench/daemon/state_size.py --gimbald "$gimbald" | tee "$out/size"
 
 # key=value pairs of a RESULT line
 value() { grep '^RESULT' "$2" | tr ' ' '\n' | sed -n "s/^$1=//p"; }
