@@ -120,7 +120,7 @@ std::optional<std::string> RequestPath::handle(std::string_view bytes, const Req
     Outcome o;
     authenticate(o, bytes);
     if (!o.error) authorize(o);
-    if (!o.error) run(o, from, true);
+    if (!o.error) run(o, from);
     return finish(o, from, bytes);
 }
 
@@ -199,13 +199,13 @@ json RequestPath::execute(const json& request, const RequestSource& from) {
         o.env.id = bad->id;
     } else {
         o.cmd = o.env.cmd;
-        run(o, from, true);
+        run(o, from);
     }
     const std::string reply = finish(o, from, text);
     return json::parse(reply, nullptr, false);
 }
 
-void RequestPath::run(Outcome& o, const RequestSource& from, bool /*authenticated*/) {
+void RequestPath::run(Outcome& o, const RequestSource& from) {
     try {
         o.results = dispatch(o, from);
     } catch (const std::exception& e) {

@@ -90,7 +90,7 @@ class RequestPath {
 
   private:
     struct Outcome;
-    void run(Outcome& o, const RequestSource& from, bool authenticated);
+    void run(Outcome& o, const RequestSource& from);
     nlohmann::json dispatch(Outcome& o, const RequestSource& from);
     nlohmann::json subscription(Outcome& o, const RequestSource& from);
     std::string finish(Outcome& o, const RequestSource& from, std::string_view request_bytes);
