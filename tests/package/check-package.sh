@@ -83,7 +83,8 @@ if out=$("${run[@]}" "$scratch/usr/sbin/gimbald" --check-config -c "$scratch/etc
 else
   fail "gimbald --check-config: $out"
 fi
-"${run[@]}" "$scratch/usr/bin/gimbalctl" --help | grep -q '^SYNOPSIS' && pass "gimbalctl --help" || fail "gimbalctl --help"
+out=$("${run[@]}" "$scratch/usr/bin/gimbalctl" --help)
+echo "$out" | grep -q '^SYNOPSIS' && pass "gimbalctl --help" || fail "gimbalctl --help"
 out=$("${run[@]}" "$scratch/usr/bin/gimbal-sim" --version)
 [ "$out" = "gimbal-sim $version" ] && pass "gimbal-sim --version: $out" || fail "gimbal-sim --version: $out"
 # Man pages render without groff warnings and carry the version.
