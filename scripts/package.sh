@@ -31,6 +31,10 @@ eval "$(DEB_BUILD_MAINT_OPTIONS=hardening=+all DEB_HOST_ARCH=$arch dpkg-buildfla
 export CXXFLAGS="${CXXFLAGS//-g /} $CPPFLAGS"
 export LDFLAGS
 
+# Man page dates are the release's (the changelog's), not the build day: reproducible.
+SOURCE_DATE_EPOCH=$(dpkg-parsechangelog -l packaging/debian/changelog -STimestamp)
+export SOURCE_DATE_EPOCH
+
 build=build/package-$arch
 jobs=${JOBS:-$(nproc 2>/dev/null || echo 2)}
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DGIMBAL_WERROR=ON -DGIMBAL_TESTS=OFF \
