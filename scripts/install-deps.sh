@@ -9,7 +9,22 @@ packages=(
   libsystemd-dev libgeographiclib-dev libssl-dev
   libbenchmark-dev clang libclang-rt-14-dev
   socat python3 systemd
+  dpkg-dev lintian
 )
+
+# --cross ARCH (scripts/package.sh --arch arm64): the cross compiler, QEMU and the ARCH
+# multiarch libraries instead. libgeographiclib-dev is not multiarch (ARCH's would replace
+# the native one): its runtime library and the native headers are enough
+# (packaging/toolchain-aarch64.cmake).
+cross_arch=
+if [ "${1:-}" = "--cross" ]; then
+  cross_arch=$2
+  packages=(
+    "crossbuild-essential-$cross_arch" qemu-user-static
+    "libboost-dev:$cross_arch" "libspdlog-dev:$cross_arch" "libfmt-dev:$cross_arch"
+    "libsystemd-dev:$cross_arch" "libgeographiclib23:$cross_arch"
+  )
+fi
 
 missing=()
 for p in "${packages[@]}"; do
@@ -27,5 +42,8 @@ else
   exit 1
 fi
 export DEBIAN_FRONTEND=noninteractive
+if [ -n "$cross_arch" ] && ! dpkg --print-foreign-architectures | grep -qx "$cross_arch"; then
+  "${SUDO[@]}" dpkg --add-architecture "$cross_arch"
+fi
 "${SUDO[@]}" apt-get update -q
 "${SUDO[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"
