@@ -23,6 +23,7 @@ if [ "${1:-}" = "--cross" ]; then
     "crossbuild-essential-$cross_arch" qemu-user-static
     "libboost-dev:$cross_arch" "libspdlog-dev:$cross_arch" "libfmt-dev:$cross_arch"
     "libsystemd-dev:$cross_arch" "libgeographiclib23:$cross_arch"
+    "libssl-dev:$cross_arch"
   )
 fi
 
