@@ -230,10 +230,12 @@ template <std::size_t... I>
 std::optional<Payload> decode_by_id(std::uint32_t msgid, std::span<const std::uint8_t> bytes,
                                     std::index_sequence<I...>) {
     std::optional<Payload> out;
-    ((std::variant_alternative_t<I, Payload>::id == msgid
-          ? (out = decode_as<std::variant_alternative_t<I, Payload>>(bytes), true)
-          : false) ||
-     ...);
+    const auto try_one = [&]<class M>(M*) {
+        if (M::id != msgid) return false;
+        out = decode_as<M>(bytes);
+        return true;
+    };
+    (void)(try_one(static_cast<std::variant_alternative_t<I, Payload>*>(nullptr)) || ...);
     return out;
 }
 
