@@ -59,6 +59,12 @@ class Peer {
     this.socket.on('message', (buf) => this.splitter.write(buf));
   }
   bind() { return new Promise((r) => this.socket.bind(0, '127.0.0.1', r)); }
+  // Serial instead of UDP: every peer writes to and reads from the same pseudo-terminal.
+  useSerial(serial) {
+    this.socket.close();
+    this.serial = serial;
+    serial.readers.push((buf) => this.splitter.write(buf));
+  }
   send(msg, { sign = this.key !== null } = {}) {
     const protocol = sign ? this.protocol : new MavLinkProtocolV2(this.sysid, this.compid);
     let buf = protocol.serialize(msg, this.seq++ & 255);
@@ -66,6 +72,7 @@ class Peer {
     return this.sendRaw(buf);
   }
   sendRaw(buf) {
+    if (this.serial) return this.serial.write(buf);
     return new Promise((r) => this.socket.send(buf, this.target, '127.0.0.1', () => r()));
   }
   async waitFor(pred, timeoutMs = 3000, since = 0) {
@@ -101,7 +108,7 @@ class Peer {
     const ack = await this.waitFor((x) => x.name === 'COMMAND_ACK' && x.data.command === command, 3000, since);
     return ack ? ack.data.result : null;
   }
-  close() { this.socket.close(); }
+  close() { if (!this.serial) this.socket.close(); }
 }
 
 // The JSON command socket, for STATE.
@@ -146,7 +153,7 @@ function yawPitch(q) {
 }
 const angleDiff = (a, b) => Math.abs(((a - b + 540) % 360) - 180);
 
-async function startDaemon(dir, { signingKeyFile = null } = {}) {
+async function startDaemon(dir, { signingKeyFile = null, serialDevice = null } = {}) {
   const simPort = await freePort('tcp');
   const deadPort = await freePort('tcp');
   const commandPort = await freePort('udp');
@@ -159,7 +166,8 @@ async function startDaemon(dir, { signingKeyFile = null } = {}) {
       { name: 'dead', protocol: 'orion', link: { type: 'tcp', host: '127.0.0.1', port: deadPort } },
     ],
     command: { port: commandPort },
-    vehicle: { source: { type: 'udp', bind: '127.0.0.1', port: vehiclePort } },
+    vehicle: { source: serialDevice ? { type: 'serial', device: serialDevice, baud: 115200 }
+      : { type: 'udp', bind: '127.0.0.1', port: vehiclePort } },
     mavlink: { gimbal_manager: true, component_id: 154, targets: [], signing_key_file: signingKeyFile },
   };
   const cfgPath = path.join(dir, `gimbald-${vehiclePort}.json`);
@@ -324,12 +332,68 @@ async function signingSequence(dir) {
   await sleep(300);
 }
 
+// The same endpoint over a serial line: a socat pseudo-terminal pair, gimbald on one end, the
+// autopilot and the GCS on the other.
+async function serialSequence(dir) {
+  const { execFileSync } = require('child_process');
+  try { execFileSync('socat', ['-V'], { stdio: 'ignore' }); } catch (e) {
+    console.log('skip serial: socat not installed');
+    return;
+  }
+  const a = path.join(dir, 'pty-gimbald'); const b = path.join(dir, 'pty-vehicle');
+  const socat = spawn('socat', [`pty,raw,echo=0,link=${a}`, `pty,raw,echo=0,link=${b}`], { stdio: 'ignore' });
+  children.push(socat);
+  for (let i = 0; i < 50 && !(fs.existsSync(a) && fs.existsSync(b)); i++) await sleep(50);
+  const fd = fs.openSync(b, 'r+');
+  const serial = {
+    readers: [],
+    write: (buf) => new Promise((r) => fs.write(fd, buf, () => r())),
+  };
+  const stream = fs.createReadStream(null, { fd, autoClose: false });
+  stream.on('data', (buf) => { for (const r of serial.readers) r(buf); });
+  stream.on('error', () => {});
+  const d = await startDaemon(dir, { serialDevice: a });
+  const ap = new Peer(1, 1, 0); ap.useSerial(serial);
+  const gcs = new Peer(255, 190, 0); gcs.useSerial(serial);
+  const gcs2 = new Peer(254, 190, 0); gcs2.useSerial(serial);
+  const beat = async () => {
+    const hb = new minimal.Heartbeat();
+    hb.type = 2; hb.autopilot = 3; hb.baseMode = 0; hb.customMode = 0; hb.systemStatus = 4; hb.mavlinkVersion = 3;
+    await ap.send(hb);
+  };
+  ap.timer = setInterval(beat, 300);
+  await beat();
+  const hb = await gcs.waitFor((x) => x.name === 'HEARTBEAT' && x.packet.header.compid === 154, 4000);
+  check(hb !== null, 'serial: HEARTBEAT from the gimbal manager on the same port');
+  check(await gcs.command(CMD.CONFIGURE, [-2, -2, -1, -1, 0, 0, 1]) === MAV_RESULT.ACCEPTED, 'serial: take control: ACCEPTED');
+  check(await gcs.command(CMD.PITCHYAW, [-20, -60, NaN, NaN, 0, 0, 1]) === MAV_RESULT.ACCEPTED, 'serial: PITCHYAW angles: ACCEPTED');
+  let state = null;
+  for (let i = 0; i < 50; i++) {
+    state = (await jsonRequest(d.commandPort, { cmd: 'state', gimbal: 'main' })).state;
+    if (Math.abs(state.telemetry.pan + 60) < 0.5 && Math.abs(state.telemetry.tilt + 20) < 0.5) break;
+    await sleep(100);
+  }
+  check(Math.abs(state.telemetry.pan + 60) < 0.5 && Math.abs(state.telemetry.tilt + 20) < 0.5,
+    `serial: the simulated Orion went to pan -60, tilt -20 (pan ${state.telemetry.pan}, tilt ${state.telemetry.tilt})`);
+  check(await gcs2.command(CMD.PITCHYAW, [-10, 0, NaN, NaN, 0, 0, 1]) === MAV_RESULT.DENIED, 'serial: a second GCS is DENIED');
+  check(await gcs.command(CMD.ROI_LOCATION, [1, 0, 0, 0], { asInt: { x: 457189827, y: -1214993263, z: 500, frame: 5 } }) === MAV_RESULT.ACCEPTED,
+    'serial: DO_SET_ROI_LOCATION (MSL): ACCEPTED');
+  check(state.mavlink && state.mavlink.peers.length === 1 && state.mavlink.peers[0].startsWith('serial '), `serial: STATE mavlink peers ${JSON.stringify(state.mavlink && state.mavlink.peers)}`);
+  clearInterval(ap.timer);
+  stream.destroy();
+  d.daemon.kill('SIGTERM'); d.sim.kill('SIGTERM');
+  await sleep(300);
+  socat.kill('SIGTERM');
+  try { fs.closeSync(fd); } catch (e) { /* closed by the stream */ }
+}
+
 async function main() {
   const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'gimbald-mavlink-'));
   const overall = setTimeout(() => { console.log('FAIL timeout'); cleanup(); process.exit(1); }, 120000);
   try {
     await mainSequence(dir);
     await signingSequence(dir);
+    await serialSequence(dir);
   } catch (e) {
     console.log(`FAIL exception: ${e.stack}`);
     failures++;
