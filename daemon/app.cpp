@@ -87,7 +87,10 @@ App::App(const cfg::Config& config)
         session.set_vehicle_snapshot([this, &session] { return vehicle_->snapshot(session); });
     }
     if (config_.mavlink.gimbal_manager) {
-        mavlink_ = std::make_unique<MavlinkEndpoint>(io_, config_.mavlink, mavlink_key, *vehicle_,
+        // Contract section 8: our system id defaults to vehicle.system_id when that is set.
+        cfg::MavlinkConfig mavlink = config_.mavlink;
+        if (!mavlink.system_id && config_.vehicle) mavlink.system_id = config_.vehicle->system_id;
+        mavlink_ = std::make_unique<MavlinkEndpoint>(io_, mavlink, mavlink_key, *vehicle_,
                                                      *request_path_, request_path_->sessions());
         for (auto& session : sessions_)
             session->add_state_key(

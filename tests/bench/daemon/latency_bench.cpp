@@ -328,9 +328,9 @@ class Bench {
           listener_(listener),
           client_(client),
           command_(loopback(command_port)),
+          samples_(opt.count),
           mav_(mav),
-          vehicle_(loopback(vehicle_port)),
-          samples_(opt.count) {}
+          vehicle_(loopback(vehicle_port)) {}
 
     ~Bench() {
         if (gimbal_ >= 0) close(gimbal_);
@@ -425,8 +425,9 @@ class Bench {
             "preemptions); the benchmark waited %.1f ms (%ld)\n",
             daemon_sched_.cpu_ms, daemon_sched_.wait_ms, daemon_sched_.preempted,
             self_sched_.wait_ms, self_sched_.preempted);
-        std::printf("  target p99 < 200 us: %s\n",
-                    f.n > 0 && f.p99 < 200.0 && lost == 0 ? "met" : "MISSED");
+        const double target_us = opt_.mavlink ? 300.0 : 200.0;  // issue 9: MAVLink < 300 us
+        std::printf("  target p99 < %.0f us: %s\n", target_us,
+                    f.n > 0 && f.p99 < target_us && lost == 0 ? "met" : "MISSED");
         std::printf(
             "RESULT count=%zu lost=%zu p50_us=%.1f p90_us=%.1f p99_us=%.1f "
             "p999_us=%.1f max_us=%.1f reply_p50_us=%.1f reply_p99_us=%.1f "
