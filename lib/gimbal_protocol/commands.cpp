@@ -271,6 +271,9 @@ Mapped GimbalManager::roi_location(const CommandView& cmd, const MavId& sender,
                                    const VehicleView& vehicle) {
     const auto targets = select(cmd.param[0]);
     if (targets.empty()) return answer(MavResult::denied, "no such gimbal device id");
+    if (std::none_of(targets.begin(), targets.end(),
+                     [](const auto* g) { return g->protocol == "orion"; }))
+        return answer(MavResult::unsupported, "Viewpro has no geopoint");
     namespace f = mav::mav_frame;
     const std::uint8_t frame = cmd.frame;
     bool relative = false;

@@ -332,6 +332,53 @@ async function signingSequence(dir) {
   await sleep(300);
 }
 
+// A Viewpro (gimbald --sim orion,viewpro: device 1 sim-orion, 2 sim-viewpro): angles become
+// viewpro_adjust steps from its reported angles; ROI, rates and zoom are UNSUPPORTED.
+async function viewproSequence(dir) {
+  const commandPort = await freePort('udp');
+  const vehiclePort = await freePort('udp');
+  const cfgPath = path.join(dir, 'viewpro.json');
+  fs.writeFileSync(cfgPath, JSON.stringify({
+    command: { port: commandPort },
+    vehicle: { source: { type: 'udp', bind: '127.0.0.1', port: vehiclePort } },
+    mavlink: { gimbal_manager: true, system_id: 1 },
+  }));
+  const logs = [];
+  const daemon = startProcess(GIMBALD, ['--sim', 'orion,viewpro', '-c', cfgPath], logs);
+  const viewpro = async () => {
+    const r = await jsonRequest(commandPort, { cmd: 'state', gimbal: 'sim-viewpro' });
+    return r && r.ok ? r.state : null;
+  };
+  let st = null;
+  for (let i = 0; i < 100 && !(st && st.output && st.output.gimbal); i++) { st = await viewpro(); await sleep(100); }
+  const gcs = new Peer(255, 190, vehiclePort);
+  await gcs.bind();
+  await gcs.heartbeat();
+  const before = st.output.gimbal.pitch;
+  check(await gcs.command(CMD.PITCHYAW, [before + 10, st.output.gimbal.yaw, NaN, NaN, 0, 0, 2]) === MAV_RESULT.ACCEPTED,
+    'Viewpro: PITCHYAW angles: ACCEPTED');
+  await sleep(300);
+  check(logs.some((l) => l.event === 'command' && l.cmd === 'viewpro_adjust' && l.gimbal === 'sim-viewpro' && l.ok),
+    'Viewpro: sent as viewpro_adjust');
+  // The Viewpro adjust frames shift the gimbal's calculated point (its ICD): the target moves.
+  const target0 = st.output.target;
+  let target1 = target0;
+  for (let i = 0; i < 20 && target1.lat === target0.lat && target1.lon === target0.lon; i++) {
+    target1 = (await viewpro()).output.target; await sleep(100);
+  }
+  check(target1.lat !== target0.lat || target1.lon !== target0.lon,
+    `Viewpro: the simulated gimbal's calculated point moved (${JSON.stringify(target0)} -> ${JSON.stringify(target1)})`);
+  check(await gcs.command(CMD.PITCHYAW, [NaN, NaN, 5, 5, 0, 0, 2]) === MAV_RESULT.UNSUPPORTED, 'Viewpro: rates UNSUPPORTED');
+  check(await gcs.command(CMD.ROI_LOCATION, [2, 0, 0, 0, 6.95, 79.88, 10]) === MAV_RESULT.UNSUPPORTED, 'Viewpro: ROI UNSUPPORTED');
+  check(await gcs.command(CMD.ZOOM, [2, 50, 2, 0, 0, 0, 0]) === MAV_RESULT.UNSUPPORTED, 'Viewpro: zoom UNSUPPORTED');
+  const t = Date.now();
+  const status = await gcs.waitFor((x) => x.name === 'GIMBAL_DEVICE_ATTITUDE_STATUS' && x.data.gimbalDeviceId === 2, 1000, t);
+  check(status && Number.isFinite(status.data.q[0]) && status.data.failureFlags === 0, 'Viewpro: GIMBAL_DEVICE_ATTITUDE_STATUS for device 2');
+  gcs.close();
+  daemon.kill('SIGTERM');
+  await sleep(300);
+}
+
 // The same endpoint over a serial line: a socat pseudo-terminal pair, gimbald on one end, the
 // autopilot and the GCS on the other.
 async function serialSequence(dir) {
@@ -393,6 +440,7 @@ async function main() {
   try {
     await mainSequence(dir);
     await signingSequence(dir);
+    await viewproSequence(dir);
     await serialSequence(dir);
   } catch (e) {
     console.log(`FAIL exception: ${e.stack}`);

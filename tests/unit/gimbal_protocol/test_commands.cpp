@@ -86,6 +86,10 @@ TEST_CASE("DO_SET_ROI_LOCATION: Orion geopoint in every altitude frame") {
                       vehicle(), states(), 0);
         CHECK(v.requests.empty());
         CHECK(v.result == MavResult::unsupported);
+        // UNSUPPORTED even when the home altitude is unknown: the protocol decides first.
+        CHECK(m.command(long_cmd(cmd::do_set_roi_location, {2, 0, 0, 0, 47.5f, 8.25f, 30}), gcs,
+                        vehicle(90, std::nullopt), states(), 0)
+                  .result == MavResult::unsupported);
         const Mapped all =
             m.command(long_cmd(cmd::do_set_roi_location, {0, 0, 0, 0, 47.5f, 8.25f, 30}), gcs,
                       vehicle(), states(), 0);
