@@ -67,14 +67,34 @@ App::App(const cfg::Config& config)
     events_.add([this](const std::string& gimbal, const gimbal::state::Event& e) {
         server_->publish_event(gimbal, e);
     });
+    // MAVLink gimbal manager (contract section 8): signed frames reach it only with a key.
+    std::optional<gimbal::mavlink::SigningKey> mavlink_key;
+    gimbal::mavlink::FramerOptions framer_options;
+    if (config_.mavlink.gimbal_manager && config_.mavlink.signing_key_file) {
+        mavlink_key = load_signing_key(*config_.mavlink.signing_key_file);
+        framer_options = {.accept_signed = true, .signing_key = mavlink_key};
+    }
     // The vehicle feed: its events go to every gimbal's streams.
-    vehicle_ = std::make_unique<VehicleFeed>(io_, config_.vehicle, [this](const auto& e) {
-        for (const auto& s : sessions_) events_.publish(s->name(), e);
-    });
+    vehicle_ = std::make_unique<VehicleFeed>(
+        io_, config_.vehicle,
+        [this](const auto& e) {
+            for (const auto& s : sessions_) events_.publish(s->name(), e);
+        },
+        framer_options);
     for (std::size_t i = 0; i < sessions_.size(); ++i) {
         auto& session = *sessions_[i];
         vehicle_->add_gimbal(session, config_.gimbals[i]);
         session.set_vehicle_snapshot([this, &session] { return vehicle_->snapshot(session); });
+    }
+    if (config_.mavlink.gimbal_manager) {
+        // Contract section 8: our system id defaults to vehicle.system_id when that is set.
+        cfg::MavlinkConfig mavlink = config_.mavlink;
+        if (!mavlink.system_id && config_.vehicle) mavlink.system_id = config_.vehicle->system_id;
+        mavlink_ = std::make_unique<MavlinkEndpoint>(io_, mavlink, mavlink_key, *vehicle_,
+                                                     *request_path_, request_path_->sessions());
+        for (auto& session : sessions_)
+            session->add_state_key(
+                "mavlink", [this, name = session->name()] { return mavlink_->snapshot(name); });
     }
 }
 
@@ -153,6 +173,7 @@ void App::shutdown() {
     if (stopping_) return;
     stopping_ = true;
     notify::stopping();
+    if (mavlink_) mavlink_->stop();
     vehicle_->stop();
     // Sessions first: their cease-fire goes out before the links close.
     for (auto& s : sessions_) s->stop();
@@ -187,6 +208,7 @@ int App::run() {
     for (auto& s : sessions_) s->start();
     server_->start();
     vehicle_->start();
+    if (mavlink_) mavlink_->start();
     signals_.async_wait([this](const boost::system::error_code& e, int s) { on_signal(e, s); });
     const auto local = server_->local_endpoint();
     nlohmann::json gimbals = nlohmann::json::array();

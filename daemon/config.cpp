@@ -648,6 +648,44 @@ VehicleConfig read_vehicle(Fields& f) {
     return vehicle;
 }
 
+void read_mavlink(Fields& f, MavlinkConfig& m) {
+    f.boolean("gimbal_manager", m.gimbal_manager);
+    if (const json* id = f.find("system_id"); id != nullptr && !id->is_null()) {
+        std::uint8_t system_id = 0;
+        if (f.integer("system_id", system_id, {1, 255})) m.system_id = system_id;
+    }
+    f.integer("component_id", m.component_id, {1, 255});
+    if (const json* targets = f.find("targets")) {
+        if (!targets->is_array()) {
+            f.problem("targets", "must be an array of \"host:port\" strings");
+        } else {
+            for (std::size_t i = 0; i < targets->size(); ++i) {
+                const json& t = (*targets)[i];
+                const std::string text = t.is_string() ? t.get<std::string>() : std::string();
+                const auto colon = text.rfind(':');
+                int port = 0;
+                if (colon != std::string::npos && colon > 0) {
+                    const std::string digits = text.substr(colon + 1);
+                    if (!digits.empty() && digits.size() <= 5 &&
+                        digits.find_first_not_of("0123456789") == std::string::npos)
+                        port = std::stoi(digits);
+                }
+                if (port < 1 || port > 65535)
+                    f.problems().add(index_path(f.path("targets"), i),
+                                     "must be \"host:port\" with a port 1..65535");
+                else
+                    m.targets.push_back(text);
+            }
+        }
+    }
+    if (const json* key = f.find("signing_key_file"); key != nullptr && !key->is_null()) {
+        if (!key->is_string() || key->get_ref<const std::string&>().empty())
+            f.problem("signing_key_file", "must be null or a file path");
+        else
+            m.signing_key_file = key->get<std::string>();
+    }
+}
+
 // Object sections with no cross-dependencies: read each when present.
 template <class Read>
 void section(Fields& root, std::string_view key, Read read) {
@@ -835,7 +873,11 @@ ConfigResult parse_config(std::string_view text, GimbalsSection gimbals) {
     });
     section(root, "log", [&](Fields& f) { read_log(f, config.log); });
     section(root, "vehicle", [&](Fields& f) { config.vehicle = read_vehicle(f); });
+    section(root, "mavlink", [&](Fields& f) { read_mavlink(f, config.mavlink); });
     root.finish();
+    if (config.mavlink.gimbal_manager && !config.vehicle)
+        problems.add("mavlink.gimbal_manager",
+                     "needs a vehicle section: the gimbal manager talks on vehicle.source");
     check_serial_devices_unique(config, problems);
     if (config.laser.allow_fire && !config.command.bind.is_loopback() &&
         config.command.auth == AuthMode::none)
@@ -985,6 +1027,13 @@ json to_json(const Config& config, bool show_token) {
           {"file", config.log.file ? json(*config.log.file) : json(nullptr)}}},
     };
     if (config.vehicle) out["vehicle"] = vehicle_to_json(*config.vehicle);
+    const MavlinkConfig& m = config.mavlink;
+    out["mavlink"] = {
+        {"gimbal_manager", m.gimbal_manager},
+        {"system_id", m.system_id ? json(*m.system_id) : json(nullptr)},
+        {"component_id", m.component_id},
+        {"targets", m.targets},
+        {"signing_key_file", m.signing_key_file ? json(*m.signing_key_file) : json(nullptr)}};
     return out;
 }
 

@@ -190,6 +190,16 @@ struct VehicleConfig {
     bool operator==(const VehicleConfig&) const = default;
 };
 
+// MAVLink gimbal manager (contract section 8): the vehicle endpoint becomes two-way.
+struct MavlinkConfig {
+    bool gimbal_manager = false;
+    std::optional<std::uint8_t> system_id;  // empty: vehicle.system_id, else the autopilot's
+    std::uint8_t component_id = 154;        // MAV_COMP_ID_GIMBAL
+    std::vector<std::string> targets;       // "host:port", UDP
+    std::optional<std::string> signing_key_file;
+    bool operator==(const MavlinkConfig&) const = default;
+};
+
 struct Config {
     std::vector<GimbalConfig> gimbals;
     CommandConfig command;
@@ -198,6 +208,7 @@ struct Config {
     TelemetryConfig telemetry;
     LogConfig log;
     std::optional<VehicleConfig> vehicle;
+    MavlinkConfig mavlink;
     bool operator==(const Config&) const = default;
 };
 

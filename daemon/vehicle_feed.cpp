@@ -43,14 +43,16 @@ std::string feed_kind(const cfg::GimbalConfig& g) {
 }  // namespace
 
 VehicleFeed::VehicleFeed(boost::asio::io_context& io,
-                         const std::optional<cfg::VehicleConfig>& config, EventSink on_event)
+                         const std::optional<cfg::VehicleConfig>& config, EventSink on_event,
+                         gimbal::mavlink::FramerOptions framer_options)
     : state_(options_of(config)),
       on_event_(std::move(on_event)),
       timer_(io),
       epoch_(std::chrono::steady_clock::now()) {
     if (!config) return;
     source_ = std::make_unique<VehicleSource>(
-        io, *config, [this](const gimbal::mavlink::Message& m) { on_message(m); });
+        io, *config, [this](const gimbal::mavlink::Message& m) { on_message(m); },
+        std::move(framer_options));
     auto options = options_of(config);
     options.source = source_->describe();
     state_ = vehicle::VehicleState(options);
@@ -102,6 +104,7 @@ void VehicleFeed::on_message(const gimbal::mavlink::Message& message) {
         log::info("vehicle_found", "vehicle system id chosen",
                   {{"system_id", *state_.system_id()}, {"component_id", state_.component_id()}});
     check_connection(now);
+    for (const auto& listener : listeners_) listener(message);
 }
 
 void VehicleFeed::check_connection(double now) {

@@ -28,7 +28,8 @@ class VehicleFeed {
 
     // Binds the vehicle source when `config` has one (throws like VehicleSource).
     VehicleFeed(boost::asio::io_context& io,
-                const std::optional<gimbal::daemon::VehicleConfig>& config, EventSink on_event);
+                const std::optional<gimbal::daemon::VehicleConfig>& config, EventSink on_event,
+                gimbal::mavlink::FramerOptions framer_options = {});
     ~VehicleFeed();
 
     // A gimbal to feed, as its configuration says.
@@ -39,6 +40,15 @@ class VehicleFeed {
 
     // The STATE `vehicle` object for `session` (with what that gimbal was fed).
     nlohmann::json snapshot(const GimbalSession& session) const;
+
+    // For the MAVLink gimbal manager: every decoded message after the feed has taken it, the
+    // two-way source (null without a vehicle section) and what the feed knows.
+    void add_listener(std::function<void(const gimbal::mavlink::Message&)> listener) {
+        listeners_.push_back(std::move(listener));
+    }
+    VehicleSource* source() { return source_.get(); }
+    const gimbal::vehicle::VehicleState& vehicle_state() const { return state_; }
+    double monotonic_s() const { return now_s(); }  // the clock vehicle_state() runs on
 
   private:
     struct Target {
@@ -59,6 +69,7 @@ class VehicleFeed {
     void send(Target& target, std::vector<std::uint8_t> bytes);
 
     gimbal::vehicle::VehicleState state_;
+    std::vector<std::function<void(const gimbal::mavlink::Message&)>> listeners_;
     std::unique_ptr<VehicleSource> source_;
     EventSink on_event_;
     std::vector<Target> targets_;

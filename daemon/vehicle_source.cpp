@@ -1,5 +1,7 @@
 #include "vehicle_source.hpp"
 
+#include <algorithm>
+
 #include "link/serial_link.hpp"
 #include "logging.hpp"
 
@@ -9,8 +11,9 @@ namespace cfg = gimbal::daemon;
 namespace log = gimbal::log;
 
 VehicleSource::VehicleSource(boost::asio::io_context& io, const cfg::VehicleConfig& config,
-                             MessageHandler on_message)
-    : on_message_(std::move(on_message)) {
+                             MessageHandler on_message,
+                             gimbal::mavlink::FramerOptions framer_options)
+    : on_message_(std::move(on_message)), framer_(std::move(framer_options)) {
     if (const auto* udp = std::get_if<cfg::UdpSource>(&config.source)) {
         const boost::asio::ip::udp::endpoint local(udp->bind, udp->port);
         socket_ = std::make_unique<boost::asio::ip::udp::socket>(io);
@@ -73,10 +76,61 @@ void VehicleSource::do_receive() {
                                 [this](const boost::system::error_code& ec, std::size_t n) {
                                     if (stopped_ || ec == boost::asio::error::operation_aborted)
                                         return;
-                                    if (!ec)
+                                    if (!ec) {
+                                        remember_peer();
                                         on_bytes(std::span<const std::uint8_t>(buffer_.data(), n));
+                                    }
                                     do_receive();
                                 });
+}
+
+namespace {
+
+std::string endpoint_text(const boost::asio::ip::udp::endpoint& e) {
+    const auto a = e.address();
+    return (a.is_v6() ? "[" + a.to_string() + "]" : a.to_string()) + ":" + std::to_string(e.port());
+}
+
+}  // namespace
+
+void VehicleSource::remember_peer() {
+    if (std::find(peers_.begin(), peers_.end(), sender_) != peers_.end()) return;
+    if (peers_.size() == max_peers) peers_.erase(peers_.begin());
+    peers_.push_back(sender_);
+}
+
+bool VehicleSource::send(std::span<const std::uint8_t> frame) {
+    if (serial_) return serial_->send(std::vector<std::uint8_t>(frame.begin(), frame.end()));
+    if (!socket_) return false;
+    bool any = false;
+    const auto send_to = [&](const boost::asio::ip::udp::endpoint& to) {
+        boost::system::error_code ec;  // a full buffer or an unreachable peer drops one frame
+        socket_->send_to(boost::asio::buffer(frame.data(), frame.size()), to, 0, ec);
+        any = any || !ec;
+    };
+    for (const auto& p : peers_) send_to(p);
+    for (const auto& t : targets_)
+        if (std::find(peers_.begin(), peers_.end(), t) == peers_.end()) send_to(t);
+    return any;
+}
+
+void VehicleSource::set_targets(std::vector<boost::asio::ip::udp::endpoint> targets) {
+    targets_ = std::move(targets);
+}
+
+std::string VehicleSource::current_peer() const {
+    if (serial_) return description_;
+    return "udp " + endpoint_text(sender_);
+}
+
+std::vector<std::string> VehicleSource::peers() const {
+    std::vector<std::string> out;
+    if (serial_) {
+        out.push_back(description_);
+        return out;
+    }
+    for (const auto& p : peers_) out.push_back("udp " + endpoint_text(p));
+    return out;
 }
 
 void VehicleSource::on_bytes(std::span<const std::uint8_t> bytes) {

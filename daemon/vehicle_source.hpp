@@ -1,6 +1,8 @@
 // Where the aircraft's MAVLink comes from (config `vehicle.source`): a UDP port the daemon
 // listens on like a GCS, or a serial device. Bytes go through a mavlink::Framer; every decoded
-// message is handed on. No state here: VehicleFeed owns it.
+// message is handed on. No state here: VehicleFeed owns it. With the MAVLink gimbal manager
+// the endpoint is two-way: send() writes to every UDP peer heard (and the configured targets),
+// or to the serial port.
 #pragma once
 
 #include <array>
@@ -9,6 +11,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "config.hpp"
 #include "link/link.hpp"
@@ -23,7 +26,7 @@ class VehicleSource {
     // Binds the UDP socket (throws boost::system::system_error when it cannot) or prepares
     // the serial link (opened, and reopened, by start()).
     VehicleSource(boost::asio::io_context& io, const gimbal::daemon::VehicleConfig& config,
-                  MessageHandler on_message);
+                  MessageHandler on_message, gimbal::mavlink::FramerOptions framer_options = {});
     ~VehicleSource();
 
     void start();
@@ -33,15 +36,29 @@ class VehicleSource {
     std::string describe() const;
     const gimbal::mavlink::FramerStats& stats() const { return framer_.stats(); }
 
+    // Two-way use (gimbal manager). A frame to every UDP peer heard and every target, or to
+    // the serial port; false when it could not be queued anywhere.
+    bool send(std::span<const std::uint8_t> frame);
+    void set_targets(std::vector<boost::asio::ip::udp::endpoint> targets);
+    // Inside a MessageHandler call: where the message came from ("udp 127.0.0.1:14551",
+    // "serial /dev/ttyACM0").
+    std::string current_peer() const;
+    // Every UDP peer heard (at most max_peers, the oldest forgotten first).
+    std::vector<std::string> peers() const;
+    static constexpr std::size_t max_peers = 16;
+
   private:
     void do_receive();
     void on_bytes(std::span<const std::uint8_t> bytes);
+    void remember_peer();
 
     MessageHandler on_message_;
     gimbal::mavlink::Framer framer_;
     std::unique_ptr<boost::asio::ip::udp::socket> socket_;  // udp source
     boost::asio::ip::udp::endpoint sender_;
     std::array<std::uint8_t, 65536> buffer_{};
+    std::vector<boost::asio::ip::udp::endpoint> peers_;
+    std::vector<boost::asio::ip::udp::endpoint> targets_;
     std::unique_ptr<Link> serial_;  // serial source
     std::string description_;
     bool stopped_ = true;

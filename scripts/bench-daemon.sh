@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Builds gimbald, gimbal-sim and the latency benchmark in release mode and runs the daemon
-# benchmarks (docs/operations.md, "Daemon benchmarks"): command latency, load (CPU, RSS) and
-# the size of STATE datagrams.
+# benchmarks (docs/operations.md, "Daemon benchmarks"): command latency (JSON geopoint, and a
+# MAVLink DO_GIMBAL_MANAGER_PITCHYAW through the gimbal manager at 100 commands/s), load (CPU,
+# RSS) and the size of STATE datagrams.
 # Timings, not tests: nothing here fails on a missed target, it only says so.
 #
 # Environment:
@@ -9,6 +10,7 @@
 #                 `release` preset's build/release
 #   JOBS          parallel build jobs (default: nproc)
 #   LATENCY_ARGS  extra arguments for bench_daemon_latency, e.g. "--count 20000 --poll busy"
+#   MAVLINK_ARGS  extra arguments for its --mavlink run (default 3000 commands at 100/s)
 #   LOAD_ARGS     extra arguments for load_bench.py, e.g. "--window 60"
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -31,6 +33,11 @@ echo "== latency (load average $(cut -d' ' -f1-3 /proc/loadavg), $(nproc) cores)
 # shellcheck disable=SC2086  # the extra arguments are meant to split
 "$latency" --gimbald "$gimbald" ${LATENCY_ARGS:-} | tee "$out/latency"
 echo
+echo "== MAVLink latency (load average $(cut -d' ' -f1-3 /proc/loadavg))"
+# shellcheck disable=SC2086
+"$latency" --gimbald "$gimbald" --mavlink --rate 100 --count 3000 ${MAVLINK_ARGS:-} \
+    | tee "$out/mavlink"
+echo
 echo "== load (load average $(cut -d' ' -f1-3 /proc/loadavg))"
 # shellcheck disable=SC2086
 python3 tests/bench/daemon/load_bench.py --gimbald "$gimbald" --gimbal-sim "$sim" \
@@ -48,5 +55,9 @@ printf '  latency  p50 %s us, p99 %s us (target < 200), p99.9 %s us, max %s us, 
     "$(value p999_us "$out/latency")" "$(value max_us "$out/latency")" \
     "$(value lost "$out/latency")" \
     "$(( $(value count "$out/latency") + $(value lost "$out/latency") ))"
+printf '  mavlink  p50 %s us, p99 %s us (target < 300), max %s us, lost %s of %s (PITCHYAW -> OrionCmd, 100/s)\n' \
+    "$(value p50_us "$out/mavlink")" "$(value p99_us "$out/mavlink")" \
+    "$(value max_us "$out/mavlink")" "$(value lost "$out/mavlink")" \
+    "$(( $(value count "$out/mavlink") + $(value lost "$out/mavlink") ))"
 printf '  load     CPU %s %% of a core (target < 1), VmRSS %s kB, VmHWM %s kB (target < 20480)\n' \
     "$(value cpu_pct "$out/load")" "$(value rss_kb "$out/load")" "$(value hwm_kb "$out/load")"

@@ -31,6 +31,12 @@ missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
+# Node.js and npm run the tests' npm packages (node-mavlink). A machine may already have
+# them from elsewhere (NodeSource's nodejs bundles npm and conflicts with Debian's npm):
+# install Debian's only when the commands are missing.
+if [ -z "$cross_arch" ] && { ! command -v node >/dev/null 2>&1 || ! command -v npm >/dev/null 2>&1; }; then
+  missing+=(nodejs npm)
+fi
 [ ${#missing[@]} -eq 0 ] && exit 0
 
 echo "installing: ${missing[*]}" >&2

@@ -1,6 +1,7 @@
 #include "mavlink/framer.hpp"
 
 #include "mavlink/payload.hpp"
+#include "mavlink/signing.hpp"
 
 namespace gimbal::mavlink {
 
@@ -53,6 +54,15 @@ Framer::Step Framer::examine(const std::uint8_t* frame, std::size_t available) {
     message_.compid = frame[v2 ? 6 : 4];
     message_.msgid = msgid;
     message_.payload = *decode_payload(msgid, {frame + header, length});
+    message_.signature.reset();
+    if (is_signed) {
+        const std::uint8_t* sig = frame + header + length + checksum_size;
+        Signature s{sig[0], 0, false};
+        for (std::size_t i = 0; i < 6; ++i) s.timestamp |= std::uint64_t{sig[1 + i]} << (8 * i);
+        if (options_.signing_key)
+            s.verified = verify_signature(*options_.signing_key, {frame, total});
+        message_.signature = s;
+    }
     return {Outcome::delivered, total};
 }
 

@@ -8,11 +8,13 @@
 // frame starts there); otherwise it is a false start. So an unknown frame is skipped once the
 // first byte of the next frame has arrived.
 //
-// Signed frames (incompat flag 0x01) are not verified: with accept_signed they are delivered
-// like unsigned ones (the signature is skipped), without it they are dropped and counted.
+// Signed frames (incompat flag 0x01): with accept_signed they are delivered with their
+// Message::signature (verified against signing_key when one is given; the replay check is the
+// caller's, see SigningStreams), without it they are dropped and counted.
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -20,11 +22,13 @@
 
 #include "mavlink/framing.hpp"
 #include "mavlink/messages.hpp"
+#include "mavlink/signing.hpp"
 
 namespace gimbal::mavlink {
 
 struct FramerOptions {
     bool accept_signed = false;
+    std::optional<SigningKey> signing_key;
 };
 
 struct FramerStats {

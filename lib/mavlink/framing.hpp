@@ -34,5 +34,9 @@ std::vector<std::uint8_t> encode_v1(const Payload& payload, std::uint8_t sysid, 
 // Unsigned, with trailing zero bytes of the payload left out (at least one byte is kept).
 std::vector<std::uint8_t> encode_v2(const Payload& payload, std::uint8_t sysid, std::uint8_t compid,
                                     std::uint8_t seq);
+// The same with incompat flag 0x01 set (and in the CRC) when `signed_flag`, ready for
+// append_signature() (signing.hpp) to add the 13 signature bytes.
+std::vector<std::uint8_t> encode_v2(const Payload& payload, std::uint8_t sysid, std::uint8_t compid,
+                                    std::uint8_t seq, bool signed_flag);
 
 }  // namespace gimbal::mavlink

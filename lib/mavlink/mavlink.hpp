@@ -2,8 +2,10 @@
 // the streaming framer. Pure: no I/O, no clocks.
 #pragma once
 
-#include "mavlink/crc.hpp"       // IWYU pragma: export
-#include "mavlink/framer.hpp"    // IWYU pragma: export
-#include "mavlink/framing.hpp"   // IWYU pragma: export
-#include "mavlink/messages.hpp"  // IWYU pragma: export
-#include "mavlink/payload.hpp"   // IWYU pragma: export
+#include "mavlink/crc.hpp"              // IWYU pragma: export
+#include "mavlink/framer.hpp"           // IWYU pragma: export
+#include "mavlink/framing.hpp"          // IWYU pragma: export
+#include "mavlink/gimbal_messages.hpp"  // IWYU pragma: export
+#include "mavlink/messages.hpp"         // IWYU pragma: export
+#include "mavlink/payload.hpp"          // IWYU pragma: export
+#include "mavlink/signing.hpp"          // IWYU pragma: export

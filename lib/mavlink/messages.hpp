@@ -6,7 +6,10 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <variant>
+
+#include "mavlink/gimbal_messages.hpp"
 
 namespace gimbal::mavlink {
 
@@ -15,6 +18,7 @@ namespace gimbal::mavlink {
 struct Heartbeat {
     static constexpr std::uint32_t id = 0;
     static constexpr std::uint8_t length = 9;
+    static constexpr std::uint8_t max_length = length;
     static constexpr std::uint8_t crc_extra = 50;
 
     std::uint32_t custom_mode = 0;
@@ -26,6 +30,7 @@ struct Heartbeat {
 struct SystemTime {
     static constexpr std::uint32_t id = 2;
     static constexpr std::uint8_t length = 12;
+    static constexpr std::uint8_t max_length = length;
     static constexpr std::uint8_t crc_extra = 137;
 
     std::uint64_t time_unix_usec = 0;  // us since the UNIX epoch; 0: the sender has no time
@@ -37,6 +42,7 @@ struct SystemTime {
 struct Attitude {
     static constexpr std::uint32_t id = 30;
     static constexpr std::uint8_t length = 28;
+    static constexpr std::uint8_t max_length = length;
     static constexpr std::uint8_t crc_extra = 39;
 
     std::uint32_t time_boot_ms = 0;
@@ -49,6 +55,7 @@ struct Attitude {
 struct GlobalPositionInt {
     static constexpr std::uint32_t id = 33;
     static constexpr std::uint8_t length = 28;
+    static constexpr std::uint8_t max_length = length;
     static constexpr std::uint8_t crc_extra = 104;
     static constexpr std::uint16_t hdg_unknown = 0xFFFF;
 
@@ -64,6 +71,7 @@ struct GlobalPositionInt {
 struct RcChannels {
     static constexpr std::uint32_t id = 65;
     static constexpr std::uint8_t length = 42;
+    static constexpr std::uint8_t max_length = length;
     static constexpr std::uint8_t crc_extra = 118;
     static constexpr std::uint16_t channel_unused = 0xFFFF;
     static constexpr std::uint8_t rssi_unknown = 0xFF;
@@ -75,7 +83,21 @@ struct RcChannels {
     bool operator==(const RcChannels&) const = default;
 };
 
-using Payload = std::variant<Heartbeat, SystemTime, Attitude, GlobalPositionInt, RcChannels>;
+using Payload =
+    std::variant<Heartbeat, SystemTime, Attitude, GlobalPositionInt, RcChannels, CommandInt,
+                 CommandLong, CommandAck, CameraInformation, CameraFovStatus,
+                 GimbalManagerInformation, GimbalManagerStatus, GimbalManagerSetAttitude,
+                 GimbalDeviceInformation, GimbalDeviceSetAttitude, GimbalDeviceAttitudeStatus,
+                 GimbalManagerSetPitchyaw>;
+
+// The 13 bytes after a signed v2 frame. `verified`: the framer had the key and the 48-bit
+// signature matched (replay is checked by SigningStreams, which needs the local clock).
+struct Signature {
+    std::uint8_t link_id = 0;
+    std::uint64_t timestamp = 0;  // 10 us units since 2015-01-01 00:00 UTC
+    bool verified = false;
+    bool operator==(const Signature&) const = default;
+};
 
 // One decoded message with its frame header.
 struct Message {
@@ -83,14 +105,16 @@ struct Message {
     std::uint8_t seq = 0, sysid = 0, compid = 0;
     std::uint32_t msgid = 0;
     Payload payload;
+    std::optional<Signature> signature;  // signed v2 frames only
     bool operator==(const Message&) const = default;
 };
 
 // What the framer needs to know about a message id.
 struct MessageInfo {
     std::uint32_t id;
-    std::uint8_t length;  // wire length of the fields we know (no extensions)
+    std::uint8_t length;  // wire length without extension fields
     std::uint8_t crc_extra;
+    std::uint8_t max_length;  // with extension fields
 };
 
 // nullptr for an id this codec does not decode.

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <bit>
 #include <type_traits>
+#include <utility>
+#include <variant>
 
 namespace gimbal::mavlink {
 
@@ -19,6 +21,10 @@ class Writer {
         const U bits = std::bit_cast<U>(value);
         for (std::size_t i = 0; i < sizeof(U); ++i)
             out_.bytes[out_.size++] = static_cast<std::uint8_t>(bits >> (8 * i));
+    }
+    template <class T, std::size_t N>
+    void put(const std::array<T, N>& values) {
+        for (const T& v : values) put(v);
     }
 
   private:
@@ -38,6 +44,14 @@ class Reader {
             bits = static_cast<U>(bits | static_cast<U>(static_cast<U>(in_[at_ + i]) << (8 * i)));
         at_ += sizeof(U);
         return std::bit_cast<T>(bits);
+    }
+    template <class T, std::size_t N>
+    void get(std::array<T, N>& values) {
+        for (T& v : values) v = get<T>();
+    }
+    template <class T>
+    void get(T& value) {
+        value = get<T>();
     }
 
   private:
@@ -133,10 +147,67 @@ void read(Reader& r, RcChannels& m) {
     m.rssi = r.get<std::uint8_t>();
 }
 
+// The gimbal-manager messages (ids from 75 on): one field list each, in wire order, shared by read
+// and write.
+template <class IO, class Q>
+void fields(IO& io, Q& m) {
+    using M = std::remove_const_t<Q>;
+    if constexpr (std::is_same_v<M, CommandInt>) {
+        io(m.param1, m.param2, m.param3, m.param4, m.x, m.y, m.z, m.command, m.target_system,
+           m.target_component, m.frame, m.current, m.autocontinue);
+    } else if constexpr (std::is_same_v<M, CommandLong>) {
+        io(m.param, m.command, m.target_system, m.target_component, m.confirmation);
+    } else if constexpr (std::is_same_v<M, CommandAck>) {
+        io(m.command, m.result, m.progress, m.result_param2, m.target_system, m.target_component);
+    } else if constexpr (std::is_same_v<M, CameraInformation>) {
+        io(m.time_boot_ms, m.firmware_version, m.focal_length, m.sensor_size_h, m.sensor_size_v,
+           m.flags, m.resolution_h, m.resolution_v, m.cam_definition_version, m.vendor_name,
+           m.model_name, m.lens_id, m.cam_definition_uri, m.gimbal_device_id, m.camera_device_id);
+    } else if constexpr (std::is_same_v<M, CameraFovStatus>) {
+        io(m.time_boot_ms, m.lat_camera, m.lon_camera, m.alt_camera, m.lat_image, m.lon_image,
+           m.alt_image, m.q, m.hfov, m.vfov, m.camera_device_id);
+    } else if constexpr (std::is_same_v<M, GimbalManagerInformation>) {
+        io(m.time_boot_ms, m.cap_flags, m.roll_min, m.roll_max, m.pitch_min, m.pitch_max, m.yaw_min,
+           m.yaw_max, m.gimbal_device_id);
+    } else if constexpr (std::is_same_v<M, GimbalManagerStatus>) {
+        io(m.time_boot_ms, m.flags, m.gimbal_device_id, m.primary_control_sysid,
+           m.primary_control_compid, m.secondary_control_sysid, m.secondary_control_compid);
+    } else if constexpr (std::is_same_v<M, GimbalManagerSetAttitude>) {
+        io(m.flags, m.q, m.angular_velocity_x, m.angular_velocity_y, m.angular_velocity_z,
+           m.target_system, m.target_component, m.gimbal_device_id);
+    } else if constexpr (std::is_same_v<M, GimbalDeviceInformation>) {
+        io(m.uid, m.time_boot_ms, m.firmware_version, m.hardware_version, m.roll_min, m.roll_max,
+           m.pitch_min, m.pitch_max, m.yaw_min, m.yaw_max, m.cap_flags, m.custom_cap_flags,
+           m.vendor_name, m.model_name, m.custom_name, m.gimbal_device_id, m.cap_flags2);
+    } else if constexpr (std::is_same_v<M, GimbalDeviceSetAttitude>) {
+        io(m.q, m.angular_velocity_x, m.angular_velocity_y, m.angular_velocity_z, m.flags,
+           m.target_system, m.target_component);
+    } else if constexpr (std::is_same_v<M, GimbalDeviceAttitudeStatus>) {
+        io(m.time_boot_ms, m.q, m.angular_velocity_x, m.angular_velocity_y, m.angular_velocity_z,
+           m.failure_flags, m.flags, m.target_system, m.target_component, m.delta_yaw,
+           m.delta_yaw_velocity, m.gimbal_device_id);
+    } else if constexpr (std::is_same_v<M, GimbalManagerSetPitchyaw>) {
+        io(m.flags, m.pitch, m.yaw, m.pitch_rate, m.yaw_rate, m.target_system, m.target_component,
+           m.gimbal_device_id);
+    }
+}
+
+template <class M>
+requires(M::id >= 75) void write(Writer& w, const M& m) {
+    auto io = [&](const auto&... f) { (w.put(f), ...); };
+    fields(io, m);
+}
+
+template <class M>
+requires(M::id >= 75) void read(Reader& r, M& m) {
+    auto io = [&](auto&... f) { (r.get(f), ...); };
+    fields(io, m);
+}
+
 template <class M>
 Payload decode_as(std::span<const std::uint8_t> bytes) {
     std::array<std::uint8_t, max_known_length> padded{};
-    std::copy_n(bytes.begin(), std::min<std::size_t>(bytes.size(), M::length), padded.begin());
+    std::copy_n(bytes.begin(), std::min<std::size_t>(bytes.size(), M::max_length), padded.begin());
     Reader r(padded.data());
     M m;
     read(r, m);
@@ -145,12 +216,28 @@ Payload decode_as(std::span<const std::uint8_t> bytes) {
 
 constexpr MessageInfo info_of(auto message) {
     using M = decltype(message);
-    return {M::id, M::length, M::crc_extra};
+    return {M::id, M::length, M::crc_extra, M::max_length};
 }
 
-constexpr std::array known_messages{info_of(Heartbeat{}), info_of(SystemTime{}),
-                                    info_of(Attitude{}), info_of(GlobalPositionInt{}),
-                                    info_of(RcChannels{})};
+template <std::size_t... I>
+constexpr auto all_infos(std::index_sequence<I...>) {
+    return std::array{info_of(std::variant_alternative_t<I, Payload>{})...};
+}
+
+constexpr auto known_messages = all_infos(std::make_index_sequence<std::variant_size_v<Payload>>{});
+
+template <std::size_t... I>
+std::optional<Payload> decode_by_id(std::uint32_t msgid, std::span<const std::uint8_t> bytes,
+                                    std::index_sequence<I...>) {
+    std::optional<Payload> out;
+    const auto try_one = [&]<class M>(M*) {
+        if (M::id != msgid) return false;
+        out = decode_as<M>(bytes);
+        return true;
+    };
+    (void)(try_one(static_cast<std::variant_alternative_t<I, Payload>*>(nullptr)) || ...);
+    return out;
+}
 
 }  // namespace
 
@@ -172,20 +259,7 @@ PayloadBytes encode_payload(const Payload& payload) {
 }
 
 std::optional<Payload> decode_payload(std::uint32_t msgid, std::span<const std::uint8_t> bytes) {
-    switch (msgid) {
-        case Heartbeat::id:
-            return decode_as<Heartbeat>(bytes);
-        case SystemTime::id:
-            return decode_as<SystemTime>(bytes);
-        case Attitude::id:
-            return decode_as<Attitude>(bytes);
-        case GlobalPositionInt::id:
-            return decode_as<GlobalPositionInt>(bytes);
-        case RcChannels::id:
-            return decode_as<RcChannels>(bytes);
-        default:
-            return std::nullopt;
-    }
+    return decode_by_id(msgid, bytes, std::make_index_sequence<std::variant_size_v<Payload>>{});
 }
 
 }  // namespace gimbal::mavlink

@@ -48,8 +48,8 @@ std::vector<Sample> sample_frames(std::uint32_t seed) {
         const auto seq = static_cast<std::uint8_t>(rng());
         const auto sys = static_cast<std::uint8_t>(rng());
         const auto comp = static_cast<std::uint8_t>(rng());
-        out.push_back({encode_v1(p, sys, comp, seq), Message{1, seq, sys, comp, message_id(p), p}});
-        out.push_back({encode_v2(p, sys, comp, seq), Message{2, seq, sys, comp, message_id(p), p}});
+        out.push_back({encode_v1(p, sys, comp, seq), Message{1, seq, sys, comp, message_id(p), p, {}}});
+        out.push_back({encode_v2(p, sys, comp, seq), Message{2, seq, sys, comp, message_id(p), p, {}}});
     }
     return out;
 }
@@ -435,15 +435,16 @@ TEST_CASE("signed frames are rejected by default and accepted when configured",
         CHECK(s.dropped_bytes == 0);
         CHECK(h.counters_consistent());
     }
-    SECTION("accept_signed: delivered without verifying, signature skipped") {
+    SECTION("accept_signed: delivered with its signature fields, not verified without a key") {
         for (std::size_t cut = 0; cut <= signed_frame.size(); ++cut) {
             CAPTURE(cut);
-            Harness h(FramerOptions{.accept_signed = true});
+            Harness h(FramerOptions{.accept_signed = true, .signing_key = {}});
             const Bytes stream = concat({signed_frame, next.wire});
             h.push(std::span(stream).first(cut));
             h.push(std::span(stream).subspan(cut));
             REQUIRE(h.got.size() == 2);
-            CHECK(h.got[0] == Message{2, 0xEF, 1, 1, 0, Heartbeat{0, 2, 3, 0x51, 3, 3}});
+            CHECK(h.got[0] == Message{2, 0xEF, 1, 1, 0, Heartbeat{0, 2, 3, 0x51, 3, 3},
+                                      Signature{0x01, 0x605040302010, false}});
             CHECK(h.got[1] == next.message);
             const FramerStats& s = h.framer.stats();
             CHECK(s.signed_rejected == 0);
@@ -457,7 +458,7 @@ TEST_CASE("signed frames are rejected by default and accepted when configured",
         bad[12] ^= 0x01;
         const Tail tail = clean_tail(samples);
         for (const bool accept : {false, true}) {
-            Harness h(FramerOptions{.accept_signed = accept});
+            Harness h(FramerOptions{.accept_signed = accept, .signing_key = {}});
             h.push(concat({bad, next.wire, tail.bytes}));
             REQUIRE(h.got.size() == 1 + tail.messages.size());
             CHECK(h.got[0] == next.message);

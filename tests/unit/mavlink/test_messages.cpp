@@ -147,9 +147,9 @@ TEST_CASE("every message encodes to its golden v1 and v2 frames and decodes back
         CHECK(encode_v1(g.payload, 1, 1, 7) == g.v1);
         CHECK(encode_v2(g.payload, 1, 1, 7) == g.v2);
         const Message m1 = decode_one(g.v1);
-        CHECK(m1 == Message{1, 7, 1, 1, message_id(g.payload), g.payload});
+        CHECK(m1 == Message{1, 7, 1, 1, message_id(g.payload), g.payload, {}});
         const Message m2 = decode_one(g.v2);
-        CHECK(m2 == Message{2, 7, 1, 1, message_id(g.payload), g.payload});
+        CHECK(m2 == Message{2, 7, 1, 1, message_id(g.payload), g.payload, {}});
     }
 }
 

@@ -1,0 +1,86 @@
+// The MAVLink gimbal manager (contract section 8): on the vehicle's MAVLink endpoint, gimbald
+// answers COMMAND_LONG/COMMAND_INT and the gimbal set-point messages addressed to it and
+// streams HEARTBEAT, GIMBAL_MANAGER_STATUS, GIMBAL_DEVICE_ATTITUDE_STATUS and
+// CAMERA_FOV_STATUS. What a message means is decided by lib/gimbal_protocol (pure); every
+// gimbal request goes through RequestPath::execute (validation, laser rules, `command` log
+// line with src "mavlink:SYS/COMP"). MAVLink 2 signing when a key is configured.
+#pragma once
+
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/steady_timer.hpp>
+#include <chrono>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "config.hpp"
+#include "gimbal_protocol/commands.hpp"
+#include "gimbal_session.hpp"
+#include "mavlink/messages.hpp"
+#include "mavlink/signing.hpp"
+#include "request_path.hpp"
+#include "vehicle_feed.hpp"
+
+namespace gimbald {
+
+struct MavlinkCounters {
+    std::uint64_t commands = 0;          // commands and set-points addressed to us, handled
+    std::uint64_t denied = 0;            // answered DENIED (control or parameters)
+    std::uint64_t unsigned_ignored = 0;  // signing on: unsigned, badly signed or replayed
+    std::uint64_t sent = 0;              // frames sent
+};
+
+class MavlinkEndpoint {
+  public:
+    // Reads nothing from disk: the signing key comes loaded. Resolves `targets` (throws on a
+    // name that does not resolve). `feed` must have a vehicle source.
+    MavlinkEndpoint(boost::asio::io_context& io, const gimbal::daemon::MavlinkConfig& config,
+                    std::optional<gimbal::mavlink::SigningKey> key, VehicleFeed& feed,
+                    RequestPath& path, const std::vector<GimbalSession*>& sessions);
+    ~MavlinkEndpoint();
+
+    void start();
+    void stop();
+
+    // The STATE `mavlink` object for one gimbal.
+    nlohmann::json snapshot(const std::string& gimbal) const;
+    const MavlinkCounters& counters() const { return counters_; }
+
+  private:
+    void on_message(const gimbal::mavlink::Message& m);
+    bool signature_ok(const gimbal::mavlink::Message& m);
+    void run(gimbal::gimbal_protocol::Mapped mapped, const gimbal::gimbal_protocol::MavId& from,
+             std::optional<std::uint16_t> ack_command);
+    void send(const gimbal::mavlink::Payload& payload);
+    void schedule_tick();
+    void on_tick();
+    std::optional<std::uint8_t> system_id() const;
+    gimbal::gimbal_protocol::VehicleView vehicle_view() const;
+    std::uint32_t time_boot_ms() const;
+    std::uint64_t signing_now() const;
+    nlohmann::json state_of(const std::string& gimbal) const;
+
+    gimbal::daemon::MavlinkConfig config_;
+    std::optional<gimbal::mavlink::SigningKey> key_;
+    gimbal::mavlink::SigningStreams streams_;
+    gimbal::mavlink::SigningClock clock_;
+    VehicleFeed& feed_;
+    RequestPath& path_;
+    std::vector<GimbalSession*> sessions_;
+    gimbal::gimbal_protocol::GimbalManager manager_;
+    boost::asio::steady_timer timer_;
+    std::chrono::steady_clock::time_point epoch_;
+    std::chrono::steady_clock::time_point next_tick_;
+    std::uint64_t ticks_ = 0;
+    std::uint8_t seq_ = 0;
+    MavlinkCounters counters_;
+    bool stopped_ = true;
+};
+
+// A MAVLink signing key file: 32 raw bytes, or 64 hex digits (surrounding white space
+// ignored). Throws std::runtime_error naming the problem.
+gimbal::mavlink::SigningKey load_signing_key(const std::string& path);
+
+}  // namespace gimbald

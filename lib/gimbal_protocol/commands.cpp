@@ -1,0 +1,453 @@
+#include "gimbal_protocol/commands.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "geo/attitude.hpp"
+#include "gimbal_protocol/status.hpp"
+
+namespace gimbal::gimbal_protocol {
+
+namespace mav = gimbal::mavlink;
+using mav::MavResult;
+
+namespace {
+
+constexpr double rad_to_deg = 180.0 / std::numbers::pi;
+
+Mapped answer(MavResult result, std::string reason = {}) {
+    Mapped m;
+    m.result = result;
+    m.reason = std::move(reason);
+    return m;
+}
+
+double wrap180(double deg) {
+    double d = std::fmod(deg + 180.0, 360.0);
+    if (d < 0) d += 360.0;
+    return d - 180.0;
+}
+
+const nlohmann::json* path(const nlohmann::json& j, std::initializer_list<const char*> keys) {
+    const nlohmann::json* at = &j;
+    for (const char* k : keys) {
+        if (!at->is_object()) return nullptr;
+        const auto it = at->find(k);
+        if (it == at->end() || it->is_null()) return nullptr;
+        at = &*it;
+    }
+    return at;
+}
+
+std::optional<double> number_at(const nlohmann::json& j, std::initializer_list<const char*> keys) {
+    const nlohmann::json* v = path(j, keys);
+    if (!v || !v->is_number()) return std::nullopt;
+    return v->get<double>();
+}
+
+// The quaternion's pitch and yaw in degrees (roll is ignored: two-axis gimbals).
+struct PitchYaw {
+    double pitch_deg, yaw_deg;
+};
+std::optional<PitchYaw> pitch_yaw_of(const std::array<float, 4>& q) {
+    for (const float c : q)
+        if (!std::isfinite(c)) return std::nullopt;
+    if (q[0] == 0 && q[1] == 0 && q[2] == 0 && q[3] == 0) return std::nullopt;
+    const auto e = geo::quat_to_euler(geo::Quat{q[0], q[1], q[2], q[3]});
+    return PitchYaw{e.pitch_deg, e.yaw_deg};
+}
+
+}  // namespace
+
+std::vector<ExposedGimbal> expose(const std::vector<std::pair<std::string, std::string>>& gimbals) {
+    std::vector<ExposedGimbal> out;
+    for (const auto& [name, protocol] : gimbals) {
+        if (out.size() == 6) break;
+        out.push_back({name, protocol, static_cast<std::uint8_t>(out.size() + 1)});
+    }
+    return out;
+}
+
+CommandView view(const mav::CommandLong& c) {
+    CommandView v;
+    v.command = c.command;
+    std::copy_n(c.param.begin(), 4, v.param.begin());
+    v.x = c.param[4];
+    v.y = c.param[5];
+    v.z = c.param[6];
+    v.x_unset = std::isnan(c.param[4]);
+    v.y_unset = std::isnan(c.param[5]);
+    v.frame = mav::mav_frame::global_relative_alt;
+    v.target_system = c.target_system;
+    v.target_component = c.target_component;
+    return v;
+}
+
+CommandView view(const mav::CommandInt& c) {
+    CommandView v;
+    v.command = c.command;
+    v.param = {c.param1, c.param2, c.param3, c.param4};
+    constexpr std::int32_t unset = std::numeric_limits<std::int32_t>::max();
+    v.x_unset = c.x == unset;
+    v.y_unset = c.y == unset;
+    v.x = c.x * 1e-7;
+    v.y = c.y * 1e-7;
+    v.z = c.z;
+    v.frame = c.frame;
+    v.is_int = true;
+    v.target_system = c.target_system;
+    v.target_component = c.target_component;
+    return v;
+}
+
+GimbalManager::GimbalManager(std::vector<ExposedGimbal> gimbals) : gimbals_(std::move(gimbals)) {
+    for (const auto& g : gimbals_) controls_[g.device_id];
+}
+
+std::vector<const ExposedGimbal*> GimbalManager::select(std::uint8_t device_id) const {
+    std::vector<const ExposedGimbal*> out;
+    for (const auto& g : gimbals_)
+        if (device_id == 0 || g.device_id == device_id) out.push_back(&g);
+    return out;
+}
+
+std::vector<const ExposedGimbal*> GimbalManager::select(float device_id_param) const {
+    if (std::isnan(device_id_param)) return select(std::uint8_t{0});
+    if (!std::isfinite(device_id_param) || device_id_param < 0 || device_id_param > 255 ||
+        device_id_param != std::trunc(device_id_param))
+        return {};
+    return select(static_cast<std::uint8_t>(device_id_param));
+}
+
+std::optional<Mapped> GimbalManager::check_control(const std::vector<const ExposedGimbal*>& targets,
+                                                   const MavId& sender) {
+    for (const auto* g : targets)
+        if (!controls_.at(g->device_id).allows(sender)) {
+            ++denied_;
+            return answer(MavResult::denied, "another system is in control of " + g->name);
+        }
+    return std::nullopt;
+}
+
+Mapped GimbalManager::command(const CommandView& cmd, const MavId& sender,
+                              const VehicleView& vehicle, const StateLookup& state,
+                              std::uint32_t time_boot_ms) {
+    switch (cmd.command) {
+        case mav::mav_cmd::do_set_roi_location:
+            return roi_location(cmd, sender, vehicle);
+        case mav::mav_cmd::do_set_roi_none:
+            return roi_none(cmd, sender);
+        case mav::mav_cmd::do_gimbal_manager_pitchyaw: {
+            const auto targets = select(cmd.z);
+            if (targets.empty()) return answer(MavResult::denied, "no such gimbal device id");
+            const auto flags =
+                cmd.x_unset || !std::isfinite(cmd.x) || cmd.x < 0 || cmd.x > 4294967295.0
+                    ? std::uint32_t{0}
+                    : static_cast<std::uint32_t>(cmd.x);
+            return pitchyaw(targets, sender, cmd.param[0], cmd.param[1], cmd.param[2], cmd.param[3],
+                            flags, vehicle, state);
+        }
+        case mav::mav_cmd::do_gimbal_manager_configure:
+            return configure(cmd, sender);
+        case mav::mav_cmd::set_camera_zoom:
+            return zoom(cmd, state);
+        case mav::mav_cmd::request_message:
+            return request_message(cmd, state, time_boot_ms);
+        default:
+            return answer(MavResult::unsupported, "command not handled by the gimbal manager");
+    }
+}
+
+Mapped GimbalManager::message(const mav::Payload& payload, const MavId& sender,
+                              const VehicleView& vehicle, const StateLookup& state) {
+    if (const auto* py = std::get_if<mav::GimbalManagerSetPitchyaw>(&payload)) {
+        const auto targets = select(py->gimbal_device_id);
+        if (targets.empty()) return answer(MavResult::denied, "no such gimbal device id");
+        return pitchyaw(targets, sender, py->pitch * rad_to_deg, py->yaw * rad_to_deg,
+                        py->pitch_rate * rad_to_deg, py->yaw_rate * rad_to_deg, py->flags, vehicle,
+                        state);
+    }
+    const auto from_attitude = [&](const std::vector<const ExposedGimbal*>& targets,
+                                   const std::array<float, 4>& q, float rate_pitch, float rate_yaw,
+                                   std::uint32_t flags) {
+        if (targets.empty()) return answer(MavResult::denied, "no such gimbal device id");
+        const auto angles = pitch_yaw_of(q);
+        const double nan = std::numeric_limits<double>::quiet_NaN();
+        return pitchyaw(targets, sender, angles ? angles->pitch_deg : nan,
+                        angles ? angles->yaw_deg : nan, rate_pitch * rad_to_deg,
+                        rate_yaw * rad_to_deg, flags, vehicle, state);
+    };
+    if (const auto* sa = std::get_if<mav::GimbalManagerSetAttitude>(&payload))
+        return from_attitude(select(sa->gimbal_device_id), sa->q, sa->angular_velocity_y,
+                             sa->angular_velocity_z, sa->flags);
+    if (const auto* da = std::get_if<mav::GimbalDeviceSetAttitude>(&payload))
+        return from_attitude(select(std::uint8_t{0}), da->q, da->angular_velocity_y,
+                             da->angular_velocity_z, da->flags);
+    return answer(MavResult::unsupported, "message not handled");
+}
+
+Mapped GimbalManager::pitchyaw(const std::vector<const ExposedGimbal*>& targets,
+                               const MavId& sender, double pitch_deg, double yaw_deg,
+                               double pitch_rate, double yaw_rate, std::uint32_t flags,
+                               const VehicleView& vehicle, const StateLookup& state) {
+    // NaN means "not set"; infinity is never meaningful.
+    for (const double v : {pitch_deg, yaw_deg, pitch_rate, yaw_rate})
+        if (std::isinf(v)) return answer(MavResult::denied, "infinite parameter");
+    const bool angles = !std::isnan(pitch_deg) || !std::isnan(yaw_deg);
+    const bool rates = !std::isnan(pitch_rate) || !std::isnan(yaw_rate);
+    if (!angles && !rates) return answer(MavResult::denied, "no angle and no rate given");
+    if (auto refused = check_control(targets, sender)) return *refused;
+    const bool earth_yaw =
+        (flags & (mav::gimbal_flags::yaw_lock | mav::gimbal_flags::yaw_in_earth_frame)) != 0;
+
+    Mapped out;
+    for (const auto* g : targets) {
+        if (g->protocol == "orion") {
+            nlohmann::json r = {{"gimbal", g->name}};
+            if (angles) {
+                double pan = yaw_deg, tilt = pitch_deg;
+                if (std::isnan(pan) || std::isnan(tilt)) {
+                    const nlohmann::json s = state(g->name);
+                    const auto cur_pan = number_at(s, {"telemetry", "pan"});
+                    const auto cur_tilt = number_at(s, {"telemetry", "tilt"});
+                    if (!cur_pan || !cur_tilt)
+                        return answer(MavResult::temporarily_rejected,
+                                      "no telemetry yet for the angle left out");
+                    if (std::isnan(pan)) pan = *cur_pan;
+                    if (std::isnan(tilt)) tilt = *cur_tilt;
+                } else if (earth_yaw) {
+                    if (!vehicle.heading_deg)
+                        return answer(MavResult::temporarily_rejected,
+                                      "yaw from north needs the aircraft's heading");
+                    pan = wrap180(yaw_deg - *vehicle.heading_deg);
+                }
+                r["cmd"] = "position";
+                r["pan"] = pan;
+                r["tilt"] = tilt;
+            } else {
+                r["cmd"] = "rate";
+                r["pan"] = std::isnan(yaw_rate) ? 0.0 : yaw_rate;
+                r["tilt"] = std::isnan(pitch_rate) ? 0.0 : pitch_rate;
+            }
+            out.requests.push_back({g->name, std::move(r)});
+        } else if (g->protocol == "viewpro") {
+            if (!angles) {
+                if (targets.size() == 1)
+                    return answer(MavResult::unsupported, "Viewpro takes no rate commands");
+                continue;
+            }
+            const nlohmann::json s = state(g->name);
+            const auto cur_pitch = number_at(s, {"output", "gimbal", "pitch"});
+            const auto cur_yaw = number_at(s, {"output", "gimbal", "yaw"});
+            if (!cur_pitch || !cur_yaw)
+                return answer(MavResult::temporarily_rejected, "no Viewpro angles reported yet");
+            double yaw = std::isnan(yaw_deg) ? *cur_yaw : yaw_deg;
+            if (earth_yaw && !std::isnan(yaw_deg)) {
+                if (!vehicle.heading_deg)
+                    return answer(MavResult::temporarily_rejected,
+                                  "yaw from north needs the aircraft's heading");
+                yaw = wrap180(yaw_deg - *vehicle.heading_deg);
+            }
+            const double pitch = std::isnan(pitch_deg) ? *cur_pitch : pitch_deg;
+            // One adjust command moves at most 20 degrees per axis: a larger move converges
+            // over the next commands (a GCS repeats them).
+            const auto step = [](double d) {
+                return std::round(std::clamp(d, -20.0, 20.0) * 100) / 100;
+            };
+            const double dyaw = step(wrap180(yaw - *cur_yaw));
+            const double dpitch = step(pitch - *cur_pitch);
+            nlohmann::json r = {{"cmd", "viewpro_adjust"}, {"gimbal", g->name}};
+            if (dyaw != 0) r["yaw_deg"] = dyaw;
+            if (dpitch != 0 || dyaw == 0) r["pitch_deg"] = dpitch;
+            out.requests.push_back({g->name, std::move(r)});
+        }
+    }
+    if (out.requests.empty()) return answer(MavResult::unsupported, "no gimbal takes this");
+    return out;
+}
+
+Mapped GimbalManager::roi_location(const CommandView& cmd, const MavId& sender,
+                                   const VehicleView& vehicle) {
+    const auto targets = select(cmd.param[0]);
+    if (targets.empty()) return answer(MavResult::denied, "no such gimbal device id");
+    if (std::none_of(targets.begin(), targets.end(),
+                     [](const auto* g) { return g->protocol == "orion"; }))
+        return answer(MavResult::unsupported, "Viewpro has no geopoint");
+    namespace f = mav::mav_frame;
+    const std::uint8_t frame = cmd.frame;
+    bool relative = false;
+    if (frame == f::global || frame == f::global_int)
+        relative = false;
+    else if (frame == f::global_relative_alt || frame == f::global_relative_alt_int)
+        relative = true;
+    else
+        return answer(MavResult::unsupported, "altitude frame not supported");
+    if (cmd.x_unset || cmd.y_unset || !std::isfinite(cmd.x) || !std::isfinite(cmd.y) ||
+        !std::isfinite(cmd.z))
+        return answer(MavResult::denied, "latitude, longitude and altitude are required");
+    if (cmd.x < -90 || cmd.x > 90 || cmd.y < -180 || cmd.y > 180)
+        return answer(MavResult::denied, "latitude or longitude out of range");
+    if (auto refused = check_control(targets, sender)) return *refused;
+    double alt_msl = cmd.z;
+    if (relative) {
+        if (!vehicle.home_msl_m)
+            return answer(MavResult::temporarily_rejected, "home altitude not known yet");
+        alt_msl = *vehicle.home_msl_m + cmd.z;
+    }
+    Mapped out;
+    for (const auto* g : targets) {
+        if (g->protocol != "orion") continue;
+        out.requests.push_back({g->name,
+                                {{"cmd", "geopoint"},
+                                 {"gimbal", g->name},
+                                 {"lat", cmd.x},
+                                 {"lon", cmd.y},
+                                 {"alt", alt_msl},
+                                 {"alt_ref", "msl"}}});
+    }
+    if (out.requests.empty()) return answer(MavResult::unsupported, "Viewpro has no geopoint");
+    return out;
+}
+
+Mapped GimbalManager::roi_none(const CommandView& cmd, const MavId& sender) {
+    const auto targets = select(cmd.param[0]);
+    if (targets.empty()) return answer(MavResult::denied, "no such gimbal device id");
+    if (auto refused = check_control(targets, sender)) return *refused;
+    Mapped out;
+    for (const auto* g : targets)
+        if (g->protocol == "orion")
+            out.requests.push_back({g->name,
+                                    {{"cmd", "rate"},
+                                     {"gimbal", g->name},
+                                     {"pan", 0.0},
+                                     {"tilt", 0.0},
+                                     {"stabilized", true}}});
+    if (out.requests.empty()) return answer(MavResult::unsupported, "Viewpro has no ROI");
+    return out;
+}
+
+Mapped GimbalManager::configure(const CommandView& cmd, const MavId& sender) {
+    const auto targets = select(cmd.z);
+    if (targets.empty()) return answer(MavResult::denied, "no such gimbal device id");
+    // Check every target first so a bad parameter changes nothing anywhere.
+    std::map<std::uint8_t, Control> next;
+    for (const auto* g : targets) {
+        Control c = controls_.at(g->device_id);
+        if (c.configure(sender, cmd.param[0], cmd.param[1], cmd.param[2], cmd.param[3]) !=
+            MavResult::accepted)
+            return answer(MavResult::denied, "invalid control parameters");
+        next[g->device_id] = c;
+    }
+    for (auto& [id, c] : next) controls_[id] = c;
+    return answer(MavResult::accepted);
+}
+
+Mapped GimbalManager::zoom(const CommandView& cmd, const StateLookup& state) {
+    const float type = cmd.param[0];
+    const float value = cmd.param[1];
+    if (!std::isfinite(type) || !std::isfinite(value))
+        return answer(MavResult::denied, "zoom type and value must be numbers");
+    // Target camera id: 0 all, 1..6 gimbal n's camera (cameras attached to us have no
+    // MAVLink component of their own).
+    const auto targets = select(std::isnan(cmd.param[2]) ? 0.0f : cmd.param[2]);
+    if (targets.empty()) return answer(MavResult::denied, "no such camera");
+    Mapped out;
+    for (const auto* g : targets) {
+        if (g->protocol != "orion") continue;
+        const nlohmann::json s = state(g->name);
+        const nlohmann::json* cams = path(s, {"cameras", "cameras"});
+        double max_ratio = 1.0;
+        if (cams && cams->is_array() && !cams->empty()) {
+            const auto lo = number_at((*cams)[0], {"min_focal_length_mm"});
+            const auto hi = number_at((*cams)[0], {"max_focal_length_mm"});
+            if (lo && hi && *lo > 0 && *hi >= *lo) max_ratio = *hi / *lo;
+        }
+        double ratio = 0;
+        if (type == mav::zoom_type::range) {
+            if (value < 0 || value > 100)
+                return answer(MavResult::denied, "zoom range is a percentage 0..100");
+            if (!cams) return answer(MavResult::temporarily_rejected, "camera list not known yet");
+            ratio = 1.0 + (max_ratio - 1.0) * value / 100.0;
+        } else if (type == mav::zoom_type::continuous) {
+            if (value < -1 || value > 1)
+                return answer(MavResult::denied, "continuous zoom is -1..1");
+            // OrionCameraState takes a zoom ratio, not a rate: zoom in or out goes all the way;
+            // stop (0) leaves the lens where it is.
+            if (value == 0) continue;
+            if (value > 0 && !cams)
+                return answer(MavResult::temporarily_rejected, "camera list not known yet");
+            ratio = value > 0 ? max_ratio : 1.0;
+        } else {
+            return answer(MavResult::unsupported, "zoom type not supported");
+        }
+        out.requests.push_back({g->name,
+                                {{"cmd", "camera_zoom"},
+                                 {"gimbal", g->name},
+                                 {"zoom", std::round(ratio * 100) / 100}}});
+    }
+    if (out.requests.empty()) {
+        const bool any_orion = std::any_of(targets.begin(), targets.end(),
+                                           [](const auto* g) { return g->protocol == "orion"; });
+        return any_orion ? answer(MavResult::accepted)
+                         : answer(MavResult::unsupported, "Viewpro zoom is not supported");
+    }
+    return out;
+}
+
+Mapped GimbalManager::request_message(const CommandView& cmd, const StateLookup& state,
+                                      std::uint32_t time_boot_ms) {
+    const float id = cmd.param[0];
+    if (!std::isfinite(id) || id < 0 || id != std::trunc(id))
+        return answer(MavResult::denied, "message id must be a whole number");
+    // param2 may name one gimbal device (0 or unset: all).
+    const auto targets = select(std::isnan(cmd.param[1]) ? 0.0f : cmd.param[1]);
+    if (targets.empty()) return answer(MavResult::denied, "no such gimbal device id");
+    Mapped out;
+    const auto msgid = static_cast<std::uint32_t>(id);
+    for (const auto* g : targets) {
+        const nlohmann::json s = state(g->name);
+        switch (msgid) {
+            case mav::GimbalManagerInformation::id:
+                out.replies.emplace_back(manager_information(*g, s, time_boot_ms));
+                break;
+            case mav::GimbalDeviceInformation::id:
+                out.replies.emplace_back(device_information(*g, s, time_boot_ms));
+                break;
+            case mav::CameraInformation::id:
+                out.replies.emplace_back(camera_information(*g, s, time_boot_ms));
+                break;
+            case mav::GimbalManagerStatus::id:
+                out.replies.emplace_back(
+                    manager_status(*g, controls_.at(g->device_id), time_boot_ms));
+                break;
+            case mav::GimbalDeviceAttitudeStatus::id:
+                out.replies.emplace_back(attitude_status(*g, s, time_boot_ms));
+                break;
+            case mav::CameraFovStatus::id:
+                out.replies.emplace_back(fov_status(*g, s, time_boot_ms));
+                break;
+            default:
+                return answer(MavResult::unsupported, "message not provided");
+        }
+    }
+    return out;
+}
+
+MavResult result_for_error(const std::string& code) {
+    if (code == "link_down" || code == "unavailable" || code == "rate_limited")
+        return MavResult::temporarily_rejected;
+    if (code == "unsupported") return MavResult::unsupported;
+    if (code == "out_of_range" || code == "bad_request" || code == "forbidden")
+        return MavResult::denied;
+    return MavResult::failed;
+}
+
+MavResult combine(const std::vector<MavResult>& results) {
+    if (results.empty()) return MavResult::failed;
+    for (const MavResult r : results)
+        if (r == MavResult::accepted) return r;
+    return results.front();
+}
+
+}  // namespace gimbal::gimbal_protocol

@@ -1,0 +1,113 @@
+// MAVLink command or message -> the gimbald requests it means (contract section 8), or the
+// MAV_RESULT that answers it without touching a gimbal. Pure: the gimbal STATE and the
+// vehicle's heading and home altitude are passed in. Never produces a `laser` request.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "gimbal_protocol/control.hpp"
+#include "mavlink/messages.hpp"
+
+namespace gimbal::gimbal_protocol {
+
+// A gimbal as MAVLink sees it: gimbal_device_id 1..6 in configuration order.
+struct ExposedGimbal {
+    std::string name;
+    std::string protocol;  // "orion" or "viewpro"
+    std::uint8_t device_id = 0;
+};
+
+// At most six gimbals are exposed (gimbal_device_id 1..6 means "non-MAVLink gimbal n").
+std::vector<ExposedGimbal> expose(const std::vector<std::pair<std::string, std::string>>& gimbals);
+
+// What the vehicle feed knows: heading from ATTITUDE/GLOBAL_POSITION_INT, home MSL from
+// GLOBAL_POSITION_INT (alt - relative_alt).
+struct VehicleView {
+    std::optional<double> heading_deg;
+    std::optional<double> home_msl_m;
+};
+
+// A COMMAND_LONG or COMMAND_INT, seen the same way. For COMMAND_LONG, param5/6 are x/y as
+// floats and frame is GLOBAL_RELATIVE_ALT (the contract: "COMMAND_LONG = above home").
+struct CommandView {
+    std::uint16_t command = 0;
+    std::array<float, 4> param{};  // param1..param4
+    double x = 0, y = 0;           // param5, param6 (COMMAND_INT: degrees from degE7)
+    float z = 0;                   // param7
+    std::uint8_t frame = mavlink::mav_frame::global_relative_alt;
+    bool is_int = false;
+    bool x_unset = false, y_unset = false;  // COMMAND_INT INT32_MAX
+    std::uint8_t target_system = 0, target_component = 0;
+};
+CommandView view(const mavlink::CommandLong& c);
+CommandView view(const mavlink::CommandInt& c);
+
+struct GimbalRequest {
+    std::string gimbal;
+    nlohmann::json request;  // a gimbald request object for RequestPath::execute
+};
+
+// The outcome of one command or message. When `requests` is empty, `result` is the answer;
+// else the answer comes from executing them (see combine()). `replies`: messages to send
+// after the COMMAND_ACK (REQUEST_MESSAGE).
+struct Mapped {
+    mavlink::MavResult result = mavlink::MavResult::accepted;
+    std::vector<GimbalRequest> requests;
+    std::vector<mavlink::Payload> replies;
+    std::string reason;  // why, for a result other than accepted
+};
+
+// The STATE of a gimbal, fetched only when a mapping needs it.
+using StateLookup = std::function<nlohmann::json(const std::string& gimbal)>;
+
+class GimbalManager {
+  public:
+    explicit GimbalManager(std::vector<ExposedGimbal> gimbals);
+
+    // COMMAND_LONG / COMMAND_INT addressed to us.
+    Mapped command(const CommandView& cmd, const MavId& sender, const VehicleView& vehicle,
+                   const StateLookup& state, std::uint32_t time_boot_ms);
+    // GIMBAL_MANAGER_SET_PITCHYAW, GIMBAL_MANAGER_SET_ATTITUDE, GIMBAL_DEVICE_SET_ATTITUDE.
+    Mapped message(const mavlink::Payload& payload, const MavId& sender, const VehicleView& vehicle,
+                   const StateLookup& state);
+
+    const std::vector<ExposedGimbal>& gimbals() const { return gimbals_; }
+    const Control& control(std::uint8_t device_id) const { return controls_.at(device_id); }
+    std::uint64_t denied() const { return denied_; }
+
+  private:
+    // The gimbals a device id selects (0: all); empty for an id we do not have.
+    std::vector<const ExposedGimbal*> select(float device_id_param) const;
+    std::vector<const ExposedGimbal*> select(std::uint8_t device_id) const;
+    Mapped pitchyaw(const std::vector<const ExposedGimbal*>& targets, const MavId& sender,
+                    double pitch_deg, double yaw_deg, double pitch_rate, double yaw_rate,
+                    std::uint32_t flags, const VehicleView& vehicle, const StateLookup& state);
+    Mapped roi_location(const CommandView& cmd, const MavId& sender, const VehicleView& vehicle);
+    Mapped roi_none(const CommandView& cmd, const MavId& sender);
+    Mapped configure(const CommandView& cmd, const MavId& sender);
+    Mapped zoom(const CommandView& cmd, const StateLookup& state);
+    Mapped request_message(const CommandView& cmd, const StateLookup& state,
+                           std::uint32_t time_boot_ms);
+    // DENIED for a sender that is not in control of every target.
+    std::optional<Mapped> check_control(const std::vector<const ExposedGimbal*>& targets,
+                                        const MavId& sender);
+
+    std::vector<ExposedGimbal> gimbals_;
+    std::map<std::uint8_t, Control> controls_;
+    std::uint64_t denied_ = 0;
+};
+
+// gimbald reply error code -> MAV_RESULT: link_down and unavailable TEMPORARILY_REJECTED,
+// unsupported UNSUPPORTED, out_of_range / bad_request / forbidden DENIED, others FAILED.
+mavlink::MavResult result_for_error(const std::string& code);
+// The answer for several gimbals (device id 0): ACCEPTED when any accepted, else the first.
+mavlink::MavResult combine(const std::vector<mavlink::MavResult>& results);
+
+}  // namespace gimbal::gimbal_protocol

@@ -1,0 +1,114 @@
+// The `mavlink` configuration section (contract section 8) and the signing key file.
+#include <catch2/catch.hpp>
+
+#include <sys/stat.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "config.hpp"
+#include "mavlink_endpoint.hpp"
+
+using namespace gimbal::daemon;
+using nlohmann::json;
+
+namespace {
+
+json base() {
+    return {{"gimbals",
+             {{{"name", "main"},
+               {"protocol", "orion"},
+               {"link", {{"type", "tcp"}, {"host", "127.0.0.1"}, {"port", 8747}}}}}},
+            {"vehicle", json::object()}};
+}
+
+std::vector<std::string> problems(const json& config) {
+    std::vector<std::string> out;
+    for (const auto& p : parse_config(config.dump()).problems) out.push_back(p.text());
+    return out;
+}
+
+}  // namespace
+
+TEST_CASE("mavlink section: defaults and every key", "[config]") {
+    auto r = parse_config(base().dump());
+    REQUIRE(r.ok());
+    CHECK_FALSE(r.config.mavlink.gimbal_manager);
+    CHECK(r.config.mavlink.component_id == 154);
+    CHECK_FALSE(r.config.mavlink.system_id);
+
+    json c = base();
+    c["mavlink"] = {{"gimbal_manager", true},
+                    {"system_id", 7},
+                    {"component_id", 171},
+                    {"targets", {"127.0.0.1:14550", "gcs.local:14551"}},
+                    {"signing_key_file", "/etc/gimbald/mavlink.key"}};
+    r = parse_config(c.dump());
+    INFO(problems(c).size());
+    REQUIRE(r.ok());
+    CHECK(r.config.mavlink.gimbal_manager);
+    CHECK(r.config.mavlink.system_id == 7);
+    CHECK(r.config.mavlink.component_id == 171);
+    CHECK(r.config.mavlink.targets.size() == 2);
+    CHECK(r.config.mavlink.signing_key_file == "/etc/gimbald/mavlink.key");
+    CHECK(to_json(r.config)["mavlink"] == c["mavlink"]);
+}
+
+TEST_CASE("mavlink section: problems with their paths", "[config]") {
+    json c = base();
+    c["mavlink"] = {{"targets", {"nohost", "h:0", "h:99999", 5, "127.0.0.1:14550"}},
+                    {"component_id", 0},
+                    {"system_id", 256},
+                    {"signing_key_file", ""},
+                    {"bogus", 1}};
+    const auto p = problems(c);
+    const auto has = [&](const std::string& prefix) {
+        return std::any_of(p.begin(), p.end(),
+                           [&](const std::string& t) { return t.rfind(prefix, 0) == 0; });
+    };
+    CHECK(has("mavlink.targets[0]"));
+    CHECK(has("mavlink.targets[1]"));
+    CHECK(has("mavlink.targets[2]"));
+    CHECK(has("mavlink.targets[3]"));
+    CHECK_FALSE(has("mavlink.targets[4]"));
+    CHECK(has("mavlink.component_id"));
+    CHECK(has("mavlink.system_id"));
+    CHECK(has("mavlink.signing_key_file"));
+    CHECK(has("mavlink.bogus"));
+
+    json no_vehicle = base();
+    no_vehicle.erase("vehicle");
+    no_vehicle["mavlink"] = {{"gimbal_manager", true}};
+    CHECK(problems(no_vehicle) ==
+          std::vector<std::string>{"mavlink.gimbal_manager: needs a vehicle section: the gimbal "
+                                   "manager talks on vehicle.source"});
+}
+
+TEST_CASE("MAVLink signing key file: 32 raw bytes or 64 hex digits, private", "[config]") {
+    const auto dir =
+        std::filesystem::temp_directory_path() / ("gimbald-mavkey-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    const auto write = [&](const std::string& name, const std::string& text, mode_t mode) {
+        const auto path = (dir / name).string();
+        std::ofstream(path, std::ios::binary) << text;
+        ::chmod(path.c_str(), mode);
+        return path;
+    };
+    std::string raw(32, '\0');
+    for (std::size_t i = 0; i < raw.size(); ++i) raw[i] = static_cast<char>(i * 3);
+    const auto k1 = gimbald::load_signing_key(write("raw", raw, 0600));
+    CHECK(k1[1] == 3);
+    CHECK(k1[31] == 93);
+    std::string hex;
+    for (int i = 0; i < 32; ++i) hex += "a5";
+    const auto k2 = gimbald::load_signing_key(write("hex", "  " + hex + "\n", 0600));
+    CHECK(k2[0] == 0xA5);
+    CHECK(k2[31] == 0xA5);
+    CHECK_THROWS(gimbald::load_signing_key(write("short", "abcd", 0600)));
+    CHECK_THROWS(gimbald::load_signing_key(write("open", hex, 0644)));  // readable by others
+    CHECK_THROWS(gimbald::load_signing_key((dir / "missing").string()));
+    std::filesystem::remove_all(dir);
+}
