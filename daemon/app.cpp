@@ -76,6 +76,8 @@ App::App(const cfg::Config& config)
         vehicle_->add_gimbal(session, config_.gimbals[i]);
         session.set_vehicle_snapshot([this, &session] { return vehicle_->snapshot(session); });
     }
+    if (config_.mqtt)
+        mqtt_ = std::make_unique<mqtt::Bridge>(io_, *config_.mqtt, *request_path_, events_);
 }
 
 App::~App() = default;
@@ -157,6 +159,7 @@ void App::shutdown() {
     // Sessions first: their cease-fire goes out before the links close.
     for (auto& s : sessions_) s->stop();
     server_->stop();
+    if (mqtt_) mqtt_->stop();  // publishes {"online": false}, then disconnects
     signals_.cancel();
     watchdog_timer_.cancel();
 }
@@ -187,6 +190,7 @@ int App::run() {
     for (auto& s : sessions_) s->start();
     server_->start();
     vehicle_->start();
+    if (mqtt_) mqtt_->start();
     signals_.async_wait([this](const boost::system::error_code& e, int s) { on_signal(e, s); });
     const auto local = server_->local_endpoint();
     nlohmann::json gimbals = nlohmann::json::array();

@@ -12,6 +12,7 @@
 #include "config.hpp"
 #include "event_hub.hpp"
 #include "gimbal_session.hpp"
+#include "mqtt/mqtt_bridge.hpp"
 #include "request_path.hpp"
 #include "vehicle_feed.hpp"
 
@@ -43,6 +44,7 @@ class App {
     std::unique_ptr<RequestPath> request_path_;
     std::unique_ptr<CommandServer> server_;
     std::unique_ptr<VehicleFeed> vehicle_;
+    std::unique_ptr<mqtt::Bridge> mqtt_;  // contract section 9; null unless `mqtt` is set
     bool stopping_ = false;
 };
 

@@ -9,6 +9,7 @@ packages=(
   libsystemd-dev libgeographiclib-dev libssl-dev
   libbenchmark-dev clang libclang-rt-14-dev
   socat python3 systemd
+  libmosquitto-dev mosquitto mosquitto-clients python3-paho-mqtt openssl
 )
 
 missing=()
