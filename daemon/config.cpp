@@ -747,7 +747,7 @@ MqttConfig read_mqtt(Fields& f) {
                   "cert_file and key_file go together (the client certificate and its key)");
     if (!mqtt.tls && (mqtt.ca_file || mqtt.cert_file))
         f.problem("url", "ca_file/cert_file are set: use mqtts:// for TLS");
-    f.number("keepalive_s", mqtt.keepalive_s, {1, 3600});
+    f.number("keepalive_s", mqtt.keepalive_s, {5, 3600});  // libmosquitto's minimum
     f.number("state_rate_hz", mqtt.state_rate_hz, {0.1, 50});
     if (const json* keys = f.find("state_keys"); keys != nullptr && !keys->is_null()) {
         std::vector<std::string> names;

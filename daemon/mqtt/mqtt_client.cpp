@@ -227,6 +227,7 @@ void Client::lost(const std::string& reason) {
     for (auto it = in_flight_.rbegin(); it != in_flight_.rend(); ++it)
         queue_.push_front(std::move(it->second));
     in_flight_.clear();
+    confirmed_early_.clear();
     const nlohmann::json fields = {{"broker", broker()}, {"reason", reason}};
     if (was_connected)
         log::warn("mqtt_down", "lost the MQTT broker: " + reason, fields);
@@ -265,7 +266,11 @@ bool Client::hand_over(Message& m) {
                              m.payload.data(), m.qos, m.retain, props);
     mosquitto_property_free_all(&props);
     if (rc == MOSQ_ERR_SUCCESS) {
-        in_flight_.emplace(mid, std::move(m));
+        // A QoS 0 message written at once is confirmed inside mosquitto_publish_v5.
+        if (confirmed_early_.erase(mid) > 0)
+            ++counters_.published;
+        else
+            in_flight_.emplace(mid, std::move(m));
         return true;
     }
     if (rc == MOSQ_ERR_NO_CONN || rc == MOSQ_ERR_CONN_LOST) {
@@ -362,7 +367,10 @@ void Client::on_publish_cb(struct mosquitto*, void* p, int mid, int, const mosqu
         asio::post(self->io_, self->lifetime_.wrap([self] { self->finish_stop(); }));
         return;
     }
-    if (self->in_flight_.erase(mid) > 0) ++self->counters_.published;
+    if (self->in_flight_.erase(mid) > 0)
+        ++self->counters_.published;
+    else
+        self->confirmed_early_.insert(mid);
     asio::post(self->io_, self->lifetime_.wrap([self] {
         self->pump();
         self->watch();

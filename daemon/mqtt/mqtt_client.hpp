@@ -18,6 +18,7 @@
 #include <functional>
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -125,6 +126,7 @@ class Client {
     Backoff backoff_;
     OutgoingQueue queue_;
     std::map<int, Message> in_flight_;  // mid -> message handed to libmosquitto
+    std::set<int> confirmed_early_;     // confirmed before mosquitto_publish_v5 returned
     mutable ClientCounters counters_;
     bool reading_ = false;
     bool writing_ = false;
