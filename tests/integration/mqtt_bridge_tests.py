@@ -184,6 +184,44 @@ class Commands(MqttCase):
         self.assertFalse([e for e in daemon.events("command") if e.get("id") == 5])
 
 
+class Gimbalctl(MqttCase):
+    def test_commands_and_watch_through_the_broker(self):
+        broker = self.broker()
+        daemon = self.mqtt_daemon(broker, commands=True, state_rate_hz=10)
+        self.wait_mqtt_up(daemon)
+        base = [gt.GIMBALCTL, "--mqtt", broker.url(), "--station", "st1"]
+        r = gt.run(base + ["ping"])
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(json.loads(r.stdout)["pong"], True)
+        r = gt.run(base + ["send", '{"cmd":"position","pan":1,"tilt":2}'])
+        self.assertEqual(r.returncode, 0, r.stderr)
+        r = gt.run(base + ["send", '{"cmd":"position","pan":1}'])
+        self.assertEqual(r.returncode, 1, r.stdout)
+        self.assertEqual(json.loads(r.stdout)["error"]["code"], "bad_request")
+        r = gt.run([gt.GIMBALCTL, "--mqtt", broker.url(), "--station", "other", "--timeout",
+                    "0.5", "ping"])
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("no reply", r.stderr)
+        # The command log line carries gimbalctl's client id (the rate-limit key).
+        self.assertTrue(daemon.wait_log(lambda e: e.get("event") == "command" and
+                                        e.get("src", "").startswith("mqtt:gimbalctl-")))
+        r = gt.run(base[:-2] + ["--station", "+", "watch", "--keys", "telemetry",
+                                "--count", "3"], timeout=10)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        lines = [json.loads(line) for line in r.stdout.splitlines()]
+        self.assertEqual(len(lines), 3)
+        for line in lines:
+            self.assertEqual(line["type"], "state")
+            self.assertEqual(line["station"], "st1")
+            self.assertEqual(line["gimbal"], "sim")
+            self.assertEqual(set(line["state"]), {"protocol", "link", "stale", "telemetry"})
+        r = gt.run([gt.GIMBALCTL, "--mqtt", "mqtt://127.0.0.1:%d" % gt.closed_tcp_port(),
+                    "--station", "st1", "ping"])
+        self.assertEqual(r.returncode, 2)
+        r = gt.run([gt.GIMBALCTL, "--mqtt", broker.url(), "ping"])
+        self.assertEqual(r.returncode, 64)
+
+
 class BrokerLoss(MqttCase):
     def test_broker_down_ten_seconds(self):
         broker = self.broker()
