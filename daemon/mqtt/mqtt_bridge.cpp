@@ -128,10 +128,23 @@ void Bridge::schedule_states() {
 
 void Bridge::on_message(const Incoming& in) {
     if (stopped_ || !config_.commands || in.topic != topic("cmd")) return;
+    if (in.retained) {
+        // A retained request would run again at every reconnection: never execute one.
+        gimbal::log::warn("mqtt_retained_cmd",
+                          "ignored a retained request on " + in.topic +
+                              " (publish requests without the retain flag; clear it with an "
+                              "empty retained message)",
+                          {{"src", request_source(in)}});
+        return;
+    }
     const RequestSource from{"mqtt", request_source(in), std::nullopt};
     const auto reply = path_.handle(in.payload, from);
     if (!reply) return;
-    const bool to_response_topic = in.response_topic && !in.response_topic->empty();
+    // Replies may not land on our own topics (status, state, ...) except below P/reply.
+    const auto& rt = in.response_topic;
+    const bool to_response_topic =
+        rt && !rt->empty() && rt->find_first_of("+#") == std::string::npos &&
+        (rt->rfind(base_ + "/", 0) != 0 || rt->rfind(topic("reply/"), 0) == 0);
     client_->publish({Kind::event, to_response_topic ? *in.response_topic : topic("reply"), *reply,
                       1, false, to_response_topic ? in.correlation : std::nullopt});
 }

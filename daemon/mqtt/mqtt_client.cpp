@@ -68,7 +68,7 @@ std::string Client::broker() const {
 }
 
 const ClientCounters& Client::counters() const {
-    counters_.dropped = std::max(counters_.dropped, queue_.dropped());
+    counters_.dropped = queue_.dropped() + refused_;
     return counters_;
 }
 
@@ -278,7 +278,7 @@ bool Client::hand_over(Message& m) {
         return false;
     }
     // Too large for the broker, bad topic: this message can never go.
-    ++counters_.dropped;
+    ++refused_;
     log::warn("mqtt_publish", "message not published: " + error_text(rc), {{"topic", m.topic}});
     return true;
 }
@@ -382,6 +382,7 @@ void Client::on_message_cb(struct mosquitto*, void* p, const struct mosquitto_me
     Client* self = self_of(p);
     Incoming in;
     in.topic = msg->topic != nullptr ? msg->topic : "";
+    in.retained = msg->retain;
     if (msg->payload != nullptr)
         in.payload.assign(static_cast<const char*>(msg->payload),
                           static_cast<std::size_t>(msg->payloadlen));

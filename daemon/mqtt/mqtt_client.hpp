@@ -57,6 +57,7 @@ struct Incoming {
     std::optional<std::string> response_topic;  // MQTT 5 properties
     std::optional<std::string> correlation;
     std::optional<std::string> client_id;  // user property "client_id"
+    bool retained = false;                 // delivered from the broker's retained store
 };
 
 struct ClientCounters {
@@ -128,6 +129,7 @@ class Client {
     std::map<int, Message> in_flight_;  // mid -> message handed to libmosquitto
     std::set<int> confirmed_early_;     // confirmed before mosquitto_publish_v5 returned
     mutable ClientCounters counters_;
+    std::uint64_t refused_ = 0;  // messages libmosquitto refused (too large, bad topic)
     bool reading_ = false;
     bool writing_ = false;
     bool connected_ = false;

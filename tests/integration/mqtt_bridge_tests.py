@@ -123,6 +123,9 @@ class Topics(MqttCase):
 class Commands(MqttCase):
     def test_requests_with_response_topic_and_correlation(self):
         broker = self.broker()
+        early = self.sub(broker)
+        early.client.publish(P + "/cmd", json.dumps({"cmd": "ping", "id": 47}), qos=1,
+                             retain=True).wait_for_publish(3)
         daemon = self.mqtt_daemon(broker, commands=True)
         self.wait_mqtt_up(daemon)
         c = self.sub(broker, "replies/op1", P + "/reply")
@@ -149,6 +152,13 @@ class Commands(MqttCase):
         c.client.publish(P + "/cmd", b"{nope", qos=1)
         self.assertTrue(c.wait(P + "/reply", lambda r: r.get("error", {}).get("code") ==
                                "bad_json"))
+        # A response topic among gimbald's own topics is not used: the reply goes to P/reply.
+        c.request(P + "/cmd", {"cmd": "ping", "id": 46}, P + "/status", b"s")
+        self.assertTrue(c.wait(P + "/reply", lambda r: r.get("id") == 46))
+        # The retained request published before the start was never executed (it would
+        # run again at every reconnection).
+        self.assertTrue(daemon.wait_log(lambda e: e.get("event") == "mqtt_retained_cmd"))
+        c.client.publish(P + "/cmd", b"", qos=1, retain=True)
         # The `command` log line names the MQTT source.
         entry = daemon.wait_log(lambda e: e.get("event") == "command" and e.get("id") == 41)
         self.assertTrue(entry)
@@ -157,6 +167,7 @@ class Commands(MqttCase):
         self.assertTrue(c.wait("replies/op1", lambda r: r.get("id") == 45))
         entry = daemon.wait_log(lambda e: e.get("event") == "command" and e.get("id") == 45)
         self.assertEqual(entry["src"], "mqtt:op-7")
+        self.assertFalse([e for e in daemon.events("command") if e.get("id") == 47])
 
     def test_token_is_checked_like_udp(self):
         broker = self.broker()

@@ -6,6 +6,7 @@ Reported per run:
   - latency "telemetry -> subscriber": subscriber receive time minus the telemetry's own
     time stamp (`telemetry.utc`, the in-process simulated gimbal's clock, anchored to the
     system clock). It includes the wait for the next STATE tick (up to 1/R s).
+  Both are corrected by the simulated clock's offset, measured per daemon over UDP.
   - latency "snapshot -> subscriber": the same minus `telemetry.age_s` (the telemetry's age
     when the STATE snapshot was taken): the bridge, the broker and the subscriber only.
   - each gimbald's CPU (utime+stime from /proc over the measuring window, % of one core).
@@ -44,6 +45,11 @@ def cpu_ticks(pid):
     return int(fields[11]) + int(fields[12])  # utime, stime
 
 
+def parse_utc(text):
+    return datetime.datetime.strptime(text, "%Y-%m-%dT%H:%M:%S.%fZ").replace(
+        tzinfo=datetime.timezone.utc).timestamp()
+
+
 def percentile(values, p):
     values = sorted(values)
     return values[min(len(values) - 1, int(round(p / 100.0 * (len(values) - 1))))]
@@ -66,7 +72,7 @@ def main():
         port = free_port(socket.SOCK_STREAM)
         conf = os.path.join(tmp, "mosquitto.conf")
         with open(conf, "w") as f:
-            f.write("listener %d 127.0.0.1\nallow_anonymous true\npersistence false\n" % port)
+            f.write("listener %d 127.0.0.1\nallow_anonymous true\npersistence false\nset_tcp_nodelay true\n" % port)
             if os.geteuid() == 0:
                 f.write("user root\n")
         broker = subprocess.Popen([shutil.which("mosquitto") or "/usr/sbin/mosquitto", "-c",
@@ -75,6 +81,8 @@ def main():
         time.sleep(0.5)
 
         samples = []  # (telemetry->sub, snapshot->sub) seconds
+        offsets = {}
+        udp_ports = []
         counting = threading.Event()
         lock = threading.Lock()
 
@@ -86,10 +94,11 @@ def main():
             t = state.get("telemetry")
             if not t or not t.get("utc"):
                 return
-            utc = datetime.datetime.strptime(t["utc"], "%Y-%m-%dT%H:%M:%S.%fZ").replace(
-                tzinfo=datetime.timezone.utc).timestamp()
+            station = msg.topic.split("/")[1]
+            offset = offsets.get(station, 0.0)
+            utc = parse_utc(t["utc"])
             with lock:
-                samples.append((now - utc, now - utc - t.get("age_s", 0.0)))
+                samples.append((now - utc - offset, now - utc - t.get("age_s", 0.0) - offset))
 
         sub = mqtt.Client(client_id="fleet-bench-sub", protocol=mqtt.MQTTv5)
         sub.on_message = on_message
@@ -103,9 +112,10 @@ def main():
                        "state_rate_hz": args.rate}
             if args.keys:
                 section["state_keys"] = args.keys.split(",")
+            udp_ports.append(free_port(socket.SOCK_DGRAM))
             config = {"gimbals": [{"name": "g%d" % g, "protocol": "orion",
                                    "link": {"type": "sim"}} for g in range(args.gimbals)],
-                      "command": {"port": free_port(socket.SOCK_DGRAM)},
+                      "command": {"port": udp_ports[-1]},
                       "log": {"level": "warn"},
                       "mqtt": section}
             path = os.path.join(tmp, "gimbald-%d.json" % d)
@@ -117,6 +127,24 @@ def main():
             daemons.append(p)
 
         time.sleep(args.warmup)
+        # The simulated gimbal's clock (telemetry.utc) is not exactly the system clock: per
+        # daemon, measure `now - utc - age_s` of a STATE fetched over the UDP socket (loopback
+        # round trip well under 1 ms) and subtract its median from that daemon's samples.
+        offsets = {}
+        for d, port_udp in enumerate(udp_ports):
+            u = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
+            u.settimeout(1)
+            values = []
+            for i in range(21):
+                u.sendto(json.dumps({"cmd": "state", "id": i, "gimbal": "g0",
+                                     "keys": ["telemetry"]}).encode(), ("127.0.0.1", port_udp))
+                reply = json.loads(u.recv(65536))
+                now = time.time()
+                t = reply["state"]["telemetry"]
+                values.append(now - parse_utc(t["utc"]) - t["age_s"])
+                time.sleep(0.013)
+            u.close()
+            offsets["st%d" % d] = statistics.median(values)
         start_ticks = [cpu_ticks(p.pid) for p in daemons]
         t0 = time.monotonic()
         counting.set()
@@ -135,6 +163,8 @@ def main():
         print("fleet: %d gimbald x %d gimbals, STATE %g Hz%s, %.0f s" % (
             args.daemons, args.gimbals, args.rate,
             " (keys %s)" % args.keys if args.keys else " (full STATE)", elapsed))
+        print("sim clock offsets (ms, subtracted): %s" % ", ".join(
+            "%.1f" % (v * 1000) for v in offsets.values()))
         print("messages: %d received of %d expected (%.1f %%)" % (
             len(data), expected, 100.0 * len(data) / expected if expected else 0))
         print("| latency | p50 ms | p99 ms | max ms |")
