@@ -81,7 +81,8 @@ void Client::start() {
 }
 
 void Client::configure(struct mosquitto* m) {
-    mosquitto_int_option(m, MOSQ_OPT_PROTOCOL_VERSION, MQTT_PROTOCOL_V5);
+    mosquitto_int_option(m, MOSQ_OPT_PROTOCOL_VERSION,
+                         v311_ ? MQTT_PROTOCOL_V311 : MQTT_PROTOCOL_V5);
     mosquitto_int_option(m, MOSQ_OPT_TCP_NODELAY, 1);
     mosquitto_connect_v5_callback_set(m, &Client::on_connect_cb);
     mosquitto_disconnect_v5_callback_set(m, &Client::on_disconnect_cb);
@@ -257,7 +258,7 @@ void Client::publish(Message message) {
 
 bool Client::hand_over(Message& m) {
     mosquitto_property* props = nullptr;
-    if (m.correlation)
+    if (m.correlation && !v311_)
         mosquitto_property_add_binary(&props, MQTT_PROP_CORRELATION_DATA, m.correlation->data(),
                                       static_cast<std::uint16_t>(m.correlation->size()));
     int mid = 0;
@@ -334,6 +335,12 @@ void Client::finish_stop() {
 
 void Client::on_connect_cb(struct mosquitto*, void* p, int rc, int, const mosquitto_property*) {
     Client* self = self_of(p);
+    if (rc == MQTT_RC_UNSUPPORTED_PROTOCOL_VERSION && !self->v311_) {
+        // An MQTT 3.1.1 broker: the next attempt speaks 3.1.1 (replies then go to P/reply).
+        self->v311_ = true;
+        self->last_error_ = "the broker does not speak MQTT 5: retrying with MQTT 3.1.1";
+        return;
+    }
     if (rc != 0) {
         self->last_error_ =
             std::string("the broker refused the connection: ") + mosquitto_reason_string(rc);
@@ -346,7 +353,9 @@ void Client::on_connect_cb(struct mosquitto*, void* p, int rc, int, const mosqui
     for (const auto& topic : self->options_.subscriptions)
         mosquitto_subscribe_v5(self->mosq_, nullptr, topic.c_str(), 1, 0, nullptr);
     log::info("mqtt_up", "connected to the MQTT broker",
-              {{"broker", self->broker()}, {"client_id", self->options_.client_id}});
+              {{"broker", self->broker()},
+               {"client_id", self->options_.client_id},
+               {"protocol", self->v311_ ? "mqtt 3.1.1" : "mqtt 5"}});
     asio::post(self->io_, self->lifetime_.wrap([self] {
         if (!self->connected_) return;
         if (self->on_connected_) self->on_connected_();

@@ -136,6 +136,7 @@ class Client {
     bool ever_connected_ = false;
     bool stopping_ = false;
     bool stopped_ = false;
+    bool v311_ = false;  // the broker refused MQTT 5: speak 3.1.1 (no properties)
     std::optional<int> stop_mid_;
     std::chrono::steady_clock::time_point attempt_started_;
     std::string last_error_;

@@ -7,7 +7,8 @@ test_gimbald_mqtt.sh under /usr/bin/python3 (paho-mqtt)."""
 import json
 import os
 import signal
-import subprocess
+import socket
+import threading
 import time
 
 import gimbaltest as gt
@@ -195,6 +196,81 @@ class Commands(MqttCase):
         self.assertFalse([e for e in daemon.events("command") if e.get("id") == 5])
 
 
+class Mqtt311Broker:
+    """A minimal MQTT 3.1.1-only broker: refuses protocol level 5 with a 3.1.1 CONNACK
+    (return code 1), accepts level 4 and records the topics of the PUBLISH packets."""
+
+    def __init__(self):
+        self.server = socket.socket()
+        self.server.bind(("127.0.0.1", 0))
+        self.server.listen(4)
+        self.port = self.server.getsockname()[1]
+        self.levels = []
+        self.topics = []
+        self.stop = False
+        threading.Thread(target=self.serve, daemon=True).start()
+
+    def url(self):
+        return "mqtt://127.0.0.1:%d" % self.port
+
+    @staticmethod
+    def read_packet(conn):
+        header = conn.recv(1)
+        if not header:
+            return None, b""
+        length, shift = 0, 0
+        while True:
+            b = conn.recv(1)[0]
+            length |= (b & 0x7F) << shift
+            shift += 7
+            if not b & 0x80:
+                break
+        body = b""
+        while len(body) < length:
+            chunk = conn.recv(length - len(body))
+            if not chunk:
+                return None, b""
+            body += chunk
+        return header[0], body
+
+    def serve(self):
+        self.server.settimeout(0.2)
+        while not self.stop:
+            try:
+                conn, _ = self.server.accept()
+            except OSError:
+                continue
+            with conn:
+                conn.settimeout(5)
+                try:
+                    kind, body = self.read_packet(conn)
+                    if kind is None or kind >> 4 != 1:
+                        continue
+                    level = body[6]  # after the 2-byte length and "MQTT"
+                    self.levels.append(level)
+                    if level != 4:
+                        conn.sendall(bytes([0x20, 2, 0, 1]))
+                        continue
+                    conn.sendall(bytes([0x20, 2, 0, 0]))
+                    while not self.stop:
+                        kind, body = self.read_packet(conn)
+                        if kind is None:
+                            break
+                        if kind >> 4 == 3:
+                            n = (body[0] << 8) | body[1]
+                            self.topics.append(body[2:2 + n].decode())
+                            if (kind >> 1) & 3:  # QoS 1: PUBACK with the packet id
+                                conn.sendall(bytes([0x40, 2]) + body[2 + n:4 + n])
+                        elif kind >> 4 == 12:  # PINGREQ
+                            conn.sendall(bytes([0xD0, 0]))
+                except (OSError, IndexError):
+                    continue
+
+    def close(self):
+        self.stop = True
+        self.server.close()
+
+
 class Gimbalctl(MqttCase):
     def test_commands_and_watch_through_the_broker(self):
         broker = self.broker()
@@ -274,6 +350,20 @@ class BrokerLoss(MqttCase):
         self.assertEqual(late.wait(P + "/main/link")[1], {"connected": True})
         self.assertGreaterEqual(c.request("state", keys=["mqtt"])["state"]["mqtt"]["reconnects"], 1)
         self.assertGreaterEqual(len(daemon.events("mqtt_up")), 2)
+
+
+class Protocol311(MqttCase):
+    def test_falls_back_to_mqtt_3_1_1(self):
+        broker = Mqtt311Broker()
+        self.addCleanup(broker.close)
+        daemon = self.start_daemon({"mqtt": {"url": broker.url(), "station": "st1"}},
+                                   ("--sim",))
+        up = daemon.wait_log(lambda e: e.get("event") == "mqtt_up", 5.0)
+        self.assertTrue(up, daemon.log_text()[-2000:])
+        self.assertEqual(up["protocol"], "mqtt 3.1.1")
+        self.assertEqual(broker.levels[:2], [5, 4])
+        self.assertTrue(gt.wait_for(lambda: P + "/status" in broker.topics and
+                                    P + "/sim/state" in broker.topics, 3.0), broker.topics)
 
 
 class Security(MqttCase):
