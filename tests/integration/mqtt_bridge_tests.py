@@ -338,16 +338,23 @@ class BrokerLoss(MqttCase):
         self.assertLess(rss_after - rss_before, 4096, "memory grew %d KiB" % (rss_after - rss_before))
         m = c.request("state", keys=["mqtt"])["state"]["mqtt"]
         self.assertGreater(m["dropped"], 100, m)  # 50 Hz STATE replaced while waiting
-        # Events wait in the queue (bounded) meanwhile; the broker returns without its
-        # retained messages (no persistence): gimbald republishes them.
+        # An event while the broker is away waits in the (bounded) queue.
+        sim.kill()
+        self.assertTrue(gt.wait_for(
+            lambda: not c.request("state")["state"]["link"]["connected"], 5.0))
+        # The broker returns without its retained messages (no persistence): gimbald
+        # republishes them, and sends the queued event.
         broker.start()
+        early = self.sub(broker, P + "/main/event")
         self.assertTrue(gt.wait_for(
             lambda: c.request("state", keys=["mqtt"])["state"]["mqtt"]["connected"], 8.0),
             "never reconnected")
         late = self.sub(broker, P + "/#")
         self.assertTrue(late.wait(P + "/status", lambda p: p["online"] is True))
         self.assertTrue(late.wait(P + "/main/state", lambda s: s.get("telemetry")))
-        self.assertEqual(late.wait(P + "/main/link")[1], {"connected": True})
+        self.assertEqual(late.wait(P + "/main/link")[1], {"connected": False})
+        self.assertTrue(early.wait(P + "/main/event", lambda e: e.get("event") == "link" and
+                                   e["connected"] is False, 5.0), "queued event lost")
         self.assertGreaterEqual(c.request("state", keys=["mqtt"])["state"]["mqtt"]["reconnects"], 1)
         self.assertGreaterEqual(len(daemon.events("mqtt_up")), 2)
 
@@ -387,6 +394,28 @@ class Security(MqttCase):
         self.assertTrue(daemon.wait_log(lambda e: e.get("event") == "mqtt_down", 5.0))
         self.assertFalse(daemon.events("mqtt_up"))
         self.assertOk(self.client(daemon).request("ping"))
+
+    def test_tls_with_a_client_certificate(self):
+        ca, cert, key = mt.make_tls_files(self.workdir)
+        gt.run(["openssl", "req", "-newkey", "rsa:2048", "-nodes", "-subj", "/CN=st1",
+                "-keyout", "client.key", "-out", "client.csr"], cwd=self.workdir
+               ).check_returncode()
+        gt.run(["openssl", "x509", "-req", "-in", "client.csr", "-CA", "ca.crt", "-CAkey",
+                "ca.key", "-CAcreateserial", "-days", "2", "-out", "client.crt"],
+               cwd=self.workdir).check_returncode()
+        client_key = os.path.join(self.workdir, "client.key")
+        os.chmod(client_key, 0o600)
+        broker = self.broker(tls=True, extra=["cafile " + ca, "certfile " + cert,
+                                              "keyfile " + key, "require_certificate true"])
+        # Without the client certificate the broker refuses the handshake.
+        plain = self.mqtt_daemon(broker, ca_file=ca)
+        self.assertTrue(plain.wait_log(lambda e: e.get("event") == "mqtt_down", 5.0))
+        self.assertFalse(plain.events("mqtt_up"))
+        plain.stop()
+        daemon = self.mqtt_daemon(broker, ca_file=ca,
+                                  cert_file=os.path.join(self.workdir, "client.crt"),
+                                  key_file=client_key)
+        self.wait_mqtt_up(daemon)
 
     def password_broker(self):
         pw = os.path.join(self.workdir, "passwd")
