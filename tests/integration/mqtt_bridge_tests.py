@@ -309,6 +309,28 @@ class Gimbalctl(MqttCase):
         self.assertEqual(r.returncode, 64)
 
 
+    def test_signed_requests_through_the_broker(self):
+        broker = self.broker()
+        key = os.path.join(self.workdir, "ops.key")
+        gt.run([gt.GIMBALCTL, "keygen", key]).check_returncode()
+        daemon = self.start_daemon({
+            "command": {"auth": "signed",
+                        "keys": [{"id": "ops", "secret_file": key,
+                                  "roles": ["observe", "control"]}]},
+            "mqtt": {"url": broker.url(), "station": "st1", "commands": True}}, ("--sim",))
+        self.wait_mqtt_up(daemon)
+        base = [gt.GIMBALCTL, "--mqtt", broker.url(), "--station", "st1"]
+        r = gt.run(base + ["--key-file", key, "--key-id", "ops", "position", "5", "-5"])
+        self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
+        self.assertTrue(json.loads(r.stdout)["ok"])
+        r = gt.run(base + ["position", "5", "-5"])
+        self.assertEqual(r.returncode, 1, r.stdout + r.stderr)
+        self.assertEqual(json.loads(r.stdout)["error"]["code"], "forbidden")
+        audit = daemon.wait_log(lambda e: e.get("event") == "audit" and e.get("key") == "ops")
+        self.assertTrue(audit)
+        self.assertTrue(audit["src"].startswith("mqtt:gimbalctl-"), audit)
+
+
 class BrokerLoss(MqttCase):
     def test_broker_down_ten_seconds(self):
         broker = self.broker()
