@@ -147,6 +147,12 @@ def rss_kib(pid):
     return 0
 
 
+def sanitized(pid):
+    """True when the process runs with AddressSanitizer (its RSS says little then)."""
+    with open("/proc/%d/maps" % pid) as f:
+        return "libasan" in f.read()
+
+
 def make_tls_files(workdir):
     """A CA and a server certificate for 127.0.0.1, made with the openssl command line.
     Returns (ca_cert, server_cert, server_key)."""
