@@ -469,8 +469,9 @@ void read_gimbals(Fields& root, Config& config) {
         root.problem("gimbals", "must be an array of gimbals");
         return;
     }
-    if (list->empty() || list->size() > max_gimbals) {
-        root.problem("gimbals", fmt::format("must list 1 to {} gimbals", max_gimbals));
+    // An empty list is valid: the packaged /etc/gimbald/gimbald.json starts with no gimbals.
+    if (list->size() > max_gimbals) {
+        root.problem("gimbals", fmt::format("must list 0 to {} gimbals", max_gimbals));
     }
     std::map<std::string, std::string> first_path_of_name;
     std::map<std::string, std::string> first_path_of_device;

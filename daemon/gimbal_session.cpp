@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "logging.hpp"
+#include "state/precision.hpp"
 
 namespace gimbald {
 
@@ -233,11 +234,12 @@ nlohmann::json GimbalSession::snapshot() const {
         {"bad_checksums", c.bad_checksums},
         {"dropped_bytes", c.dropped_bytes},
         {"reconnects", s.reconnects},
-        {"last_rx_age_s", s.last_rx
-                              ? nlohmann::json(std::chrono::duration<double>(
-                                                   std::chrono::steady_clock::now() - *s.last_rx)
-                                                   .count())
-                              : nlohmann::json(nullptr)},
+        {"last_rx_age_s",
+         s.last_rx
+             ? nlohmann::json(gimbal::state::seconds(
+                   std::chrono::duration<double>(std::chrono::steady_clock::now() - *s.last_rx)
+                       .count()))
+             : nlohmann::json(nullptr)},
     };
     nlohmann::json state = {{"protocol", std::string(protocol_->name())},
                             {"link", std::move(link)},

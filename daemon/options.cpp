@@ -52,10 +52,10 @@ SIGNALS
   SIGHUP           reopen log.file (after logrotate moved it)
 
 FILES
-  /etc/gimbald/gimbald.json  default configuration (docs/configuration.md)
+  /etc/gimbald/gimbald.json  default configuration, see gimbald.json(5)
 
 SEE ALSO
-  gimbalctl(1), gimbal-sim(1), docs/configuration.md, docs/operations.md
+  gimbalctl(1), gimbal-sim(1), gimbald.json(5), /usr/share/doc/gimbald/
 )";
 
 constexpr std::size_t help_width = 80;
@@ -242,8 +242,9 @@ int check_config(const Options& options, std::ostream& out, std::ostream& err) {
                                to_string(gimbal.protocol), link_type(gimbal.link), sim ? "" : " ",
                                sim ? "" : describe(gimbal.link));
     }
-    out << fmt::format("{}: OK, {} gimbal{}: {}\n", source, result.config.gimbals.size(),
-                       result.config.gimbals.size() == 1 ? "" : "s", gimbals);
+    out << fmt::format("{}: OK, {} gimbal{}{}{}\n", source, result.config.gimbals.size(),
+                       result.config.gimbals.size() == 1 ? "" : "s", gimbals.empty() ? "" : ": ",
+                       gimbals);
     return exit_ok;
 }
 

@@ -10,7 +10,23 @@ packages=(
   libbenchmark-dev clang libclang-rt-14-dev
   socat python3 systemd
   libmosquitto-dev mosquitto mosquitto-clients python3-paho-mqtt openssl
+  dpkg-dev lintian
 )
+
+# --cross ARCH (scripts/package.sh --arch arm64): the cross compiler, QEMU and the ARCH
+# multiarch libraries instead. libgeographiclib-dev is not multiarch (ARCH's would replace
+# the native one): its runtime library and the native headers are enough
+# (packaging/toolchain-aarch64.cmake).
+cross_arch=
+if [ "${1:-}" = "--cross" ]; then
+  cross_arch=$2
+  packages=(
+    "crossbuild-essential-$cross_arch" qemu-user-static
+    "libboost-dev:$cross_arch" "libspdlog-dev:$cross_arch" "libfmt-dev:$cross_arch"
+    "libsystemd-dev:$cross_arch" "libgeographiclib23:$cross_arch"
+    "libmosquitto-dev:$cross_arch"
+  )
+fi
 
 missing=()
 for p in "${packages[@]}"; do
@@ -28,5 +44,8 @@ else
   exit 1
 fi
 export DEBIAN_FRONTEND=noninteractive
+if [ -n "$cross_arch" ] && ! dpkg --print-foreign-architectures | grep -qx "$cross_arch"; then
+  "${SUDO[@]}" dpkg --add-architecture "$cross_arch"
+fi
 "${SUDO[@]}" apt-get update -q
 "${SUDO[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"

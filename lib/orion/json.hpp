@@ -4,6 +4,7 @@
 // wire field cannot carry.
 #pragma once
 
+#include <bit>
 #include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
@@ -11,6 +12,7 @@
 #include <set>
 #include <string>
 #include <type_traits>
+#include <utility>
 
 #include "orion/fields.hpp"
 #include "orion/wire.hpp"
@@ -22,20 +24,54 @@ std::string printable(std::string_view s);
 std::string ipv4_to_string(std::uint32_t addr);
 bool ipv4_from_string(std::string_view s, std::uint32_t& addr);
 
+// How many digits a number from a scaled or narrow wire field gets.
+enum class Digits {
+    exact,     // the decoded double as it is (round trips, codec tests)
+    shortest,  // contract section 1: the fewest decimals that encode to the same wire value
+};
+
 class JsonWriter {
   public:
-    explicit JsonWriter(nlohmann::json& obj) : obj_(obj) {
+    explicit JsonWriter(nlohmann::json& obj, Digits digits = Digits::exact)
+        : obj_(obj), digits_(digits) {
         if (!obj_.is_object()) obj_ = nlohmann::json::object();
     }
 
     template <class T, class E>
-    void field(std::string_view key, const T& member, E, Scale = {}, Unit unit = Unit::none) {
+    void field(std::string_view key, const T& member, E enc, Scale s = {}, Unit unit = Unit::none) {
         if constexpr (is_std_array<T> || is_std_vector<T>) {
             auto arr = nlohmann::json::array();
-            for (const auto& item : member) arr.push_back(scalar(item, unit));
+            for (const auto& item : member) arr.push_back(value(item, enc, s, unit));
             obj_[std::string(key)] = std::move(arr);
         } else {
-            obj_[std::string(key)] = scalar(member, unit);
+            obj_[std::string(key)] = value(member, enc, s, unit);
+        }
+    }
+
+    // A field's JSON value. With Digits::shortest a number from a scaled or narrow wire field
+    // carries no more digits than the wire holds: the fewest decimals that still encode to
+    // the same wire value (and stay inside the field's range, which the JSON reader checks),
+    // found by re-encoding candidates with the field's own encoding.
+    template <class T, class E>
+    nlohmann::json value(const T& v, E enc, Scale s, Unit unit) const {
+        if constexpr (std::is_floating_point_v<T> && !std::is_same_v<E, F64Enc>) {
+            if (digits_ == Digits::exact) return scalar(v, unit);
+            const double to_json = unit == Unit::radians ? rad2deg : 1.0;
+            const double exact = static_cast<double>(v) * to_json;
+            if (!std::isfinite(exact)) return nullptr;
+            const double target = wire_value(v, enc, s);
+            double scale = 1.0;
+            for (int decimals = 0; decimals <= 15; ++decimals, scale *= 10.0) {
+                // Division by an exact power of ten gives the double nearest the short
+                // decimal, which nlohmann prints as that decimal.
+                const double candidate = std::round(exact * scale) / scale;
+                if (in_range(candidate, enc, s, to_json) &&
+                    wire_value(static_cast<T>(candidate / to_json), enc, s) == target)
+                    return candidate;
+            }
+            return exact;
+        } else {
+            return scalar(v, unit);
         }
     }
 
@@ -56,7 +92,7 @@ class JsonWriter {
         auto arr = nlohmann::json::array();
         for (const auto& item : items) {
             nlohmann::json sub = nlohmann::json::object();
-            JsonWriter w(sub);
+            JsonWriter w(sub, digits_);
             const_cast<G&>(item).fields(w);
             arr.push_back(std::move(sub));
         }
@@ -92,7 +128,38 @@ class JsonWriter {
     }
 
   private:
+    // What the encoder would put on the wire for `v` (as a double: exact for every scaled
+    // field), without writing it.
+    template <class T, int B, bool S>
+    static double wire_value(T v, IntEnc<B, S>, Scale s) {
+        using Enc = IntEnc<B, S>;
+        return round_saturate(to_raw_double(v, s), Enc::min_raw, Enc::max_raw);
+    }
+    template <class T, int B, int Sig>
+    static double wire_value(T v, SmallFloatEnc<B, Sig>, Scale s) {
+        return static_cast<double>(float_to_small(to_raw_double(v, s), 8 * B, Sig));
+    }
+    template <class T>
+    static double wire_value(T v, F32Enc, Scale s) {
+        return static_cast<double>(
+            std::bit_cast<std::uint32_t>(static_cast<float>(to_raw_double(v, s))));
+    }
+    // The limits JsonReader::scalar enforces for an integer field, in JSON units.
+    template <int B, bool S>
+    static bool in_range(double json_value, IntEnc<B, S>, Scale s, double to_json) {
+        using Enc = IntEnc<B, S>;
+        double lo = (Enc::min_raw / s.factor + s.offset) * to_json;
+        double hi = (Enc::max_raw / s.factor + s.offset) * to_json;
+        if (lo > hi) std::swap(lo, hi);
+        return json_value >= lo && json_value <= hi;
+    }
+    template <class E>
+    static bool in_range(double, E, Scale, double) {
+        return true;
+    }
+
     nlohmann::json& obj_;
+    Digits digits_ = Digits::exact;
 };
 
 // Error codes are those of the command socket (contract section 4).
@@ -340,11 +407,11 @@ class JsonReader {
     JsonError error_{};
 };
 
-// Every field of a packet as a JSON object.
+// Every field of a packet as a JSON object; Digits::shortest for what clients are sent.
 template <class P>
-nlohmann::json to_json(const P& packet) {
+nlohmann::json to_json(const P& packet, Digits digits = Digits::exact) {
     nlohmann::json obj = nlohmann::json::object();
-    JsonWriter w(obj);
+    JsonWriter w(obj, digits);
     const_cast<P&>(packet).fields(w);  // fields() only reads through a JsonWriter
     return obj;
 }

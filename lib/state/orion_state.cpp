@@ -7,6 +7,7 @@
 
 #include "geo/wgs84.hpp"
 #include "orion/json.hpp"
+#include "state/precision.hpp"
 
 namespace gimbal::state {
 namespace {
@@ -113,19 +114,21 @@ std::string gps_to_utc_iso(std::uint16_t week, std::uint32_t itow_ms, std::uint8
 }
 
 nlohmann::json telemetry_json(const o::GeolocateTelemetry& t) {
-    nlohmann::json j = o::to_json(t);
+    nlohmann::json j = o::to_json(t, o::Digits::shortest);
     j["utc"] = t.gps_week != 0 || t.gps_itow_ms != 0
                    ? nlohmann::json(gps_to_utc_iso(t.gps_week, t.gps_itow_ms, t.leap_seconds))
                    : nlohmann::json(nullptr);
-    j["alt_msl"] = t.alt - t.geoid_undulation;
+    j["alt_msl"] = metres(t.alt - t.geoid_undulation);
     const auto att = geo::quat_to_euler({t.quat[0], t.quat[1], t.quat[2], t.quat[3]});
-    j["roll"] = att.roll_deg;
-    j["pitch"] = att.pitch_deg;
-    j["yaw"] = att.yaw_deg;
+    j["roll"] = angle_deg(att.roll_deg);
+    j["pitch"] = angle_deg(att.pitch_deg);
+    j["yaw"] = angle_deg(att.yaw_deg);
     const geo::Lla gimbal{t.lat * o::rad2deg, t.lon * o::rad2deg, t.alt};
     const auto target = geo::target_from_los(gimbal, {t.los_ecef[0], t.los_ecef[1], t.los_ecef[2]});
     if (target)
-        j["target"] = {{"lat", target->lat_deg}, {"lon", target->lon_deg}, {"alt", target->alt_m}};
+        j["target"] = {{"lat", latlon_deg(target->lat_deg)},
+                       {"lon", latlon_deg(target->lon_deg)},
+                       {"alt", metres(target->alt_m)}};
     else
         j["target"] = nullptr;
     return j;
@@ -171,7 +174,7 @@ bool OrionState::apply(const o::Frame& frame, double now_s, std::vector<Event>& 
             on_telemetry(d.value, now_s, events);
             return;
         } else {
-            nlohmann::json j = o::to_json(d.value);
+            nlohmann::json j = o::to_json(d.value, o::Digits::shortest);
             if constexpr (std::is_same_v<P, o::StareStart>) {
                 last_stare_time_ms_ = d.value.system_time_ms;
                 events.push_back(Event{"stare_start", j});
@@ -213,7 +216,7 @@ bool OrionState::stale(double now_s) const {
 void OrionState::tick(double now_s, std::vector<Event>& events) {
     if (telemetry_s_ && !lost_reported_ && stale(now_s)) {
         lost_reported_ = true;
-        events.push_back(Event{"lost", {{"age_s", now_s - *telemetry_s_}}});
+        events.push_back(Event{"lost", {{"age_s", seconds(now_s - *telemetry_s_)}}});
     }
 }
 
@@ -221,7 +224,7 @@ nlohmann::json OrionState::snapshot(double now_s) const {
     nlohmann::json out = nlohmann::json::object();
     auto with_age = [now_s](const Entry& e) {
         nlohmann::json v = e.value;
-        const double age = std::max(0.0, now_s - e.received_s);
+        const double age = seconds(std::max(0.0, now_s - e.received_s));
         if (v.is_object())
             v["age_s"] = age;
         else
@@ -247,7 +250,8 @@ nlohmann::json OrionState::snapshot(double now_s) const {
             }
             // An array: each laser carries the packet's age.
             nlohmann::json arr = it->second.value;
-            for (auto& laser : arr) laser["age_s"] = std::max(0.0, now_s - it->second.received_s);
+            for (auto& laser : arr)
+                laser["age_s"] = seconds(std::max(0.0, now_s - it->second.received_s));
             out[k] = std::move(arr);
         } else {
             auto it = entries_.find(k);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "state/precision.hpp"
 #include "viewpro/json.hpp"
 
 namespace gimbal::state {
@@ -25,14 +26,14 @@ bool ViewproState::stale(double now_s) const {
 void ViewproState::tick(double now_s, std::vector<Event>& events) {
     if (output_ && !lost_reported_ && stale(now_s)) {
         lost_reported_ = true;
-        events.push_back(Event{"lost", {{"age_s", now_s - received_s_}}});
+        events.push_back(Event{"lost", {{"age_s", seconds(now_s - received_s_)}}});
     }
 }
 
 nlohmann::json ViewproState::snapshot(double now_s) const {
     if (!output_) return {{"output", nullptr}};
     nlohmann::json out = viewpro::to_json(*output_);
-    out["age_s"] = std::max(0.0, now_s - received_s_);
+    out["age_s"] = seconds(std::max(0.0, now_s - received_s_));
     return {{"output", std::move(out)}};
 }
 

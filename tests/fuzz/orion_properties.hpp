@@ -150,6 +150,27 @@ std::string check_json_to_wire(const P& packet, const json& source) {
     return {};
 }
 
+// Contract section 1: the JSON clients get (Digits::shortest) has fewer digits but must still
+// read back to exactly the same wire bytes as the exact JSON does.
+template <class P>
+std::string check_shortest_json(const P& packet) {
+    const json lean = orion::to_json(packet, orion::Digits::shortest);
+    P back{};
+    orion::JsonError error;
+    if (!orion::from_json(lean, back, error)) {
+        if (contains_null(lean)) return {};  // a non-finite float has no JSON number
+        return std::string(P::name) + ": its shortest JSON is rejected (" + error.code + ": " +
+               error.message + "): " + lean.dump();
+    }
+    // Compared with what the exact JSON reads back to: strings shown as printable ASCII are
+    // a normalisation both share.
+    P exact{};
+    if (!orion::from_json(orion::to_json(packet), exact, error)) return {};
+    if (bytes_of(orion::encode(back)) != bytes_of(orion::encode(exact)))
+        return std::string(P::name) + ": its shortest JSON encodes to other bytes: " + lean.dump();
+    return {};
+}
+
 // Decode `data` as P; when it decodes, re-encode and decode again: nothing but the documented
 // normalisations may change, and after one trip nothing changes at all.
 template <class P>
@@ -182,6 +203,7 @@ std::string check_decode_as(std::span<const std::uint8_t> data) {
     // Fixpoint: our own encoding round-trips exactly.
     const orion::Payload wire2 = orion::encode(second.value);
     if (bytes_of(wire2) != bytes_of(wire)) return name + ": encode(decode(encode(x))) differs";
+    if (auto lean = check_shortest_json(second.value); !lean.empty()) return lean;
     return check_json_to_wire(second.value, j2);
 }
 

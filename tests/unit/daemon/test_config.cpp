@@ -151,6 +151,17 @@ TEST_CASE("the sim example configuration is valid", "[config]") {
     CHECK(tcp->port == 8747);
 }
 
+TEST_CASE("the packaged configuration is valid, has no gimbals and only defaults", "[config]") {
+    // packaging/gimbald.json becomes the conffile /etc/gimbald/gimbald.json of the .deb.
+    const auto result = load_config_file(source_dir + "/packaging/gimbald.json");
+    INFO(joined(problem_texts(result)));
+    REQUIRE(result.ok());
+    CHECK(result.config.gimbals.empty());
+    const auto defaults = parse_config(R"({"gimbals": []})");
+    REQUIRE(defaults.ok());
+    CHECK(result.config == defaults.config);
+}
+
 TEST_CASE("docs/configuration.md documents every key", "[config]") {
     const std::string docs = read_text(source_dir + "/docs/configuration.md");
     REQUIRE(!docs.empty());
@@ -407,8 +418,17 @@ TEST_CASE("each invalid value is reported with its path and message", "[config]"
         {"gimbal not an object", [](json& c) { c["gimbals"][1] = "nose"; },
          "gimbals[1]: must be an object"},
         {"no gimbals", [](json& c) { c.erase("gimbals"); }, "gimbals: required"},
-        {"empty gimbals", [](json& c) { c["gimbals"] = json::array(); },
-         "gimbals: must list 1 to 32 gimbals"},
+        {"33 gimbals",
+         [](json& c) {
+             json gimbals = json::array();
+             for (int i = 0; i < 33; ++i) {
+                 gimbals.push_back({{"name", "g" + std::to_string(i)},
+                                    {"protocol", "orion"},
+                                    {"link", {{"type", "sim"}}}});
+             }
+             c["gimbals"] = gimbals;
+         },
+         "gimbals: must list 0 to 32 gimbals"},
         {"gimbals not an array", [](json& c) { c["gimbals"] = json::object(); },
          "gimbals: must be an array of gimbals"},
         {"bind", [](json& c) { c["command"]["bind"] = "localhost"; },

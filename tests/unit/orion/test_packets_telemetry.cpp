@@ -1355,6 +1355,10 @@ TEST_CASE("every telemetry packet is listed and round-trips through its own JSON
             JsonError err;
             REQUIRE(from_json(to_json(d.value), back, err));
             CHECK(encoded(back) == golden);
+            // What clients are sent (fewest digits) reads back to the same bytes too.
+            P lean;
+            REQUIRE(from_json(to_json(d.value, Digits::shortest), lean, err));
+            CHECK(encoded(lean) == golden);
         });
         CHECK(known);
     }
@@ -1404,4 +1408,21 @@ TEST_CASE("telemetry packets survive framing and the Framer", "[orion][telemetry
     const auto gps = decode<GpsData>(frames[0].data());
     REQUIRE(gps.ok);
     CHECK(to_json(gps.value) == to_json(typed));
+}
+
+TEST_CASE("clients get the fewest digits that keep the wire value", "[orion][json][digits]") {
+    const auto t = decode_golden<GeolocateTelemetry>(geolocate_golden);
+    const auto exact = to_json(t);
+    const auto lean = to_json(t, Digits::shortest);
+    // Latitude is a 1e-7 degree-ish field in radians: at most 7 decimals, never 17 digits.
+    for (const char* key : {"lat", "lon", "pan", "tilt", "hfov", "alt"}) {
+        INFO(key);
+        const std::string text = lean[key].dump();
+        const auto dot = text.find('.');
+        const std::size_t decimals = dot == std::string::npos ? 0 : text.size() - dot - 1;
+        CHECK(decimals <= 8);
+        // Within one wire step (pan and tilt: 180/32767 degree).
+        CHECK(lean[key].get<double>() == Approx(exact[key].get<double>()).margin(0.006));
+    }
+    CHECK(lean.dump().size() < exact.dump().size());
 }

@@ -1,0 +1,46 @@
+#!/usr/bin/env bash
+# Builds the Debian package gimbald_VERSION_ARCH.deb (contract section 13) from this checkout:
+# installs what is missing, builds the release binaries with Debian's hardening flags in
+# build/package-ARCH, generates the man pages and runs cpack. Prints the .deb's path last.
+#   scripts/package.sh                 # amd64 (the build machine's architecture)
+#   scripts/package.sh --arch arm64    # cross-compiled with crossbuild-essential-arm64
+# Environment: JOBS (parallel build jobs, default nproc).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+arch=$(dpkg --print-architecture)
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --arch) arch=$2; shift 2 ;;
+    *) echo "usage: scripts/package.sh [--arch amd64|arm64]" >&2; exit 2 ;;
+  esac
+done
+case "$arch" in amd64|arm64) ;; *) echo "package.sh: unsupported architecture $arch" >&2; exit 2 ;; esac
+
+scripts/install-deps.sh
+cross=()
+if [ "$arch" != "$(dpkg --print-architecture)" ]; then
+  scripts/install-deps.sh --cross "$arch"
+  cross=(-DCMAKE_TOOLCHAIN_FILE="$PWD/packaging/toolchain-aarch64.cmake")
+  export DEB_HOST_ARCH=$arch
+fi
+
+# Debian's compiler and linker hardening (what dpkg-buildpackage would set), without -g:
+# the package ships stripped binaries and no debug package.
+eval "$(DEB_BUILD_MAINT_OPTIONS=hardening=+all DEB_HOST_ARCH=$arch dpkg-buildflags --export=sh)"
+export CXXFLAGS="${CXXFLAGS//-g /} $CPPFLAGS"
+export LDFLAGS
+
+# Man page dates are the release's (the changelog's), not the build day: reproducible.
+SOURCE_DATE_EPOCH=$(dpkg-parsechangelog -l packaging/debian/changelog -STimestamp)
+export SOURCE_DATE_EPOCH
+
+build=build/package-$arch
+jobs=${JOBS:-$(nproc 2>/dev/null || echo 2)}
+cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DGIMBAL_WERROR=ON -DGIMBAL_TESTS=OFF \
+      -DGIMBAL_BENCH=OFF -DGIMBAL_PACKAGE=ON -DCMAKE_INSTALL_PREFIX=/usr "${cross[@]}" >/dev/null
+cmake --build "$build" -j "$jobs"
+rm -f "$build"/gimbald_*.deb
+(cd "$build" && cpack -G DEB >/dev/null)
+deb=$(ls "$build"/gimbald_*_"$arch".deb)
+echo "$PWD/$deb"

@@ -1,0 +1,101 @@
+#!/usr/bin/env bash
+# Checks a built gimbald .deb (contract section 13): lintian reports no error, the control
+# fields and the file list are what the contract says, and the programs run from the package
+# unpacked into a scratch root (dpkg-deb -x; no root, no maintainer scripts).
+#   tests/package/check-package.sh build/package-amd64/gimbald_0.1.0_amd64.deb
+set -euo pipefail
+deb=$1
+[ -f "$deb" ] || { echo "check-package: no such file: $deb" >&2; exit 1; }
+failures=0
+fail() { echo "check-package: FAIL: $*" >&2; failures=$((failures + 1)); }
+pass() { echo "check-package: ok: $*"; }
+
+version=$(sed -n 's/^project(gimbald VERSION \([0-9.]*\).*/\1/p' "$(dirname "$0")/../../CMakeLists.txt")
+arch=$(dpkg-deb -f "$deb" Architecture)
+
+# --- lintian: no errors (warnings and info tags are printed, see docs/operations.md)
+lintian_out=$(lintian --tag-display-limit 0 "$deb" 2>&1 | grep -v 'running with root privileges' || true)
+[ -n "$lintian_out" ] && echo "$lintian_out"
+if echo "$lintian_out" | grep -q '^E: '; then fail "lintian reports errors"; else pass "lintian: no errors"; fi
+
+# --- control fields
+field() { dpkg-deb -f "$deb" "$1"; }
+[ "$(field Package)" = gimbald ] && pass "Package: gimbald" || fail "Package is $(field Package)"
+[ "$(field Version)" = "$version" ] && pass "Version: $version" || fail "Version $(field Version) != $version"
+[ "$(basename "$deb")" = "gimbald_${version}_${arch}.deb" ] && pass "file name" || fail "file name $(basename "$deb")"
+for f in Section Priority Maintainer Description Installed-Size; do
+  [ -n "$(field "$f")" ] && pass "$f present" || fail "$f missing"
+done
+depends=$(field Depends)
+for lib in libc6 libstdc++6 libsystemd0 libspdlog libfmt libgeographiclib systemd; do
+  echo "$depends" | grep -q "$lib" && pass "Depends has $lib" || fail "Depends lacks $lib: $depends"
+done
+control=$(mktemp -d)
+scratch=$(mktemp -d)
+trap 'rm -rf "$control" "$scratch"' EXIT
+dpkg-deb -e "$deb" "$control"
+[ "$(cat "$control/conffiles")" = /etc/gimbald/gimbald.json ] && pass "conffiles" || fail "conffiles: $(cat "$control/conffiles")"
+for script in postinst prerm postrm; do
+  [ -x "$control/$script" ] && sh -n "$control/$script" && pass "$script" || fail "$script missing or bad"
+done
+grep -q 'systemd-sysusers' "$control/postinst" && grep -q 'deb-systemd-helper enable' "$control/postinst" \
+  && ! grep -Eq '(systemctl|deb-systemd-invoke) +start' "$control/postinst" \
+  && pass "postinst creates the user, enables, does not start" || fail "postinst"
+
+# --- contents
+contents=$(dpkg-deb -c "$deb" | awk '{print $1, $6}')
+expect() {  # mode-prefix path
+  echo "$contents" | grep -q "^$1[^ ]* \./$2\$" && pass "has $2" || fail "lacks $2 ($1)"
+}
+expect -rwxr-xr-x usr/sbin/gimbald
+expect -rwxr-xr-x usr/bin/gimbalctl
+expect -rwxr-xr-x usr/bin/gimbal-sim
+expect -rw-r--r-- etc/gimbald/gimbald.json
+expect -rw-r--r-- lib/systemd/system/gimbald.service
+expect -rw-r--r-- usr/lib/sysusers.d/gimbald.conf
+expect -rw-r--r-- usr/share/man/man8/gimbald.8.gz
+expect -rw-r--r-- usr/share/man/man1/gimbalctl.1.gz
+expect -rw-r--r-- usr/share/man/man1/gimbal-sim.1.gz
+expect -rw-r--r-- usr/share/man/man5/gimbald.json.5.gz
+expect -rw-r--r-- usr/share/doc/gimbald/copyright
+expect -rw-r--r-- usr/share/doc/gimbald/changelog.gz
+expect -rw-r--r-- usr/share/doc/gimbald/configuration.md
+expect -rw-r--r-- usr/share/doc/gimbald/examples/gimbald.json
+# Tools added later (gimbal-replay, gimbal-export) and the dissector come with their sources.
+src=$(dirname "$0")/../..
+for tool in gimbal-replay gimbal-export; do
+  [ -d "$src/tools/$tool" ] && expect -rwxr-xr-x "usr/bin/$tool"
+done
+[ -f "$src/dissectors/gimbald.lua" ] && expect -rw-r--r-- "usr/lib/.*/wireshark/plugins/gimbald.lua"
+
+# --- run from the unpacked package (only where the package's architecture runs here)
+dpkg-deb -x "$deb" "$scratch"
+run=()
+if [ "$arch" != "$(dpkg --print-architecture)" ]; then
+  command -v qemu-aarch64-static >/dev/null || { echo "check-package: no qemu-aarch64-static: not run"; exit $((failures > 0)); }
+  run=(qemu-aarch64-static -L /usr/aarch64-linux-gnu)
+fi
+out=$("${run[@]}" "$scratch/usr/sbin/gimbald" --version)
+[ "$out" = "gimbald $version" ] && pass "gimbald --version: $out" || fail "gimbald --version: $out"
+if out=$("${run[@]}" "$scratch/usr/sbin/gimbald" --check-config -c "$scratch/etc/gimbald/gimbald.json" 2>&1) \
+    && echo "$out" | grep -q 'OK, 0 gimbals'; then
+  pass "gimbald --check-config: $out"
+else
+  fail "gimbald --check-config: $out"
+fi
+out=$("${run[@]}" "$scratch/usr/bin/gimbalctl" --help)
+echo "$out" | grep -q '^SYNOPSIS' && pass "gimbalctl --help" || fail "gimbalctl --help"
+out=$("${run[@]}" "$scratch/usr/bin/gimbal-sim" --version)
+[ "$out" = "gimbal-sim $version" ] && pass "gimbal-sim --version: $out" || fail "gimbal-sim --version: $out"
+# Man pages render without groff warnings and carry the version.
+for page in "$scratch"/usr/share/man/man*/*.gz; do
+  warnings=$(LC_ALL=C.UTF-8 MANWIDTH=80 man --warnings -l "$page" 2>&1 >/dev/null || true)
+  [ -z "$warnings" ] && zcat "$page" | grep -q "^\.TH .*gimbal.* $version\"" \
+    && pass "man page $(basename "$page")" || fail "man page $(basename "$page"): $warnings"
+done
+
+if [ $failures -gt 0 ]; then
+  echo "check-package: $failures failure(s)" >&2
+  exit 1
+fi
+echo "check-package: all checks passed for $(basename "$deb")"
