@@ -96,6 +96,8 @@ App::App(const cfg::Config& config)
             session->add_state_key(
                 "mavlink", [this, name = session->name()] { return mavlink_->snapshot(name); });
     }
+    if (config_.mqtt)
+        mqtt_ = std::make_unique<mqtt::Bridge>(io_, *config_.mqtt, *request_path_, events_);
 }
 
 App::~App() = default;
@@ -178,6 +180,7 @@ void App::shutdown() {
     // Sessions first: their cease-fire goes out before the links close.
     for (auto& s : sessions_) s->stop();
     server_->stop();
+    if (mqtt_) mqtt_->stop();  // publishes {"online": false}, then disconnects
     signals_.cancel();
     watchdog_timer_.cancel();
 }
@@ -209,6 +212,7 @@ int App::run() {
     server_->start();
     vehicle_->start();
     if (mavlink_) mavlink_->start();
+    if (mqtt_) mqtt_->start();
     signals_.async_wait([this](const boost::system::error_code& e, int s) { on_signal(e, s); });
     const auto local = server_->local_endpoint();
     nlohmann::json gimbals = nlohmann::json::array();

@@ -13,6 +13,7 @@
 #include "event_hub.hpp"
 #include "gimbal_session.hpp"
 #include "mavlink_endpoint.hpp"
+#include "mqtt/mqtt_bridge.hpp"
 #include "request_path.hpp"
 #include "vehicle_feed.hpp"
 
@@ -45,6 +46,7 @@ class App {
     std::unique_ptr<CommandServer> server_;
     std::unique_ptr<VehicleFeed> vehicle_;
     std::unique_ptr<MavlinkEndpoint> mavlink_;
+    std::unique_ptr<mqtt::Bridge> mqtt_;  // contract section 9; null unless `mqtt` is set
     bool stopping_ = false;
 };
 

@@ -2,7 +2,11 @@
 
 #include "auth/roles.hpp"
 #include "auth/secret.hpp"
+#include "mqtt/mqtt_url.hpp"
 #include "secret_file.hpp"
+#include "state/messages.hpp"
+
+#include <unistd.h>
 
 #include <fmt/format.h>
 #include <algorithm>
@@ -686,6 +690,137 @@ void read_mavlink(Fields& f, MavlinkConfig& m) {
     }
 }
 
+// ---- mqtt (contract section 9) -----------------------------------------------------------
+
+// The host name lower-cased, every character outside [a-z0-9_-] replaced by '-', cut at 32.
+std::string default_station() {
+    char name[256] = {};
+    if (::gethostname(name, sizeof name - 1) != 0 || name[0] == '\0') return "gimbald";
+    std::string station;
+    for (const char* c = name; *c != '\0' && station.size() < 32; ++c) {
+        const char lower = static_cast<char>(std::tolower(static_cast<unsigned char>(*c)));
+        const bool ok = (lower >= 'a' && lower <= 'z') || (lower >= '0' && lower <= '9') ||
+                        lower == '_' || lower == '-';
+        station += ok ? lower : '-';
+    }
+    return station;
+}
+
+// A file named in the config that must be readable now (CA, certificate, key).
+void check_readable(Fields& f, std::string_view key, const std::optional<std::string>& path) {
+    if (!path) return;
+    std::FILE* file = std::fopen(path->c_str(), "rbe");
+    if (file == nullptr) {
+        f.problem(key, fmt::format("{}: {}", *path, std::strerror(errno)));
+        return;
+    }
+    std::fclose(file);
+}
+
+void optional_string(Fields& f, std::string_view key, std::optional<std::string>& out) {
+    const json* value = f.find(key);
+    if (value == nullptr || value->is_null()) return;
+    if (!value->is_string() || value->get_ref<const std::string&>().empty()) {
+        f.problem(key, "must be null or a non-empty string");
+        return;
+    }
+    out = value->get<std::string>();
+}
+
+MqttConfig read_mqtt(Fields& f) {
+    static const std::regex station_pattern("[a-z0-9_-]{1,32}");
+    MqttConfig mqtt;
+    if (f.string("url", mqtt.url)) {
+        auto url = parse_mqtt_url(mqtt.url);
+        if (auto* parsed = std::get_if<MqttUrl>(&url)) {
+            mqtt.tls = parsed->tls;
+            mqtt.host = parsed->host;
+            mqtt.port = parsed->port;
+        } else {
+            f.problem("url", std::get<std::string>(url));
+        }
+    }
+    std::optional<std::string> station;
+    optional_string(f, "station", station);
+    if (station && !std::regex_match(*station, station_pattern))
+        f.problem("station", "must match [a-z0-9_-]{1,32}");
+    mqtt.station = station ? *station : default_station();
+    if (f.string("prefix", mqtt.prefix)) {
+        const auto& p = mqtt.prefix;
+        if (p.empty() || p.size() > 128 || p.front() == '/' || p.back() == '/' ||
+            p.find("//") != std::string::npos || p.find_first_of("+#") != std::string::npos)
+            f.problem("prefix",
+                      "must be 1 to 128 characters of topic levels (no '+', '#', empty level "
+                      "or leading/trailing '/')");
+    }
+    std::optional<std::string> client_id;
+    optional_string(f, "client_id", client_id);
+    if (client_id && client_id->size() > 128) f.problem("client_id", "longer than 128 characters");
+    mqtt.client_id = client_id ? *client_id : "gimbald-" + mqtt.station;
+    optional_string(f, "username", mqtt.username);
+    optional_string(f, "password_file", mqtt.password_file);
+    if (mqtt.password_file) {
+        const auto text = read_private_file(*mqtt.password_file);
+        if (!read_ok(text)) {
+            f.problem("password_file", std::get<1>(text));
+        } else {
+            mqtt.password = std::get<0>(text);
+            // One line: the trailing newline an editor adds is not part of the password.
+            while (!mqtt.password.empty() &&
+                   (mqtt.password.back() == '\n' || mqtt.password.back() == '\r'))
+                mqtt.password.pop_back();
+        }
+        if (!mqtt.username) f.problem("password_file", "needs \"username\"");
+    }
+    optional_string(f, "ca_file", mqtt.ca_file);
+    optional_string(f, "cert_file", mqtt.cert_file);
+    optional_string(f, "key_file", mqtt.key_file);
+    check_readable(f, "ca_file", mqtt.ca_file);
+    check_readable(f, "cert_file", mqtt.cert_file);
+    if (mqtt.key_file) {
+        const auto key = read_private_file(*mqtt.key_file);
+        if (!read_ok(key)) f.problem("key_file", std::get<1>(key));
+    }
+    if (mqtt.cert_file.has_value() != mqtt.key_file.has_value())
+        f.problem(mqtt.cert_file ? "key_file" : "cert_file",
+                  "cert_file and key_file go together (the client certificate and its key)");
+    if (!mqtt.tls && (mqtt.ca_file || mqtt.cert_file))
+        f.problem("url", "ca_file/cert_file are set: use mqtts:// for TLS");
+    f.number("keepalive_s", mqtt.keepalive_s, {5, 3600});  // libmosquitto's minimum
+    f.number("state_rate_hz", mqtt.state_rate_hz, {0.1, 50});
+    if (const json* keys = f.find("state_keys"); keys != nullptr && !keys->is_null()) {
+        std::vector<std::string> names;
+        const std::string problem = gimbal::state::parse_state_keys(*keys, names);
+        if (!problem.empty())
+            f.problem("state_keys", problem);
+        else
+            mqtt.state_keys = std::move(names);
+    }
+    f.boolean("commands", mqtt.commands);
+    f.integer("queue_max", mqtt.queue_max, {10, 1000000});
+    return mqtt;
+}
+
+json mqtt_to_json(const MqttConfig& m) {
+    auto optional = [](const std::optional<std::string>& s) {
+        return s ? json(*s) : json(nullptr);
+    };
+    return {{"url", m.url},
+            {"station", m.station},
+            {"prefix", m.prefix},
+            {"client_id", m.client_id},
+            {"username", optional(m.username)},
+            {"password_file", optional(m.password_file)},
+            {"ca_file", optional(m.ca_file)},
+            {"cert_file", optional(m.cert_file)},
+            {"key_file", optional(m.key_file)},
+            {"keepalive_s", m.keepalive_s},
+            {"state_rate_hz", m.state_rate_hz},
+            {"state_keys", m.state_keys ? json(*m.state_keys) : json(nullptr)},
+            {"commands", m.commands},
+            {"queue_max", m.queue_max}};
+}
+
 // Object sections with no cross-dependencies: read each when present.
 template <class Read>
 void section(Fields& root, std::string_view key, Read read) {
@@ -874,6 +1009,7 @@ ConfigResult parse_config(std::string_view text, GimbalsSection gimbals) {
     section(root, "log", [&](Fields& f) { read_log(f, config.log); });
     section(root, "vehicle", [&](Fields& f) { config.vehicle = read_vehicle(f); });
     section(root, "mavlink", [&](Fields& f) { read_mavlink(f, config.mavlink); });
+    section(root, "mqtt", [&](Fields& f) { config.mqtt = read_mqtt(f); });
     root.finish();
     if (config.mavlink.gimbal_manager && !config.vehicle)
         problems.add("mavlink.gimbal_manager",
@@ -1034,6 +1170,7 @@ json to_json(const Config& config, bool show_token) {
         {"component_id", m.component_id},
         {"targets", m.targets},
         {"signing_key_file", m.signing_key_file ? json(*m.signing_key_file) : json(nullptr)}};
+    if (config.mqtt) out["mqtt"] = mqtt_to_json(*config.mqtt);
     return out;
 }
 

@@ -200,6 +200,29 @@ struct MavlinkConfig {
     bool operator==(const MavlinkConfig&) const = default;
 };
 
+// mqtt (contract section 9): the bridge to an MQTT broker; off unless the section is set.
+struct MqttConfig {
+    std::string url = "mqtt://127.0.0.1:1883";
+    bool tls = false;  // mqtts://
+    std::string host = "127.0.0.1";
+    std::uint16_t port = 1883;
+    std::string station;  // default: the host name, lower-cased, [^a-z0-9_-] -> '-'
+    std::string prefix = "gimbald";
+    std::string client_id;  // default: gimbald-{station}
+    std::optional<std::string> username;
+    std::optional<std::string> password_file;
+    std::string password;  // read from password_file at load time, never printed
+    std::optional<std::string> ca_file;
+    std::optional<std::string> cert_file;
+    std::optional<std::string> key_file;
+    double keepalive_s = 10;
+    double state_rate_hz = 2;
+    std::optional<std::vector<std::string>> state_keys;
+    bool commands = false;
+    unsigned queue_max = 1000;
+    bool operator==(const MqttConfig&) const = default;
+};
+
 struct Config {
     std::vector<GimbalConfig> gimbals;
     CommandConfig command;
@@ -209,6 +232,7 @@ struct Config {
     LogConfig log;
     std::optional<VehicleConfig> vehicle;
     MavlinkConfig mavlink;
+    std::optional<MqttConfig> mqtt;
     bool operator==(const Config&) const = default;
 };
 

@@ -9,6 +9,7 @@ packages=(
   libsystemd-dev libgeographiclib-dev libssl-dev
   libbenchmark-dev clang libclang-rt-14-dev
   socat python3 systemd
+  libmosquitto-dev mosquitto mosquitto-clients python3-paho-mqtt openssl
   dpkg-dev lintian
 )
 
@@ -24,6 +25,7 @@ if [ "${1:-}" = "--cross" ]; then
     "libboost-dev:$cross_arch" "libspdlog-dev:$cross_arch" "libfmt-dev:$cross_arch"
     "libsystemd-dev:$cross_arch" "libgeographiclib23:$cross_arch"
     "libssl-dev:$cross_arch"
+    "libmosquitto-dev:$cross_arch"
   )
 fi
 

@@ -20,6 +20,7 @@ struct RawGlobals {
     CLI::Option* gimbal_option = nullptr;
     CLI::Option* token_option = nullptr;
     CLI::Option* id_option = nullptr;
+    MqttOptionsRaw mqtt;
 };
 
 void add_global_options(CLI::App& app, RawGlobals& raw) {
@@ -74,6 +75,7 @@ void add_global_options(CLI::App& app, RawGlobals& raw) {
                  "print the request JSON and exit 0 without sending it")
         ->default_str("off");
     app.add_flag("--pretty", raw.values.pretty, "indent the JSON output")->default_str("off");
+    add_mqtt_options(app, raw.mqtt);
 }
 
 GlobalOptions finish_globals(const RawGlobals& raw) {
@@ -126,6 +128,7 @@ ParseResult parse_command_line(int argc, char** argv) {
         if (command == nullptr) throw CLI::RequiredError("a COMMAND");
         Invocation invocation;
         invocation.global = finish_globals(raw);
+        invocation.global.mqtt = finish_mqtt_options(app, raw.mqtt);
         const std::optional<std::string> id =
             raw.id_option->count() > 0 ? std::optional<std::string>(raw.id) : std::nullopt;
         invocation.request = make_request(*command, invocation.global, request_id(id));

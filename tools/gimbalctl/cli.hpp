@@ -7,6 +7,7 @@
 
 #include "command_table.hpp"
 #include "json_types.hpp"
+#include "mqtt_options.hpp"
 
 namespace gimbalctl {
 
@@ -20,6 +21,7 @@ struct GlobalOptions {
     double timeout_s = 2.0;
     bool print_request = false;
     bool pretty = false;
+    std::optional<MqttTarget> mqtt;  // --mqtt: through a broker instead of UDP
 };
 
 // What to do after a successful parse.

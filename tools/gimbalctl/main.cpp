@@ -3,6 +3,7 @@
 #include "cli.hpp"
 #include "exchange.hpp"
 #include "exit_status.hpp"
+#include "mqtt_run.hpp"
 #include "output.hpp"
 #include "signing.hpp"
 #include "watch.hpp"
@@ -17,6 +18,11 @@ int main(int argc, char** argv) {
     if (invocation.global.print_request) {
         print_json(invocation.request, invocation.global.pretty);
         return exit_ok;
+    }
+    if (invocation.global.mqtt) {
+        if (invocation.action == Action::watch)
+            return run_mqtt_watch(invocation.global, invocation.request, invocation.watch_count);
+        return run_mqtt_exchange(invocation.global, invocation.request);
     }
     if (invocation.action == Action::watch) {
         return run_watch(invocation.global, invocation.request, invocation.watch_count);

@@ -132,6 +132,7 @@ TEST_CASE("the example configuration is valid and holds every default", "[config
     json minimal = valid_config();
     minimal["gimbals"].erase(2);
     minimal["vehicle"] = json::object();
+    minimal["mqtt"] = {{"station", "ground-1"}};  // the station default is the host name
     const auto defaults = parse_config(minimal.dump());
     REQUIRE(defaults.ok());
     CHECK(defaults.config == config);
