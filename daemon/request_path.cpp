@@ -66,6 +66,19 @@ struct RequestPath::Outcome {
         error = std::move(e);
         return json::object();
     }
+
+    // For a refusal decided before the request is read (rate limit, bad signature): the id
+    // and cmd of `text`, if it has them, so the client can still match the reply.
+    void echo_id_and_cmd(std::string_view text) {
+        cmdns::Envelope read;
+        if (auto bad = cmdns::parse_envelope(text, known_command, read)) {
+            env.id = bad->id;
+            cmd = bad->cmd;
+        } else {
+            env.id = read.id;
+            cmd = read.cmd;
+        }
+    }
 };
 
 RequestPath::RequestPath(boost::asio::io_context& io, RequestPathOptions options,
@@ -101,14 +114,7 @@ std::optional<std::string> RequestPath::handle(std::string_view bytes, const Req
             ++counters_.rate_limited;
             // Once a second per source: parsing the id is affordable at that rate.
             Outcome o;
-            cmdns::Envelope ignored;
-            if (auto bad = cmdns::parse_envelope(bytes, known_command, ignored)) {
-                o.env.id = bad->id;
-                o.cmd = bad->cmd;
-            } else {
-                o.env.id = ignored.id;
-                o.cmd = ignored.cmd;
-            }
+            o.echo_id_and_cmd(bytes);
             o.error = Error{code::rate_limited,
                             "more than command.rate_limit allows from " + rate_key(from) +
                                 "; this request and the others over the limit in the next "
@@ -142,15 +148,7 @@ void RequestPath::authenticate(Outcome& o, std::string_view bytes) {
                                 rejected->reason};
                 // The unsigned refusal still echoes id and cmd, so the client can match it;
                 // nothing else of an unverified payload is used.
-                cmdns::Envelope unverified;
-                const auto& payload = std::get<gimbal::auth::SignedEnvelope>(*envelope).payload;
-                if (auto bad = cmdns::parse_envelope(payload, known_command, unverified)) {
-                    o.env.id = bad->id;
-                    o.cmd = bad->cmd;
-                } else {
-                    o.env.id = unverified.id;
-                    o.cmd = unverified.cmd;
-                }
+                o.echo_id_and_cmd(std::get<gimbal::auth::SignedEnvelope>(*envelope).payload);
                 return;
             }
             auto& verified = std::get<gimbal::auth::Verified>(result);

@@ -15,15 +15,9 @@
 namespace gimbalctl {
 
 int run_exchange(const GlobalOptions& globals, const Json& request) {
-    std::optional<SigningKey> key;
-    if (globals.key_file) {
-        std::string problem;
-        key = load_signing_key(*globals.key_file, globals.key_id.value_or(""), problem);
-        if (!key) {
-            print_diagnostic(problem);
-            return exit_usage;
-        }
-    }
+    int status = exit_ok;
+    std::optional<SigningKey> key = signing_key_for(globals, status);
+    if (status != exit_ok) return status;
     Sealer sealer(std::move(key));
     boost::asio::io_context io;
     std::optional<Json> reply;

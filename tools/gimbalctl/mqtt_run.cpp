@@ -205,17 +205,6 @@ std::string base_topic(const MqttTarget& t) {
     return t.prefix + "/" + t.station;
 }
 
-std::optional<SigningKey> load_key(const GlobalOptions& globals, int& status) {
-    if (!globals.key_file) return std::nullopt;
-    std::string problem;
-    auto key = load_signing_key(*globals.key_file, globals.key_id.value_or(""), problem);
-    if (!key) {
-        print_diagnostic(problem);
-        status = exit_usage;
-    }
-    return key;
-}
-
 }  // namespace
 
 int run_mqtt_exchange(const GlobalOptions& globals, const Json& request) {
@@ -225,7 +214,7 @@ int run_mqtt_exchange(const GlobalOptions& globals, const Json& request) {
         return exit_usage;
     }
     int status = exit_ok;
-    auto key = load_key(globals, status);
+    auto key = signing_key_for(globals, status);
     if (status != exit_ok) return status;
     Sealer sealer(std::move(key));
     std::optional<Json> reply;

@@ -12,6 +12,7 @@
 #include "auth/hmac.hpp"
 #include "auth/secret.hpp"
 #include "auth/signed_envelope.hpp"
+#include "cli.hpp"
 #include "exit_status.hpp"
 #include "output.hpp"
 
@@ -32,6 +33,17 @@ std::optional<SigningKey> load_signing_key(const std::string& file, const std::s
         return std::nullopt;
     }
     return SigningKey{id, std::move(std::get<std::vector<std::uint8_t>>(secret))};
+}
+
+std::optional<SigningKey> signing_key_for(const GlobalOptions& globals, int& status) {
+    if (!globals.key_file) return std::nullopt;
+    std::string problem;
+    auto key = load_signing_key(*globals.key_file, globals.key_id.value_or(""), problem);
+    if (!key) {
+        print_diagnostic(problem);
+        status = exit_usage;
+    }
+    return key;
 }
 
 std::string Sealer::seal(const Json& request) {

@@ -20,6 +20,11 @@ struct SigningKey {
 std::optional<SigningKey> load_signing_key(const std::string& file, const std::string& id,
                                            std::string& problem);
 
+struct GlobalOptions;
+// The key of --key-file/--key-id, or nullopt when not signing. When the file cannot be used
+// the problem is printed and `status` set to the usage exit status.
+std::optional<SigningKey> signing_key_for(const GlobalOptions& globals, int& status);
+
 class Sealer {
   public:
     explicit Sealer(std::optional<SigningKey> key) : key_(std::move(key)) {}

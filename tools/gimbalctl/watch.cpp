@@ -179,15 +179,9 @@ class Watch {
 }  // namespace
 
 int run_watch(const GlobalOptions& globals, const Json& subscribe, std::int64_t count) {
-    std::optional<SigningKey> key;
-    if (globals.key_file) {
-        std::string problem;
-        key = load_signing_key(*globals.key_file, globals.key_id.value_or(""), problem);
-        if (!key) {
-            print_diagnostic(problem);
-            return exit_usage;
-        }
-    }
+    int status = exit_ok;
+    std::optional<SigningKey> key = signing_key_for(globals, status);
+    if (status != exit_ok) return status;
     Watch watch(globals, subscribe, count, std::move(key));
     return watch.run();
 }
