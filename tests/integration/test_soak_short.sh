@@ -1,0 +1,10 @@
+#!/usr/bin/env bash
+# The 20-second version of scripts/soak.sh: link flaps, junk, subscriber churn, invalid and
+# badly signed requests, dead-man laser fires; every reply arrives, every fire is ceased.
+set -uo pipefail
+src=${GIMBAL_SOURCE_DIR:-$(cd "$(dirname "$0")/../.." && pwd)}
+if [ -z "${GIMBALD:-}" ] || [ -z "${GIMBALCTL:-}" ] || [ -z "${GIMBAL_SIM:-}" ]; then
+  echo "SKIP: GIMBALD, GIMBALCTL or GIMBAL_SIM not set"
+  exit 77
+fi
+exec "$src/scripts/soak.sh" --seconds 20
