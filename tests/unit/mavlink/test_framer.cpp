@@ -48,8 +48,10 @@ std::vector<Sample> sample_frames(std::uint32_t seed) {
         const auto seq = static_cast<std::uint8_t>(rng());
         const auto sys = static_cast<std::uint8_t>(rng());
         const auto comp = static_cast<std::uint8_t>(rng());
-        out.push_back({encode_v1(p, sys, comp, seq), Message{1, seq, sys, comp, message_id(p), p, {}}});
-        out.push_back({encode_v2(p, sys, comp, seq), Message{2, seq, sys, comp, message_id(p), p, {}}});
+        out.push_back(
+            {encode_v1(p, sys, comp, seq), Message{1, seq, sys, comp, message_id(p), p, {}}});
+        out.push_back(
+            {encode_v2(p, sys, comp, seq), Message{2, seq, sys, comp, message_id(p), p, {}}});
     }
     return out;
 }
