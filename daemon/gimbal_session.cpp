@@ -67,6 +67,7 @@ void GimbalSession::on_data(std::span<const std::uint8_t> bytes) {
     for (auto& reply : replies) link_->send(std::move(reply));
     report_counters();
     emit(events);
+    for (const auto& listener : receive_listeners_) listener();
 }
 
 void GimbalSession::report_counters() {

@@ -62,6 +62,11 @@ class GimbalSession {
     void add_state_key(std::string key, std::function<nlohmann::json()> fill) {
         state_keys_.emplace_back(std::move(key), std::move(fill));
     }
+    // Called after every chunk of bytes from the gimbal has updated the state (streams that
+    // want to follow new telemetry at once, such as MQTT).
+    void add_receive_listener(std::function<void()> listener) {
+        receive_listeners_.push_back(std::move(listener));
+    }
     // Short text for systemd's STATUS= line.
     std::string status() const;
 
@@ -91,6 +96,7 @@ class GimbalSession {
     std::uint64_t reported_decode_errors_ = 0;
     std::function<nlohmann::json()> vehicle_snapshot_;
     std::vector<std::pair<std::string, std::function<nlohmann::json()>>> state_keys_;
+    std::vector<std::function<void()>> receive_listeners_;
 };
 
 }  // namespace gimbald

@@ -54,8 +54,21 @@ Bridge::Bridge(asio::io_context& io, const gimbal::daemon::MqttConfig& config, R
                 publish_link(gimbal, session->connected());
         }
     });
-    for (auto* session : path_.sessions())
+    for (auto* session : path_.sessions()) {
         session->add_state_key("mqtt", [this] { return state_key(); });
+        // STATE follows the gimbal: published as soon as new data arrives (telemetry received
+        // -> subscriber in milliseconds, not up to a period later), at most at the rate.
+        session->add_receive_listener([this, session] {
+            if (stopped_ || !client_->connected()) return;
+            if (age_of_state(*session) >= 0.8 / config_.state_rate_hz) publish_state(*session);
+        });
+    }
+}
+
+double Bridge::age_of_state(const GimbalSession& session) const {
+    const auto it = last_state_.find(session.name());
+    if (it == last_state_.end()) return 1e9;
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - it->second).count();
 }
 
 json Bridge::state_key() const {
@@ -107,11 +120,21 @@ void Bridge::publish_link(const std::string& gimbal, bool connected) {
 void Bridge::publish_state(GimbalSession& session) {
     json state = session.snapshot();
     if (config_.state_keys) state = gimbal::state::select_keys(state, *config_.state_keys);
-    client_->publish({Kind::state, topic(session.name() + "/state"), state.dump(), 0, true, {}});
+    last_state_[session.name()] = std::chrono::steady_clock::now();
+    client_->publish({Kind::state,
+                      topic(session.name() + "/state"),
+                      state.dump(-1, ' ', false, json::error_handler_t::replace),
+                      0,
+                      true,
+                      {}});
 }
 
 void Bridge::publish_states() {
-    for (auto* s : path_.sessions()) publish_state(*s);
+    // A gimbal whose data keeps arriving was published by its receive listener; this covers
+    // silent ones (link down, stale) and a broker that was away.
+    for (auto* s : path_.sessions())
+        if (!client_->connected() || age_of_state(*s) >= 0.8 / config_.state_rate_hz)
+            publish_state(*s);
 }
 
 void Bridge::schedule_states() {

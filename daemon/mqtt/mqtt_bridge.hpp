@@ -6,6 +6,8 @@
 
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/steady_timer.hpp>
+#include <chrono>
+#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -36,6 +38,7 @@ class Bridge {
     void on_connected();
     void on_message(const Incoming& in);
     void publish_states();
+    double age_of_state(const GimbalSession& session) const;  // seconds since its last STATE
     void publish_state(GimbalSession& session);
     void publish_link(const std::string& gimbal, bool connected);
     void schedule_states();
@@ -47,6 +50,9 @@ class Bridge {
     std::string base_;  // {prefix}/{station}
     std::unique_ptr<Client> client_;
     boost::asio::steady_timer state_timer_;
+    // When each gimbal's STATE was last published: new telemetry is published at once unless
+    // the previous STATE is younger than 0.8 of the period (so the rate stays state_rate_hz).
+    std::map<std::string, std::chrono::steady_clock::time_point> last_state_;
     bool stopped_ = false;
 };
 
