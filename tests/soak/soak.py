@@ -223,22 +223,31 @@ class Soak:
 
     # --- measurements ---------------------------------------------------------------------
     def link_events(self):
-        """(reconnects, [durations]) from gimbald's JSON log."""
-        down, durations, ups = {}, [], 0
-        with open(self.log_path, errors="replace") as f:
-            for line in f:
-                try:
-                    e = json.loads(line)
-                except ValueError:
-                    continue
-                g = e.get("gimbal")
-                if e.get("event") == "link_down":
-                    down.setdefault(g, e["ts"])
-                elif e.get("event") == "link_up":
-                    ups += 1
-                    if g in down:
-                        durations.append(iso_seconds(e["ts"]) - iso_seconds(down.pop(g)))
-        return max(0, ups - len(self.sims)), durations
+        """(reconnects, [durations]) from gimbald's JSON log, read incrementally: the log grows
+        by megabytes a minute and re-reading it would stall this client (and overflow its
+        socket buffer)."""
+        if not hasattr(self, "_log_offset"):
+            self._log_offset, self._down, self._durations, self._ups = 0, {}, [], 0
+        with open(self.log_path, "rb") as f:
+            f.seek(self._log_offset)
+            chunk = f.read()
+        complete = chunk.rfind(b"\n") + 1
+        self._log_offset += complete
+        for line in chunk[:complete].decode(errors="replace").splitlines():
+            if '"link_' not in line:
+                continue
+            try:
+                e = json.loads(line)
+            except ValueError:
+                continue
+            g = e.get("gimbal")
+            if e.get("event") == "link_down":
+                self._down.setdefault(g, e["ts"])
+            elif e.get("event") == "link_up":
+                self._ups += 1
+                if g in self._down:
+                    self._durations.append(iso_seconds(e["ts"]) - iso_seconds(self._down.pop(g)))
+        return max(0, self._ups - len(self.sims)), self._durations
 
     def row(self, elapsed):
         pid = self.daemon.pid
