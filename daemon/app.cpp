@@ -84,7 +84,9 @@ App::App(const cfg::Config& config)
     for (std::size_t i = 0; i < sessions_.size(); ++i) {
         auto& session = *sessions_[i];
         vehicle_->add_gimbal(session, config_.gimbals[i]);
-        session.set_vehicle_snapshot([this, &session] { return vehicle_->snapshot(session); });
+        // STATE `vehicle` is null when nothing can tell gimbald about the aircraft.
+        if (config_.vehicle || config_.mavlink.gimbal_manager)
+            session.set_vehicle_snapshot([this, &session] { return vehicle_->snapshot(session); });
     }
     if (config_.mavlink.gimbal_manager) {
         // Contract section 8: our system id defaults to vehicle.system_id when that is set.

@@ -247,7 +247,7 @@ nlohmann::json GimbalSession::snapshot() const {
                             {"stale", protocol_->stale(now)}};
     nlohmann::json keys = protocol_->snapshot(now);  // named: items() of a temporary dangles
     for (auto& [key, value] : keys.items()) state[key] = std::move(value);
-    if (vehicle_snapshot_) state["vehicle"] = vehicle_snapshot_();
+    state["vehicle"] = vehicle_snapshot_ ? vehicle_snapshot_() : nlohmann::json(nullptr);
     for (const auto& [key, fill] : state_keys_) state[key] = fill();
     return state;
 }

@@ -37,6 +37,8 @@ class GimbalSession {
     const std::string& name() const { return name_; }
     std::string_view protocol() const { return protocol_->name(); }
     bool connected() const { return link_->connected(); }
+    // Position telemetry received so far: a listener sees whether a chunk carried any.
+    std::uint64_t telemetry_count() const { return protocol_->telemetry_count(); }
     std::string link_type() const { return link_->type(); }
 
     bool supports(std::string_view cmd) const { return protocol_->supports(cmd); }

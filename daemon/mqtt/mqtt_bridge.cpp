@@ -17,11 +17,7 @@ std::string request_source(const Incoming& in) {
 
 Bridge::Bridge(asio::io_context& io, const gimbal::daemon::MqttConfig& config, RequestPath& path,
                EventHub& events)
-    : io_(io),
-      config_(config),
-      path_(path),
-      base_(config.prefix + "/" + config.station),
-      state_timer_(io) {
+    : io_(io), config_(config), path_(path), base_(config.prefix + "/" + config.station) {
     ClientOptions o;
     o.host = config_.host;
     o.port = config_.port;
@@ -56,19 +52,16 @@ Bridge::Bridge(asio::io_context& io, const gimbal::daemon::MqttConfig& config, R
     });
     for (auto* session : path_.sessions()) {
         session->add_state_key("mqtt", [this] { return state_key(); });
-        // STATE follows the gimbal: published as soon as new data arrives (telemetry received
-        // -> subscriber in milliseconds, not up to a period later), at most at the rate.
-        session->add_receive_listener([this, session] {
-            if (stopped_ || !client_->connected()) return;
-            if (age_of_state(*session) >= 0.8 / config_.state_rate_hz) publish_state(*session);
+        auto& stream = streams_[session->name()];
+        stream.pacer = std::make_unique<StatePacer>(io_, config_.state_rate_hz,
+                                                    [this, session] { publish_state(*session); });
+        // STATE follows the gimbal's telemetry (state_pacer.hpp), not a fixed tick.
+        session->add_receive_listener([this, session, &stream] {
+            if (stopped_ || session->telemetry_count() == stream.telemetry_seen) return;
+            stream.telemetry_seen = session->telemetry_count();
+            stream.pacer->on_telemetry();
         });
     }
-}
-
-double Bridge::age_of_state(const GimbalSession& session) const {
-    const auto it = last_state_.find(session.name());
-    if (it == last_state_.end()) return 1e9;
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - it->second).count();
 }
 
 json Bridge::state_key() const {
@@ -81,13 +74,13 @@ json Bridge::state_key() const {
 
 void Bridge::start() {
     client_->start();
-    schedule_states();
+    for (auto& [name, stream] : streams_) stream.pacer->publish_now();
 }
 
 void Bridge::stop() {
     if (stopped_) return;
     stopped_ = true;
-    state_timer_.cancel();
+    for (auto& [name, stream] : streams_) stream.pacer->stop();
     client_->stop({Kind::retained, topic("status"), json{{"online", false}}.dump(), 1, true, {}});
 }
 
@@ -104,7 +97,7 @@ void Bridge::on_connected() {
          {}});
     for (auto* s : path_.sessions()) {
         publish_link(s->name(), s->connected());
-        publish_state(*s);
+        streams_.at(s->name()).pacer->publish_now();
     }
 }
 
@@ -120,33 +113,12 @@ void Bridge::publish_link(const std::string& gimbal, bool connected) {
 void Bridge::publish_state(GimbalSession& session) {
     json state = session.snapshot();
     if (config_.state_keys) state = gimbal::state::select_keys(state, *config_.state_keys);
-    last_state_[session.name()] = std::chrono::steady_clock::now();
     client_->publish({Kind::state,
                       topic(session.name() + "/state"),
                       state.dump(-1, ' ', false, json::error_handler_t::replace),
                       0,
                       true,
                       {}});
-}
-
-void Bridge::publish_states() {
-    // A gimbal whose data keeps arriving was published by its receive listener; this covers
-    // silent ones (link down, stale) and a broker that was away.
-    for (auto* s : path_.sessions())
-        if (!client_->connected() || age_of_state(*s) >= 0.8 / config_.state_rate_hz)
-            publish_state(*s);
-}
-
-void Bridge::schedule_states() {
-    if (stopped_) return;
-    state_timer_.expires_after(std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-        std::chrono::duration<double>(1.0 / config_.state_rate_hz)));
-    state_timer_.async_wait([this](const boost::system::error_code& ec) {
-        if (ec || stopped_) return;
-        // While the broker is away at most one STATE per gimbal waits (the queue replaces).
-        publish_states();
-        schedule_states();
-    });
 }
 
 void Bridge::on_message(const Incoming& in) {

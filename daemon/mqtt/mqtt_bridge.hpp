@@ -16,6 +16,7 @@
 #include "event_hub.hpp"
 #include "mqtt_client.hpp"
 #include "request_path.hpp"
+#include "state_pacer.hpp"
 
 namespace gimbald::mqtt {
 
@@ -37,11 +38,8 @@ class Bridge {
   private:
     void on_connected();
     void on_message(const Incoming& in);
-    void publish_states();
-    double age_of_state(const GimbalSession& session) const;  // seconds since its last STATE
     void publish_state(GimbalSession& session);
     void publish_link(const std::string& gimbal, bool connected);
-    void schedule_states();
     std::string topic(const std::string& tail) const { return base_ + "/" + tail; }
 
     boost::asio::io_context& io_;
@@ -49,10 +47,12 @@ class Bridge {
     RequestPath& path_;
     std::string base_;  // {prefix}/{station}
     std::unique_ptr<Client> client_;
-    boost::asio::steady_timer state_timer_;
-    // When each gimbal's STATE was last published: new telemetry is published at once unless
-    // the previous STATE is younger than 0.8 of the period (so the rate stays state_rate_hz).
-    std::map<std::string, std::chrono::steady_clock::time_point> last_state_;
+    // Per gimbal: when its STATE goes out, and the telemetry count it last carried.
+    struct Stream {
+        std::unique_ptr<StatePacer> pacer;
+        std::uint64_t telemetry_seen = 0;
+    };
+    std::map<std::string, Stream> streams_;
     bool stopped_ = false;
 };
 

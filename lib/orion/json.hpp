@@ -66,8 +66,12 @@ class JsonWriter {
                 // decimal, which nlohmann prints as that decimal.
                 const double candidate = std::round(exact * scale) / scale;
                 if (in_range(candidate, enc, s, to_json) &&
-                    wire_value(static_cast<T>(candidate / to_json), enc, s) == target)
+                    wire_value(static_cast<T>(candidate / to_json), enc, s) == target) {
+                    // A whole number prints without ".0" (JSON has one number type).
+                    if (decimals == 0 && std::abs(candidate) < 1e15)
+                        return static_cast<std::int64_t>(candidate);
                     return candidate;
+                }
             }
             return exact;
         } else {

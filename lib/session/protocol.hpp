@@ -46,6 +46,8 @@ class Protocol {
     virtual std::vector<Bytes> on_connect() = 0;
 
     virtual bool stale(double now_s) const = 0;
+    // Position telemetry received so far (Orion GeolocateTelemetry, Viewpro OUTx frames).
+    virtual std::uint64_t telemetry_count() const = 0;
     // The protocol's keys of STATE (section 5), without protocol/link/stale.
     virtual nlohmann::json snapshot(double now_s) const = 0;
     virtual FrameCounters counters() const = 0;

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <string_view>
 
+#include "geo/footprint.hpp"
 #include "geo/wgs84.hpp"
 #include "orion/json.hpp"
 #include "state/precision.hpp"
@@ -113,6 +114,27 @@ std::string gps_to_utc_iso(std::uint16_t week, std::uint32_t itow_ms, std::uint8
     return buf;
 }
 
+namespace {
+
+// Contract section 11: the image corners on the ground at the target's altitude; null
+// without a target (no ranging data) or when a corner looks above the horizon.
+nlohmann::json footprint_json(const o::GeolocateTelemetry& t, const geo::Lla& gimbal,
+                              const std::optional<geo::Lla>& target) {
+    if (!target) return nullptr;
+    const geo::Quat mount{t.quat[0], t.quat[1], t.quat[2], t.quat[3]};
+    const geo::CameraPose camera{
+        gimbal, geo::line_of_sight_attitude(mount, t.pan * o::rad2deg, t.tilt * o::rad2deg),
+        t.hfov * o::rad2deg, t.vfov * o::rad2deg};
+    const auto corners = geo::footprint(camera, target->alt_m);
+    if (!corners) return nullptr;
+    nlohmann::json out = nlohmann::json::array();
+    for (const auto& c : *corners)
+        out.push_back({{"lat", latlon_deg(c.lat_deg)}, {"lon", latlon_deg(c.lon_deg)}});
+    return out;
+}
+
+}  // namespace
+
 nlohmann::json telemetry_json(const o::GeolocateTelemetry& t) {
     nlohmann::json j = o::to_json(t, o::Digits::shortest);
     j["utc"] = t.gps_week != 0 || t.gps_itow_ms != 0
@@ -131,6 +153,7 @@ nlohmann::json telemetry_json(const o::GeolocateTelemetry& t) {
                        {"alt", metres(target->alt_m)}};
     else
         j["target"] = nullptr;
+    j["footprint"] = footprint_json(t, gimbal, target);
     return j;
 }
 
@@ -156,6 +179,7 @@ void OrionState::on_telemetry(const o::GeolocateTelemetry& t, double now_s,
     }
     telemetry_ = t;
     telemetry_s_ = now_s;
+    ++telemetry_count_;
     lost_reported_ = false;
     store("telemetry", telemetry_json(t), now_s);
 }

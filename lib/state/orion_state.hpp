@@ -28,6 +28,8 @@ class OrionState {
     void tick(double now_s, std::vector<Event>& events);
 
     bool stale(double now_s) const;
+    // GeolocateTelemetry packets applied so far (streams that follow new telemetry).
+    std::uint64_t telemetry_count() const { return telemetry_count_; }
     // The Orion keys of STATE: one per packet kind, null until first received, each with age_s.
     nlohmann::json snapshot(double now_s) const;
 
@@ -51,6 +53,7 @@ class OrionState {
     std::map<std::string, std::map<std::string, Entry>> keyed_;  // versions, software, boards
     std::optional<orion::GeolocateTelemetry> telemetry_;
     std::optional<double> telemetry_s_;
+    std::uint64_t telemetry_count_ = 0;
     bool lost_reported_ = false;
     std::optional<std::uint32_t> last_stare_time_ms_;
     std::uint64_t decode_errors_ = 0;

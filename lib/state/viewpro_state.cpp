@@ -15,6 +15,7 @@ bool ViewproState::apply(const viewpro::OutputFrame& frame, double now_s) {
     }
     output_ = *output;
     received_s_ = now_s;
+    ++telemetry_count_;
     lost_reported_ = false;
     return true;
 }

@@ -20,6 +20,8 @@ class ViewproState {
     // Appends a `lost` event when output goes stale (once per loss).
     void tick(double now_s, std::vector<Event>& events);
     bool stale(double now_s) const;
+    // OUTx frames applied so far (streams that follow new telemetry).
+    std::uint64_t telemetry_count() const { return telemetry_count_; }
     // {"output": {...latest OUTx, "format", "age_s"} or null}
     nlohmann::json snapshot(double now_s) const;
     std::uint64_t decode_errors() const { return decode_errors_; }
@@ -28,6 +30,7 @@ class ViewproState {
     double stale_after_s_;
     std::optional<viewpro::Output> output_;
     double received_s_ = 0;
+    std::uint64_t telemetry_count_ = 0;
     bool lost_reported_ = false;
     std::uint64_t decode_errors_ = 0;
 };
