@@ -11,6 +11,7 @@ packages=(
   socat python3 systemd
   libmosquitto-dev mosquitto mosquitto-clients python3-paho-mqtt openssl
   dpkg-dev lintian
+  tshark prometheus chromium
 )
 
 # --cross ARCH (scripts/package.sh --arch arm64): the cross compiler, QEMU and the ARCH
