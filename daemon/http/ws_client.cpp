@@ -38,6 +38,8 @@ void WsClient::start(beast::http::request<beast::http::string_body> request) {
     // A request has the datagram limit here too; a longer message is closed with 1009.
     ws_.read_message_max(gimbal::command::max_datagram);
     ws_.text(true);
+    // One frame per message: a STATE is one write, not a train of 4 KiB fragments.
+    ws_.auto_fragment(false);
     ws_.async_accept(request, [self = shared_from_this()](const boost::system::error_code& ec) {
         self->on_accept(ec);
     });
