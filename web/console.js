@@ -318,7 +318,9 @@
 
   // ---- WebSocket with reconnect --------------------------------------------------------
   function connect() {
-    const url = (location.protocol === 'https:' ? 'wss://' : 'ws://') + location.host + '/api/stream';
+    // Relative to the page, so the console also works behind a reverse proxy under a prefix.
+    const url = new URL('api/stream', location.href);
+    url.protocol = location.protocol === 'https:' ? 'wss:' : 'ws:';
     let socket;
     try { socket = new WebSocket(url); } catch (e) { scheduleReconnect(); return; }
     app.socket = socket;
@@ -356,7 +358,7 @@
 
   async function loadInfo() {
     try {
-      const info = await getJson('/api/console');
+      const info = await getJson('api/console');
       const first = !app.info;
       app.info = info;
       text('daemon-version', 'gimbald ' + (info.version || '?'));
@@ -372,7 +374,7 @@
       }
       if (first) buildLaserControls();
       if (!app.selected && info.gimbals && info.gimbals.length) selectGimbal(info.gimbals[0].name);
-      const st = await getJson('/api/state');
+      const st = await getJson('api/state');
       for (const [name, state] of Object.entries(st.gimbals || {})) {
         if (!app.received[name]) takeState(name, state);
       }
@@ -404,7 +406,7 @@
     box.textContent = '\u2192 ' + JSON.stringify(body) + '\n  \u2026';
     let reply;
     try {
-      const r = await fetch('/api/command', {
+      const r = await fetch('api/command', {
         method: 'POST', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify(body),
       });
       const raw = await r.text();
