@@ -77,9 +77,16 @@
       }
       const a = view.aircraft;
       if (!this.fitted) {
+        // Fit the target with room around it, and the footprint unless it reaches far beyond
+        // the target (near the horizon its far edge runs out to many kilometres).
         const d = [];
-        if (view.target) d.push(Geo.groundDistance(a.lat, a.lon, view.target.lat, view.target.lon));
-        for (const c of view.footprint || []) d.push(Geo.groundDistance(a.lat, a.lon, c.lat, c.lon));
+        let reach = Infinity;
+        if (view.target) {
+          const r = Geo.groundDistance(a.lat, a.lon, view.target.lat, view.target.lon);
+          d.push(1.5 * r);
+          reach = 3 * r;
+        }
+        for (const c of view.footprint || []) d.push(Math.min(reach, Geo.groundDistance(a.lat, a.lon, c.lat, c.lon)));
         this.fit(d);
         if (view.target) this.fitted = true;
       }
@@ -91,6 +98,7 @@
         uav: null };
 
       this.drawTiles(p, a);
+      this.drawRangeRings(p);
 
       // Track, oldest first.
       const pts = view.track.map((q) => p.toScreen(q.lat, q.lon));
@@ -181,6 +189,23 @@
       g.appendChild(t);
       g.dataset.metres = String(metres);
       g.dataset.pixels = fmt(len);
+    }
+
+    // Range rings around the aircraft at multiples of the scale bar's length, labelled.
+    drawRangeRings(p) {
+      const g = this.nodes.grid;
+      g.replaceChildren();
+      const step = Geo.niceLength(160 / this.pxPerM);
+      const maxR = Math.hypot(this.width, this.height) / 2;
+      for (let i = 1; i * step * this.pxPerM < maxR && i <= 20; i++) {
+        const r = i * step * this.pxPerM;
+        g.appendChild(el('circle', { cx: fmt(p.cx), cy: fmt(p.cy), r: fmt(r) }));
+        const label = el('text', { x: fmt(p.cx + r * Math.SQRT1_2 + 3), y: fmt(p.cy - r * Math.SQRT1_2 - 3) });
+        const m = i * step;
+        label.textContent = m >= 1000 ? m / 1000 + ' km' : m + ' m';
+        g.appendChild(label);
+      }
+      g.appendChild(el('path', { class: 'axis', d: `M${fmt(p.cx)},0 V${this.height} M0,${fmt(p.cy)} H${this.width}` }));
     }
 
     // XYZ tiles in Web Mercator, each drawn as an axis-aligned image between its projected

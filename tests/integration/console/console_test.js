@@ -252,8 +252,8 @@ async function main() {
     await page.click('#position-form button[type=submit]');
     const posReply = await waitFor(() => page.$eval('#last-command', (e) => (e.classList.contains('ok') || e.classList.contains('err') ? e.textContent : null)), 5000);
     check(posReply && posReply.includes('"ok":true'), 'position control: reply ok shown');
-    const posRx = await waitFor(() => readRx(rxLog).find((l) => l.id === 1 && l.packet && Math.abs(l.packet.tilt - -55) < 0.01), 3000);
-    check(!!posRx, 'gimbal received OrionCmd with tilt -55 from the position control');
+    const posRx = await waitFor(() => readRx(rxLog).find((l) => l.id === 1 && l.packet && l.packet.mode === 'position' && Math.abs(l.packet.target[1] - -55) < 0.01 && Math.abs(l.packet.target[0] - 20) < 0.01), 3000);
+    check(!!posRx, 'gimbal received OrionCmd position pan 20 tilt -55 from the position control');
     await waitFor(() => ref.latest && ref.latest.telemetry.footprint && Math.abs(ref.latest.telemetry.tilt - -55) < 1, 5000);
 
     // Drawn positions against STATE: frames whose telemetry time we also received.
