@@ -41,8 +41,8 @@
     // The SVG's user units are CSS pixels: viewBox = its own size, origin top-left.
     resize() {
       const r = this.svg.getBoundingClientRect();
-      this.width = Math.max(1, Math.round(r.width));
-      this.height = Math.max(1, Math.round(r.height));
+      this.width = Math.max(1, r.width);
+      this.height = Math.max(1, r.height);
       this.svg.setAttribute('viewBox', `0 0 ${this.width} ${this.height}`);
     }
 
