@@ -128,7 +128,7 @@
 
     if (view && view.aircraft) {
       text('aircraft-pos', latlon(view.aircraft));
-      text('aircraft-alt', t ? num(t.alt, 1) + ' m' : view.alt != null ? num(view.alt, 1) + ' m MSL' : '-');
+      text('aircraft-alt', t ? `${num(t.alt, 1)} m WGS84 (${num(t.alt_msl, 1)} MSL)` : view.alt != null ? num(view.alt, 1) + ' m MSL' : '-');
       text('heading', num(view.aircraft.heading, 1) + '\u00b0');
     } else {
       text('aircraft-pos', 'no position');
@@ -452,15 +452,15 @@
     app.lastClick = { gimbal: app.selected, x: q.x, y: q.y, lat, lon, alt, alt_from: altFrom,
       centre: { lat: p.lat0, lon: p.lon0, system_time_ms: map.drawn && map.drawn.system_time_ms },
       px_per_m: p.px_per_m, cx: p.cx, cy: p.cy };
-    app.clicks[app.selected] = { lat, lon };
     publishHook();
-    render();
     if (s && s.protocol === 'viewpro') {
       const box = $('last-command');
       box.className = 'reply err';
       box.textContent = 'geopoint is an Orion command; a Viewpro gimbal points by itself';
       return;
     }
+    app.clicks[app.selected] = { lat, lon };
+    render();
     sendCommand({ cmd: 'geopoint', lat, lon, alt }).then((reply) => {
       app.lastClick.reply = reply;
       publishHook();
