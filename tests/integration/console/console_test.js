@@ -231,7 +231,7 @@ async function main() {
     const pageErrors = [];
     page.on('request', (req) => {
       const u = new URL(req.url());
-      if (u.hostname !== '127.0.0.1') external.push(req.url());
+      if (u.protocol !== 'data:' && u.host !== `127.0.0.1:${httpPort}`) external.push(req.url());
     });
     page.on('pageerror', (e) => pageErrors.push(String(e)));
     page.on('console', (m) => { if (m.type() === 'error') pageErrors.push(m.text()); });
@@ -321,7 +321,7 @@ async function main() {
       if (check(!!rx, 'gimbal received a GeopointCmd (213)')) {
         const err = P.metres(expected.lat, expected.lon, rx.packet.lat, rx.packet.lon);
         check(err < 3, `geopoint at the clicked place: ${err.toFixed(2)} m off (click ${offsetM.toFixed(0)} m from the aircraft)`);
-        check(Math.abs(rx.packet.alt - 100) < 1, `geopoint alt = target altitude (${rx.packet.alt} m, simulated ground 100 m)`);
+        check(Math.abs(rx.packet.alt - 100) < 1, `geopoint alt = target altitude (${rx.packet.alt.toFixed(2)} m, simulated ground 100 m)`);
       }
       const mode = await waitFor(() => ref.latest && ref.latest.telemetry.mode === 'geopoint', 3000);
       check(!!mode, 'gimbal in geopoint mode');
@@ -341,8 +341,10 @@ async function main() {
     await page.screenshot({ path: SCREENSHOT });
     check(fs.statSync(SCREENSHOT).size > 10000, `screenshot saved: ${SCREENSHOT}`);
 
-    // The daemon goes away and comes back: the page reconnects by itself.
+    // The daemon goes away and comes back, now with a command token the page does not have:
+    // the page reconnects by itself, and its commands are refused with a clear banner.
     await stop(daemon);
+    fs.writeFileSync(cfgPath, JSON.stringify({ ...config, command: { port: commandPort, token: 'not-in-the-browser' } }));
     const down = await waitFor(() => page.$eval('#stream-status', (e) => e.textContent !== 'live'), 5000);
     check(!!down, 'stream badge leaves "live" when gimbald stops');
     daemon = startDaemon();
@@ -351,7 +353,13 @@ async function main() {
       return b === 'live' && window.gimbaldConsole.stream === 'open';
     }), 15000, 200);
     check(!!back, 'page reconnected to the restarted gimbald');
-    check(external.length === 0, `no request left 127.0.0.1 (${external.slice(0, 3).join(' ')})`);
+    const rxBefore = readRx(rxLog).length;
+    await page.mouse.click(dc.left + dc.width / 2 - 60, dc.top + dc.height / 2 + 40);
+    const banner = await waitFor(() => page.$eval('#banner', (e) => (!e.hidden ? e.textContent : null)), 5000);
+    check(banner && banner.startsWith('forbidden'), `command refused: banner "${(banner || '').slice(0, 60)}..."`);
+    await sleep(300);
+    check(!readRx(rxLog).slice(rxBefore).some((l) => l.id === 213), 'no geopoint reached the gimbal');
+    check(external.length === 0, `no tiles_url: no request to anything but gimbald (${external.slice(0, 3).join(' ')})`);
     check(pageErrors.length === 0, `no script errors in the page (${pageErrors.slice(0, 3).join(' | ')})`);
     await page.close();
 
@@ -362,14 +370,37 @@ async function main() {
   }
 }
 
-// laser.allow_fire true (gimbald --sim, loopback): the controls appear; FIRE needs the arm
+// A local XYZ tile server: SVG tiles, every requested z/x/y remembered.
+async function startTileServer() {
+  const requested = [];
+  const server = http.createServer((req, res) => {
+    const m = /^\/(\d+)\/(\d+)\/(\d+)\.svg$/.exec(req.url);
+    if (!m) { res.writeHead(404); res.end(); return; }
+    requested.push(m.slice(1).map(Number));
+    res.writeHead(200, { 'Content-Type': 'image/svg+xml' });
+    res.end(`<svg xmlns="http://www.w3.org/2000/svg" width="256" height="256"><rect width="256" height="256" fill="#17251c" stroke="#2e5a3a"/></svg>`);
+  });
+  await new Promise((r) => server.listen(0, '127.0.0.1', r));
+  return { server, requested, port: server.address().port };
+}
+
+// Web Mercator tile arithmetic, written again here: a tile's north-west corner.
+function tileCorner(x, y, z) {
+  const n = 2 ** z;
+  return { lat: (Math.atan(Math.sinh(Math.PI * (1 - (2 * y) / n))) * 180) / Math.PI, lon: (x / n) * 360 - 180 };
+}
+
+// gimbald --sim with laser.allow_fire true and http.tiles_url: tiles come from the tile
+// server, placed at their projected corners; the laser controls appear; FIRE needs the arm
 // box, and one press of FIRE alone sends nothing; the confirm press fires.
 async function laserSequence(browser, dir) {
   const httpPort = await freePort('tcp');
   const commandPort = await freePort('udp');
+  const tiles = await startTileServer();
   const cfgPath = path.join(dir, 'laser.json');
   fs.writeFileSync(cfgPath, JSON.stringify({
-    command: { port: commandPort }, laser: { allow_fire: true }, http: { bind: '127.0.0.1', port: httpPort },
+    command: { port: commandPort }, laser: { allow_fire: true },
+    http: { bind: '127.0.0.1', port: httpPort, tiles_url: `http://127.0.0.1:${tiles.port}/{z}/{x}/{y}.svg` },
   }));
   const daemon = start(GIMBALD, ['--sim', '-c', cfgPath, '--log-level', 'warn']);
   const lasersOf = async () => {
@@ -382,6 +413,27 @@ async function laserSequence(browser, dir) {
   const page = await browser.newPage();
   await page.goto(`http://127.0.0.1:${httpPort}/`, { waitUntil: 'load', timeout: 10000 });
   await waitFor(() => page.evaluate(() => window.gimbaldConsole && window.gimbaldConsole.drawn), 10000);
+  const tile = await waitFor(() => page.evaluate(() => {
+    const img = document.querySelector('#tiles image');
+    const h = window.gimbaldConsole;
+    if (!img || !h.drawn) return null;
+    const r = document.getElementById('map').getBoundingClientRect();
+    return { href: img.getAttribute('href'), x: Number(img.getAttribute('x')), y: Number(img.getAttribute('y')),
+      count: document.querySelectorAll('#tiles image').length, lat0: h.projection.lat0, lon0: h.projection.lon0,
+      k: h.projection.px_per_m, width: r.width, height: r.height };
+  }), 5000);
+  if (check(!!tile, `tiles_url: ${tile ? tile.count : 0} tiles drawn, ${tiles.requested.length} requested from the tile server`)) {
+    const m = /\/(\d+)\/(\d+)\/(\d+)\.svg$/.exec(tile.href);
+    const [z, x, y] = m.slice(1).map(Number);
+    const P = projector(tile.lat0, tile.lon0, tile.width / 2, tile.height / 2, tile.k);
+    const nw = P.screen(tileCorner(x, y, z).lat, tileCorner(x, y, z).lon);
+    check(Math.abs(nw.x - tile.x) < PIXEL_TOLERANCE && Math.abs(nw.y - tile.y) < PIXEL_TOLERANCE,
+      `tile ${z}/${x}/${y} drawn at its projected north-west corner (${tile.x}, ${tile.y}) vs (${nw.x.toFixed(2)}, ${nw.y.toFixed(2)})`);
+    await sleep(300);
+    check(tiles.requested.length > 0 && tiles.requested.some(([rz, rx, ry]) => rz === z && rx === x && ry === y),
+      'the browser fetched the drawn tile from tiles_url');
+  }
+  tiles.server.close();
   const fire = await waitFor(() => page.$('#laser-fire-0'), 5000);
   if (!check(!!fire, 'laser.allow_fire true: laser controls shown')) { await page.close(); await stop(daemon); return; }
   check(await page.$eval('#laser-fire-0', (e) => e.disabled), 'FIRE disabled until armed');
