@@ -87,6 +87,21 @@
     map.render(view);
     publishHook();
     renderPanels(view);
+    renderMapAlert();
+  }
+
+  // A plan view that is not live must not look live: say why over the map.
+  function renderMapAlert() {
+    const s = app.selected && app.states[app.selected];
+    const streamUp = app.socket && app.socket.readyState === 1;
+    let msg = '';
+    if (!streamUp) msg = 'NO LIVE DATA - reconnecting to gimbald';
+    else if (s && s.link && !s.link.connected) msg = 'GIMBAL LINK DOWN - last known position';
+    else if (s && s.stale) msg = 'TELEMETRY STALE - last known position';
+    const node = $('map-alert');
+    node.textContent = msg;
+    node.hidden = !msg;
+    $('map-pane').classList.toggle('alert', !!msg);
   }
 
   // ---- test hook -----------------------------------------------------------------------
@@ -329,6 +344,7 @@
       app.reconnectDelay = 1000;
       setBadge($('stream-status'), 'live', 'good');
       publishHook();
+      renderMapAlert();
     };
     socket.onmessage = (ev) => {
       let msg;
@@ -340,6 +356,7 @@
       if (app.socket !== socket) return;
       setBadge($('stream-status'), 'reconnecting', 'bad');
       publishHook();
+      renderMapAlert();
       scheduleReconnect();
     };
     socket.onerror = () => { /* onclose follows */ };

@@ -347,6 +347,8 @@ async function main() {
     fs.writeFileSync(cfgPath, JSON.stringify({ ...config, command: { port: commandPort, token: 'not-in-the-browser' } }));
     const down = await waitFor(() => page.$eval('#stream-status', (e) => e.textContent !== 'live'), 5000);
     check(!!down, 'stream badge leaves "live" when gimbald stops');
+    const alert = await page.$eval('#map-alert', (e) => (e.hidden ? '' : e.textContent));
+    check(alert.startsWith('NO LIVE DATA'), `map says it is not live: "${alert}"`);
     daemon = startDaemon();
     const back = await waitFor(() => page.evaluate(() => {
       const b = document.getElementById('stream-status').textContent;
