@@ -435,8 +435,9 @@
     box.className = 'reply ' + (reply.ok ? 'ok' : 'err');
     box.textContent = '\u2192 ' + JSON.stringify(body) + '\n\u2190 ' + JSON.stringify(reply);
     if (!reply.ok && reply.error && reply.error.code === 'forbidden') {
-      showBanner(`forbidden: ${reply.error.message} - when command.auth is "signed" the console cannot ` +
-        'send commands (it holds no key); use gimbalctl --key-file. Watching still works.', 'bad', 'forbidden');
+      showBanner(`forbidden: ${reply.error.message}. The console holds no token and no signing key ` +
+        '(command.token, command.auth "signed"): command this daemon with gimbalctl. Watching still works.',
+      'bad', 'forbidden');
     } else if (reply.ok) {
       hideBanner('forbidden');
     }

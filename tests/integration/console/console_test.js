@@ -325,6 +325,8 @@ async function main() {
       }
       const mode = await waitFor(() => ref.latest && ref.latest.telemetry.mode === 'geopoint', 3000);
       check(!!mode, 'gimbal in geopoint mode');
+      const ev = await waitFor(() => page.$$eval('#events li', (li) => li.map((e) => e.textContent).find((t) => t.includes('mode') && t.includes('"to":"geopoint"'))), 3000);
+      check(!!ev, `mode event listed in the events panel (${ev})`);
       const shown = await page.$eval('#last-command', (e) => e.textContent);
       check(shown.includes('"cmd":"geopoint"') && shown.includes('"ok":true'), 'reply shown in the command panel');
     }
