@@ -24,6 +24,7 @@ const SCREENSHOT = process.env.CONSOLE_SCREENSHOT || path.join(process.cwd(), 'c
 const PIXEL_TOLERANCE = 1.5;
 const children = [];
 let failures = 0;
+let workDir = null; // removed at the end unless the test failed
 
 function check(ok, what) {
   console.log(`${ok ? 'ok  ' : 'FAIL'} ${what}`);
@@ -63,7 +64,8 @@ function start(cmd, args) {
     rest = lines.pop();
     child.lines.push(...lines);
   });
-  child.stderr.on('data', () => {});
+  child.stderrText = '';
+  child.stderr.on('data', (d) => { if (child.stderrText.length < 20000) child.stderrText += d.toString(); });
   return child;
 }
 function stop(child) {
@@ -192,6 +194,7 @@ function compareFrame(d, st, label) {
 
 async function main() {
   const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'gimbald-console-'));
+  workDir = dir;
   const rxLog = path.join(dir, 'rx.jsonl');
   const sim = start(GIMBAL_SIM, ['--port', '0', '--no-discovery', '--rx-log', rxLog]);
   const simLine = await waitFor(() => sim.lines.find((l) => l.startsWith('tcp: ')), 5000);
@@ -209,12 +212,16 @@ async function main() {
   const startDaemon = () => start(GIMBALD, ['-c', cfgPath, '--log-level', 'warn']);
   let daemon = startDaemon();
   const up = await waitFor(async () => {
+    if (daemon.exitCode !== null) return true; // reported below
     const r = await httpGet(httpPort, '/api/state');
     if (!r || r.status !== 200) return false;
     const s = JSON.parse(r.body).gimbals.orion1;
     return s && s.link.connected && s.telemetry;
-  }, 10000);
-  if (!check(!!up, 'gimbald serves /api/state with live Orion telemetry')) return;
+  }, 10000) && daemon.exitCode === null;
+  if (!check(!!up, 'gimbald serves /api/state with live Orion telemetry')) {
+    console.log(daemon.stderrText.slice(-2000));
+    return;
+  }
   const ref = new Reference(commandPort, 'orion1');
   await ref.open();
 
@@ -469,6 +476,8 @@ const watchdog = setTimeout(() => { console.log('FAIL timeout'); cleanup(1); }, 
 function cleanup(code) {
   clearTimeout(watchdog);
   for (const c of children) if (c.exitCode === null) c.kill('SIGKILL');
+  if (workDir && code === 0) fs.rmSync(workDir, { recursive: true, force: true });
+  else if (workDir) console.log(`kept ${workDir} (rx log, configs)`);
   process.exit(code);
 }
 main().then(() => {
