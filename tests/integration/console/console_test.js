@@ -337,13 +337,14 @@ async function main() {
       const shown = await page.$eval('#last-command', (e) => e.textContent);
       check(shown.includes('"cmd":"geopoint"') && shown.includes('"ok":true'), 'reply shown in the command panel');
     }
+    await waitFor(() => page.$eval('#mode', (e) => e.textContent === 'geopoint'), 3000);
     const panel = await page.evaluate(() => ({
       mode: document.getElementById('mode').textContent,
       link: document.getElementById('link').textContent,
       endpoint: document.getElementById('endpoint').textContent,
       stale: document.getElementById('stale').textContent,
     }));
-    check(panel.link === 'connected' && panel.endpoint.includes(String(simPort)) && panel.stale === 'fresh',
+    check(panel.mode === 'geopoint' && panel.link === 'connected' && panel.endpoint.includes(String(simPort)) && panel.stale === 'fresh',
       `status panel: link ${panel.link}, endpoint "${panel.endpoint}", ${panel.stale}, mode ${panel.mode}`);
 
     await sleep(1500); // let the gimbal slew to the click for the picture
