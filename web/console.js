@@ -135,7 +135,7 @@
     const link = s.link || {};
     text('mode', t ? String(t.mode) : out ? 'output ' + (out.format || '') : '-');
     setBadge($('link'), link.connected ? 'connected' : 'down', link.connected ? 'good' : 'bad');
-    text('endpoint', `${link.type || '?'} ${link.endpoint || ''}`);
+    text('endpoint', link.type === 'sim' ? 'in-process simulator' : `${link.type || '?'} ${link.endpoint || ''}`);
     const src = t || out;
     text('telemetry-age', src && Number.isFinite(src.age_s) ? src.age_s.toFixed(2) + ' s' : 'none');
     setBadge($('stale'), s.stale ? 'STALE' : 'fresh', s.stale ? 'bad' : 'good');
@@ -376,7 +376,8 @@
   async function loadInfo() {
     try {
       const info = await getJson('api/console');
-      const first = !app.info;
+      // A restarted daemon may have another laser.allow_fire: rebuild the controls then.
+      const lasersChanged = !app.info || app.info.laser_allow_fire !== info.laser_allow_fire;
       app.info = info;
       text('daemon-version', 'gimbald ' + (info.version || '?'));
       map.tilesUrl = typeof info.tiles_url === 'string' && info.tiles_url ? info.tiles_url : null;
@@ -389,7 +390,7 @@
           sel.append(o);
         }
       }
-      if (first) buildLaserControls();
+      if (lasersChanged) buildLaserControls();
       if (!app.selected && info.gimbals && info.gimbals.length) selectGimbal(info.gimbals[0].name);
       const st = await getJson('api/state');
       for (const [name, state] of Object.entries(st.gimbals || {})) {
