@@ -48,10 +48,15 @@ StreamHub::StreamHub(boost::asio::io_context& io, RequestPath& path, HttpStats& 
       idle_timeout_s_(idle_timeout_s),
       timer_(io) {}
 
-void StreamHub::add(WsClient& client) {
+void StreamHub::track(WsClient& client) {
     clients_.push_back(&client);
-    stats_.websocket_clients = clients_.size();
-    client.subscription().next_state_s = steady_seconds();  // the first STATE at once
+}
+
+void StreamHub::add(WsClient& client) {
+    auto& s = client.subscription();
+    s.open = true;
+    s.next_state_s = steady_seconds();  // the first STATE at once
+    count_open();
     log::info("subscriber", "WebSocket client connected",
               {{"src", client.address()}, {"transport", "websocket"}});
     schedule();
@@ -61,9 +66,15 @@ void StreamHub::remove(WsClient& client) {
     const auto it = std::find(clients_.begin(), clients_.end(), &client);
     if (it == clients_.end()) return;
     clients_.erase(it);
-    stats_.websocket_clients = clients_.size();
+    if (!client.subscription().open) return;
+    count_open();
     log::info("subscriber", "WebSocket client disconnected",
               {{"src", client.address()}, {"transport", "websocket"}});
+}
+
+void StreamHub::count_open() {
+    stats_.websocket_clients = static_cast<std::size_t>(std::count_if(
+        clients_.begin(), clients_.end(), [](WsClient* c) { return c->subscription().open; }));
 }
 
 void StreamHub::dropped(WsClient& client, std::size_t queued) {
@@ -84,7 +95,7 @@ void StreamHub::publish_event(const std::string& gimbal, const gimbal::state::Ev
     std::shared_ptr<const std::string> text;
     for (auto* client : std::vector<WsClient*>(clients_)) {
         const auto& s = client->subscription();
-        if (!s.events || !covers(s, gimbal)) continue;
+        if (!s.open || !s.events || !covers(s, gimbal)) continue;
         if (!text)
             text = std::make_shared<const std::string>(
                 dump(gimbal::state::event_message(gimbal, event)));
@@ -97,7 +108,7 @@ void StreamHub::schedule() {
     double next = steady_seconds() + 1.0;
     for (auto* client : clients_) {
         const auto& s = client->subscription();
-        if (s.state) next = std::min(next, s.next_state_s);
+        if (s.open && s.state) next = std::min(next, s.next_state_s);
     }
     const double wait_s = std::max(0.0, next - steady_seconds());
     timer_.expires_after(std::chrono::duration_cast<std::chrono::steady_clock::duration>(
@@ -118,7 +129,8 @@ void StreamHub::tick() {
         std::map<std::vector<std::string>, std::shared_ptr<const std::string>> texts;
         for (auto* client : clients) {
             const auto& s = client->subscription();
-            if (!s.state || s.next_state_s > horizon || !covers(s, session->name())) continue;
+            if (!s.open || !s.state || s.next_state_s > horizon || !covers(s, session->name()))
+                continue;
             if (!state) state = session->snapshot();
             auto& text = texts[s.keys];
             if (!text)
@@ -129,7 +141,7 @@ void StreamHub::tick() {
     }
     for (auto* client : clients) {
         auto& s = client->subscription();
-        if (!s.state || s.next_state_s > horizon) continue;
+        if (!s.open || !s.state || s.next_state_s > horizon) continue;
         // The next period from the last one, without bursts to catch up after a stall.
         s.next_state_s = std::max(s.next_state_s + 1.0 / s.rate_hz, now);
     }
@@ -182,6 +194,7 @@ std::string StreamHub::subscribe(WsClient& client, const json& request, bool uns
     params.reject_unknown();
     if (!params.ok()) return fail(params.error());
     next.next_state_s = steady_seconds();
+    next.open = true;
     s = next;
     results["rate_hz"] = s.rate_hz;
     results["events"] = s.events;

@@ -27,6 +27,9 @@ class StreamHub {
     StreamHub(boost::asio::io_context& io, RequestPath& path, HttpStats& stats,
               std::size_t queue_max, double idle_timeout_s);
 
+    // A client from its upgrade request on (counted, closed by stop()); add() when its
+    // handshake is done and the stream starts; remove() when it is gone.
+    void track(WsClient& client);
     void add(WsClient& client);
     void remove(WsClient& client);
     void publish_event(const std::string& gimbal, const gimbal::state::Event& event);
@@ -43,9 +46,10 @@ class StreamHub {
 
     std::size_t queue_max() const { return queue_max_; }
     double idle_timeout_s() const { return idle_timeout_s_; }
-    std::size_t clients() const { return clients_.size(); }
+    std::size_t clients() const { return clients_.size(); }  // handshakes included
 
   private:
+    void count_open();
     std::string subscribe(WsClient& client, const nlohmann::json& request, bool unsubscribe);
     void schedule();
     void tick();

@@ -19,7 +19,7 @@ WsClient::WsClient(beast::tcp_stream&& stream, StreamHub& hub, std::string addre
     : ws_(std::move(stream)), hub_(hub), address_(std::move(address)) {}
 
 WsClient::~WsClient() {
-    if (registered_) hub_.remove(*this);
+    hub_.remove(*this);
 }
 
 void WsClient::start(beast::http::request<beast::http::string_body> request) {
@@ -40,6 +40,7 @@ void WsClient::start(beast::http::request<beast::http::string_body> request) {
     ws_.text(true);
     // One frame per message: a STATE is one write, not a train of 4 KiB fragments.
     ws_.auto_fragment(false);
+    hub_.track(*this);  // from now on: counted against max_connections, closed on stop
     ws_.async_accept(request, [self = shared_from_this()](const boost::system::error_code& ec) {
         self->on_accept(ec);
     });
@@ -47,7 +48,6 @@ void WsClient::start(beast::http::request<beast::http::string_body> request) {
 
 void WsClient::on_accept(const boost::system::error_code& ec) {
     if (ec) return fail(ec, "handshake");
-    registered_ = true;
     hub_.add(*this);
     do_read();
 }

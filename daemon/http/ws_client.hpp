@@ -20,6 +20,7 @@ class StreamHub;
 
 // What a client asked for with {"cmd":"subscribe",...}; on connect: every gimbal at 2 Hz.
 struct StreamSubscription {
+    bool open = false;                  // the handshake is done: the stream runs
     std::optional<std::string> gimbal;  // nullopt: every gimbal
     double rate_hz = 2.0;
     bool events = true;
@@ -59,7 +60,6 @@ class WsClient : public std::enable_shared_from_this<WsClient> {
     std::deque<std::shared_ptr<const std::string>> queue_;
     StreamSubscription subscription_;
     std::optional<boost::beast::websocket::close_reason> pending_close_;
-    bool registered_ = false;
     bool writing_ = false;
     bool closing_ = false;  // a close frame is on its way
     bool closed_ = false;

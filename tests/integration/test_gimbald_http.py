@@ -510,6 +510,28 @@ class HttpConfigured(gt.GimbaldTestCase):
         s.close()
         self.assertEqual(ht.get_json(port, "/api/console")[0], 200)
 
+    def test_sigterm_with_open_connections_stops_at_once(self):
+        daemon = self.start_daemon(with_http(
+            {"gimbals": [{"name": "s", "protocol": "orion", "link": {"type": "sim"}}]}))
+        port = http_port(daemon)
+        streaming = ht.WebSocket(port)
+        self.addCleanup(streaming.close)
+        self.assertEqual(streaming.recv_json()["type"], "state")
+        idle = socket.create_connection(("127.0.0.1", port))  # keep-alive, between requests
+        idle.sendall(b"GET /healthz HTTP/1.1\r\nHost: x\r\n\r\n")
+        idle.settimeout(5)
+        self.assertEqual(ht.status_of(idle.recv(65536)), 200)
+        partial = socket.create_connection(("127.0.0.1", port))  # half a request
+        partial.sendall(b"POST /api/command HTTP/1.1\r\nHost: x\r\nContent-Length: 100\r\n\r\n{")
+        for s in (idle, partial):
+            self.addCleanup(s.close)
+        time.sleep(0.2)
+        t0 = time.monotonic()
+        self.assertEqual(daemon.stop(), 0)
+        self.assertLess(time.monotonic() - t0, 3.0)
+        self.assertTrue(daemon.wait_log(lambda e: e.get("event") == "stop" and
+                                        e.get("msg") == "gimbald stopped"))
+
     def test_signed_post(self):
         key_path = write_key(self.workdir, "ops")
         daemon = self.start_daemon(with_http(
