@@ -66,6 +66,8 @@ src=$(dirname "$0")/../..
 for tool in gimbal-replay gimbal-export; do
   [ -d "$src/tools/$tool" ] && expect -rwxr-xr-x "usr/bin/$tool"
 done
+# The operator console (contract section 11), served from here by default.
+[ -f "$src/web/index.html" ] && expect -rw-r--r-- usr/share/gimbald/web/index.html
 [ -f "$src/dissectors/gimbald.lua" ] && expect -rw-r--r-- "usr/lib/.*/wireshark/plugins/gimbald.lua"
 
 # --- run from the unpacked package (only where the package's architecture runs here)

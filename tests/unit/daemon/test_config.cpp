@@ -133,6 +133,7 @@ TEST_CASE("the example configuration is valid and holds every default", "[config
     minimal["gimbals"].erase(2);
     minimal["vehicle"] = json::object();
     minimal["mqtt"] = {{"station", "ground-1"}};  // the station default is the host name
+    minimal["http"] = json::object();
     const auto defaults = parse_config(minimal.dump());
     REQUIRE(defaults.ok());
     CHECK(defaults.config == config);
