@@ -10,6 +10,7 @@ kill -9 and a file cut mid-block, STATE `record`, and configuration errors.
 """
 
 import glob
+import resource
 import json
 import os
 import shutil
@@ -116,6 +117,25 @@ def mavlink_heartbeat(seq):
         tmp = (tmp ^ (tmp << 4)) & 0xFF
         crc = ((crc >> 8) ^ (tmp << 8) ^ (tmp << 3) ^ (tmp >> 4)) & 0xFFFF
     return b"\xfd" + body + struct.pack("<H", crc)
+
+
+class LimitedDaemon(gt.Daemon):
+    """gimbald under a file-size limit (ulimit -f): its writes past `limit` bytes fail with
+    EFBIG, as on a full disk."""
+
+    limit = 0
+
+    def _launch(self):
+        limit = self.limit
+
+        def preexec():
+            resource.setrlimit(resource.RLIMIT_FSIZE, (limit, limit))
+        real_popen = subprocess.Popen
+        subprocess.Popen = lambda *a, **k: real_popen(*a, preexec_fn=preexec, **k)
+        try:
+            super()._launch()
+        finally:
+            subprocess.Popen = real_popen
 
 
 def recordings(directory):
@@ -299,6 +319,32 @@ class Recording(gt.GimbaldTestCase):
         if code:
             self.assertIn("cut short", err)
 
+    def test_disk_full_is_logged_and_counted_and_gimbald_keeps_running(self):
+        sim = self.start_sim()
+        LimitedDaemon.limit = 16000  # the recording reaches it in a few seconds
+        daemon = LimitedDaemon(self.workdir, self.record_config(sim.port))
+        self.addCleanup(gt.finish_daemon, daemon)
+        c = self.client(daemon)
+        self.wait_connected(c)
+        error = daemon.wait_log(lambda e: e.get("event") == "record_write_error", 30.0)
+        self.assertTrue(error, "no record_write_error: %s" % daemon.log_text()[-2000:])
+        self.assertIn("File too large", error["error"])
+        self.assertIn(self.dir, error["error"])
+        record = c.request("state")["state"]["record"]
+        self.assertGreater(record["dropped"], 0)
+        self.assertTrue(daemon.running())
+        # Still serving: the gimbal link and the command socket are unaffected.
+        before = c.request("state")["state"]["link"]["rx_packets"]
+        self.assertTrue(gt.wait_for(
+            lambda: c.request("state")["state"]["link"]["rx_packets"] > before + 5, 5.0))
+        self.assertEqual(daemon.stop(signal.SIGTERM), 0)
+        rec = parse(record["file"])
+        self.assertEqual(rec["whole_bytes"], rec["size"], "a failed write left a partial block")
+        self.assertLessEqual(rec["size"], 16000)
+        code, rows, err = tshark_fields(record["file"], "frame.interface_id")
+        self.assertEqual(code, 0, err)
+        self.assertEqual(len(rows), len(rec["packets"]))
+
     def test_configuration_errors_name_the_path(self):
         missing = os.path.join(self.workdir, "no-such-dir")
         a_file = os.path.join(self.workdir, "a-file")
@@ -309,7 +355,7 @@ class Recording(gt.GimbaldTestCase):
             with open(config_path, "w") as f:
                 json.dump({"gimbals": [gt.orion_tcp("main", 1)], "record": {"dir": directory}},
                           f)
-            for extra in (["--check-config"], []):
+            for extra in (["--check-config"], []):  # start-up: exit 1 before opening anything
                 proc = subprocess.run([gt.GIMBALD, "-c", config_path] + extra,
                                       capture_output=True, timeout=20)
                 text = (proc.stdout + proc.stderr).decode()
