@@ -160,6 +160,7 @@ class Recording(gt.GimbaldTestCase):
         mav_port = gt.free_port()
         config = self.record_config(sim.port)
         config["vehicle"] = {"source": {"type": "udp", "bind": "127.0.0.1", "port": mav_port}}
+        config["mavlink"] = {"gimbal_manager": True}  # gimbald answers on the vehicle link
         daemon = self.start_daemon(config)
         c = self.client(daemon)
         self.wait_connected(c)
@@ -174,6 +175,8 @@ class Recording(gt.GimbaldTestCase):
         for hb in heartbeats:
             mav.sendto(hb, ("127.0.0.1", mav_port))
             time.sleep(0.1)
+        mav.settimeout(2.0)
+        heard = [mav.recv(1024) for _ in range(3)]  # gimbald's frames to the peer it heard
         for _ in range(3):
             reply = c.request("state")
             self.assertOk(reply)
@@ -233,6 +236,11 @@ class Recording(gt.GimbaldTestCase):
         mav_in = [p["pdu"] for p in packets if p["iface"] == 1 and p["flags"] == 1]
         self.assertEqual(mav_in, heartbeats)
         self.assertTrue(all(p["dissector"] == "mavlink" for p in packets if p["iface"] == 1))
+        mav_out = [p["pdu"] for p in packets if p["iface"] == 1 and p["flags"] == 2]
+        self.assertTrue(all(f[0] == 0xFD for f in mav_out))
+        self.assertIn(heard[0], mav_out)
+        start = mav_out.index(heard[0])
+        self.assertEqual(mav_out[start:start + len(heard)], heard)
 
         # JSON: every request inbound, its reply outbound right after it.
         js = [p for p in packets if p["iface"] == 2]
@@ -373,6 +381,35 @@ class Recording(gt.GimbaldTestCase):
         self.assertEqual(proc.returncode, 1)
         self.assertIn("record.max_total_mb", text)
         self.assertIn("record.x", text)
+
+    def test_viewpro_and_sim_links(self):
+        daemon = self.start_daemon({"record": {"dir": self.dir}}, ("--sim", "orion,viewpro"))
+        c = self.client(daemon)
+        self.wait_connected(c, "sim-orion")
+        self.wait_connected(c, "sim-viewpro", telemetry=False)
+        self.assertTrue(gt.wait_for(
+            lambda: c.request("state", gimbal="sim-viewpro")["state"].get("output"), 5.0))
+        time.sleep(1.5)  # a few more output frames
+        self.assertEqual(daemon.stop(signal.SIGTERM), 0)
+        files = recordings(self.dir)
+        self.assertEqual(len(files), 1)
+        rec = parse(files[0])
+        self.assertEqual([i[:2] for i in rec["interfaces"]],
+                         [("gimbal:sim-orion", "orion sim"), ("gimbal:sim-viewpro", "viewpro sim"),
+                          ("json", "gimbald JSON requests and replies")])
+        viewpro_in = [p for p in rec["packets"] if p["iface"] == 1 and p["flags"] == 1]
+        self.assertGreater(len(viewpro_in), 5)
+        self.assertEqual({p["dissector"] for p in viewpro_in}, {"viewpro"})
+        self.assertTrue(all(p["pdu"][0] == 0xFE for p in viewpro_in))
+        viewpro_out = [p for p in rec["packets"] if p["iface"] == 1 and p["flags"] == 2]
+        self.assertEqual({p["dissector"] for p in viewpro_out}, {"viewpro"})
+        self.assertTrue(viewpro_out, "the mode command sent on connect is not recorded")
+        orion_in = [p for p in rec["packets"] if p["iface"] == 0 and p["flags"] == 1]
+        self.assertTrue(all(fletcher_ok(p["pdu"]) for p in orion_in))
+        code, rows, err = tshark_fields(files[0], "frame.interface_name",
+                                        "exported_pdu.prot_name")
+        self.assertEqual(code, 0, err)
+        self.assertEqual(len(rows), len(rec["packets"]))
 
     def test_state_record_is_null_when_off(self):
         daemon = self.start_daemon({"gimbals": [{"name": "sim", "protocol": "orion",
