@@ -358,7 +358,12 @@ class Recording(gt.GimbaldTestCase):
         a_file = os.path.join(self.workdir, "a-file")
         with open(a_file, "w") as f:
             f.write("x")
-        for directory, reason in ((missing, "No such file"), (a_file, "not a directory")):
+        cases = [(missing, "No such file"), (a_file, "not a directory")]
+        if os.geteuid() != 0:  # root writes anywhere
+            read_only = os.path.join(self.workdir, "read-only")
+            os.mkdir(read_only, 0o500)
+            cases.append((read_only, "not writable: Permission denied"))
+        for directory, reason in cases:
             config_path = os.path.join(self.workdir, "bad.json")
             with open(config_path, "w") as f:
                 json.dump({"gimbals": [gt.orion_tcp("main", 1)], "record": {"dir": directory}},
