@@ -235,6 +235,13 @@ struct HttpConfig {
     double idle_timeout_s = 30;            // a request must arrive (and finish) within this
     unsigned ws_queue_max = 64;            // messages queued for one WebSocket client
     bool operator==(const HttpConfig&) const = default;
+// record (contract section 12, docs/recording.md): the flight recorder; off unless set.
+// Sizes are megabytes (10^6 bytes) and may be fractions (tests rotate at 0.05).
+struct RecordConfig {
+    std::string dir;
+    double max_file_mb = 100;
+    double max_total_mb = 2000;
+    bool operator==(const RecordConfig&) const = default;
 };
 
 struct Config {
@@ -248,6 +255,7 @@ struct Config {
     MavlinkConfig mavlink;
     std::optional<MqttConfig> mqtt;
     std::optional<HttpConfig> http;
+    std::optional<RecordConfig> record;
     bool operator==(const Config&) const = default;
 };
 
