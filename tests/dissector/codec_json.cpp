@@ -1,0 +1,141 @@
+// codec-json: the C++ codecs' side of the dissector test.
+//
+//   codec-json vectors   every Orion golden vector (framed), every Viewpro golden frame and a
+//                        set of Viewpro commands, one "<dissector> <hex>" line each
+//   codec-json decode    reads such lines on stdin and prints, per line, the codec's JSON for
+//                        the frame: {"dissector","id","name","fields"} (Orion, Digits::exact)
+//                        or {"dissector","kind","fields"} (Viewpro)
+#include <cstdio>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "../unit/orion/golden_config.hpp"
+#include "../unit/orion/golden_control.hpp"
+#include "../unit/orion/golden_telemetry.hpp"
+#include "../unit/viewpro/vectors.hpp"
+#include "orion/framing.hpp"
+#include "orion/json.hpp"
+#include "orion/packets.hpp"
+#include "viewpro/viewpro.hpp"
+
+using nlohmann::json;
+using Bytes = std::vector<std::uint8_t>;
+namespace orion = gimbal::orion;
+namespace viewpro = gimbal::viewpro;
+
+namespace {
+
+std::string to_hex(const Bytes& b) {
+    std::string out;
+    char buf[3];
+    for (const auto x : b) {
+        std::snprintf(buf, sizeof buf, "%02x", x);
+        out += buf;
+    }
+    return out;
+}
+
+Bytes from_hex(const std::string& s) {
+    Bytes out;
+    for (std::size_t i = 0; i + 1 < s.size(); i += 2)
+        out.push_back(static_cast<std::uint8_t>(std::stoi(s.substr(i, 2), nullptr, 16)));
+    return out;
+}
+
+template <class C>
+Bytes bytes_of(const C& c) {
+    return Bytes(c.begin(), c.end());
+}
+
+int print_vectors() {
+    namespace g = orion::golden_vectors;
+    std::vector<g::GoldenVector> all;
+    for (const auto* list : {&g::telemetry_vectors, &g::control_vectors, &g::config_vectors})
+        all.insert(all.end(), list->begin(), list->end());
+    // Every packet with a layout must have a golden vector, or the comparison has a gap.
+    int missing = 0;
+    orion::for_each_packet([&]<class P>() {
+        bool found = false;
+        for (const auto& v : all) found = found || v.id == P::id;
+        if (!found) {
+            std::cerr << "no golden vector for " << P::name << "\n";
+            ++missing;
+        }
+    });
+    for (const auto& v : all)
+        std::cout << "orion " << to_hex(orion::frame_bytes(v.id, *v.data)) << "\n";
+
+    using namespace viewpro_test;
+    for (const auto* frame : {&icd_out1, &golden_out2, &golden_out3, &golden_out4, &golden_in1,
+                              &golden_in2, &golden_in3, &icd_in2_example_40})
+        std::cout << "viewpro " << to_hex(*frame) << "\n";
+    for (const auto format : {viewpro::OutFormat::out1, viewpro::OutFormat::out2,
+                              viewpro::OutFormat::out3, viewpro::OutFormat::out4})
+        for (const bool network : {false, true})
+            std::cout << "viewpro "
+                      << to_hex(bytes_of(
+                             viewpro::encode_mode({viewpro::Osd::uav, network, !network, format})))
+                      << "\n";
+    std::cout << "viewpro " << to_hex(bytes_of(viewpro::encode_mode({}))) << "\n";
+    for (const std::int8_t step : {std::int8_t{100}, std::int8_t{-25}})
+        std::cout << "viewpro " << to_hex(bytes_of(viewpro::encode_yaw_shift(step))) << "\n"
+                  << "viewpro " << to_hex(bytes_of(viewpro::encode_pitch_shift(step))) << "\n";
+    return missing == 0 ? 0 : 1;
+}
+
+json decode_orion(const Bytes& frame) {
+    json out = {{"dissector", "orion"}};
+    if (frame.size() < orion::header_size + orion::checksum_size) return out;
+    const std::uint8_t id = frame[2];
+    const std::span<const std::uint8_t> data(
+        frame.data() + orion::header_size,
+        frame.size() - orion::header_size - orion::checksum_size);
+    out["id"] = id;
+    out["name"] = std::string(orion::packet_name(id));
+    orion::dispatch(id, [&]<class P>() {
+        const auto d = orion::decode<P>(data);
+        if (d.ok)
+            out["fields"] = orion::to_json(d.value);
+        else
+            out["error"] = orion::to_string(d.error);
+    });
+    return out;
+}
+
+json decode_viewpro(const Bytes& frame) {
+    json out = {{"dissector", "viewpro"}};
+    if (const auto f = viewpro::make_output_frame(frame)) {
+        out["kind"] = std::string(viewpro::to_string(f->format));
+        if (const auto o = viewpro::decode_output(*f)) out["fields"] = viewpro::to_json(*o);
+    } else if (const auto in = viewpro::make_input_frame(frame)) {
+        out["kind"] = std::string(viewpro::to_string(in->kind));
+        out["fields"] = viewpro::to_json(*in);
+    }
+    return out;
+}
+
+int decode_lines() {
+    std::string line;
+    while (std::getline(std::cin, line)) {
+        std::istringstream in(line);
+        std::string dissector, hex;
+        in >> dissector >> hex;
+        const Bytes frame = from_hex(hex);
+        json j = dissector == "orion" ? decode_orion(frame) : decode_viewpro(frame);
+        std::cout << j.dump() << "\n";
+    }
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    const std::string mode = argc > 1 ? argv[1] : "";
+    if (mode == "vectors") return print_vectors();
+    if (mode == "decode") return decode_lines();
+    std::cerr << "usage: codec-json vectors|decode\n";
+    return 2;
+}
