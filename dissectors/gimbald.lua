@@ -941,3 +941,206 @@ function orion_proto.dissector(tvb, pinfo, tree)
     pinfo.cols.info = table.concat(infos, ", ")
     return tvb:len()
 end
+
+------------------------------------------------------------------------------------------------
+-- Viewpro (lib/viewpro; contract section 7 errata: OUT3/OUT4 share FD and 60 bytes, IN2/IN3
+-- share FC and 40 bytes, byte 3 = FF marks OUT4 / IN3). Little-endian; the checksum is the sum
+-- of all previous bytes mod 256; the 5-byte commands AA 55 id xx FF have none.
+------------------------------------------------------------------------------------------------
+
+local viewpro_proto = Proto("viewpro", "Viewpro target GPS protocol")
+
+local vf = {
+    frame = ProtoField.string("viewpro.frame", "Frame"),
+    header = ProtoField.uint16("viewpro.header", "Header", base.HEX),
+    id = ProtoField.uint8("viewpro.id", "Id", base.HEX),
+    flag = ProtoField.uint8("viewpro.flag", "OUT4/IN3 flag", base.HEX),
+    checksum = ProtoField.uint8("viewpro.checksum", "Checksum", base.HEX),
+    checksum_computed = ProtoField.uint8("viewpro.checksum.computed", "Computed checksum", base.HEX),
+    checksum_status = ProtoField.string("viewpro.checksum.status", "Checksum status"),
+    ["end"] = ProtoField.uint8("viewpro.end", "End", base.HEX),
+    time = ProtoField.string("viewpro.time", "time"),
+    zoom = ProtoField.uint16("viewpro.zoom", "zoom"),
+    osd = ProtoField.string("viewpro.osd", "osd"),
+    network = ProtoField.bool("viewpro.network", "network"),
+    serial = ProtoField.bool("viewpro.serial", "serial"),
+    format = ProtoField.string("viewpro.format", "format"),
+    hundredths_deg = ProtoField.int8("viewpro.hundredths_deg", "hundredths_deg"),
+}
+-- Every number in contract units (degrees, metres, m/s).
+for _, name in ipairs({ "gimbal.roll", "gimbal.pitch", "gimbal.yaw", "lrf_m", "uav.roll",
+                        "uav.pitch", "uav.yaw", "uav.lat", "uav.lon", "uav.alt_msl",
+                        "target.lat", "target.lon", "target.alt_msl", "roll", "pitch", "yaw",
+                        "lat", "lon", "alt_msl", "vel_ned", "deg" }) do
+    vf[name] = ProtoField.double("viewpro." .. name, name)
+end
+local viewpro_expert = {
+    bad_checksum = ProtoExpert.new("viewpro.checksum.bad", "Bad Viewpro checksum",
+                                   expert.group.CHECKSUM, expert.severity.WARN),
+    unknown = ProtoExpert.new("viewpro.unknown", "Not a complete Viewpro frame",
+                              expert.group.MALFORMED, expert.severity.ERROR),
+}
+do
+    local list = {}
+    for _, f in pairs(vf) do list[#list + 1] = f end
+    viewpro_proto.fields = list
+    viewpro_proto.experts = { viewpro_expert.bad_checksum, viewpro_expert.unknown }
+end
+
+-- Field readers: {field, offset, reader}; a reader returns (value, length).
+local function f32(o) return function(t) return t(o, 4):le_float(), 4 end end
+local function f32_rad(o) return function(t) return t(o, 4):le_float() * rad2deg, 4 end end
+local function f64_rad(o) return function(t) return t(o, 8):le_float() * rad2deg, 8 end end
+local function i32_div(o, d) return function(t) return t(o, 4):le_int() / d, 4 end end
+local function u32_div(o, d) return function(t) return t(o, 4):le_uint() / d, 4 end end
+local function i16_div(o, d) return function(t) return t(o, 2):le_int() / d, 2 end end
+
+local common_out23 = {
+    { "zoom", 9, function(t) return t(9, 2):le_uint(), 2 end },
+    { "gimbal.roll", 11, f32_rad(11) }, { "gimbal.pitch", 15, f32_rad(15) },
+    { "gimbal.yaw", 19, f32_rad(19) }, { "lrf_m", 23, f32(23) },
+    { "uav.roll", 27, f32_rad(27) }, { "uav.pitch", 31, f32_rad(31) },
+    { "uav.yaw", 35, f32_rad(35) }, { "uav.alt_msl", 39, i32_div(39, 1e3) },
+}
+local lat_lon_e7 = {
+    { "uav.lat", 43, i32_div(43, 1e7) }, { "uav.lon", 47, i32_div(47, 1e7) },
+    { "target.lat", 51, i32_div(51, 1e7) }, { "target.lon", 55, i32_div(55, 1e7) },
+}
+local function concat(...)
+    local out = {}
+    for _, list in ipairs({ ... }) do for _, x in ipairs(list) do out[#out + 1] = x end end
+    return out
+end
+local velocity = {
+    { "vel_ned", 33, i16_div(33, 100) }, { "vel_ned", 35, i16_div(35, 100) },
+    { "vel_ned", 37, i16_div(37, 100) },
+}
+local position = {
+    { "lat", 21, i32_div(21, 1e7) }, { "lon", 25, i32_div(25, 1e7) },
+    { "alt_msl", 29, i32_div(29, 1e3) },
+}
+local vehicle_attitude = {
+    { "roll", 9, f32_rad(9) }, { "pitch", 13, f32_rad(13) }, { "yaw", 17, f32_rad(17) },
+}
+
+-- year = "u16": bytes 2..3 hold the year; "u8+2000": byte 2 holds year - 2000 (OUT4, IN3).
+local viewpro_frames = {
+    out1 = { size = 23, fields = {
+        { "gimbal.pitch", 2, f32(2) }, { "gimbal.yaw", 6, f32(6) }, { "lrf_m", 10, f32(10) },
+        { "target.lon", 14, i32_div(14, 1e7) }, { "target.lat", 18, i32_div(18, 1e7) } } },
+    out2 = { size = 76, year = "u16", fields = concat(common_out23, {
+        { "uav.lat", 43, f64_rad(43) }, { "uav.lon", 51, f64_rad(51) },
+        { "target.lat", 59, f64_rad(59) }, { "target.lon", 67, f64_rad(67) } }) },
+    out3 = { size = 60, year = "u16", fields = concat(common_out23, lat_lon_e7) },
+    out4 = { size = 60, year = "u8+2000", fields = concat({
+        { "zoom", 9, function(t) return t(9, 2):le_uint(), 2 end },
+        { "gimbal.roll", 11, i32_div(11, 1e3) }, { "gimbal.pitch", 15, i32_div(15, 1e3) },
+        { "gimbal.yaw", 19, i32_div(19, 1e3) }, { "lrf_m", 23, u32_div(23, 1e3) },
+        { "target.alt_msl", 27, i32_div(27, 1e3) }, { "uav.pitch", 31, i32_div(31, 1e3) },
+        { "uav.yaw", 35, i32_div(35, 1e3) }, { "uav.alt_msl", 39, i32_div(39, 1e3) } },
+        lat_lon_e7) },
+    in1 = { size = 34, year = "u16", fields = concat(vehicle_attitude, position) },
+    in2 = { size = 40, year = "u16", fields = concat(vehicle_attitude, position, velocity) },
+    in3 = { size = 40, year = "u8+2000", fields = concat({
+        { "lrf_m", 9, u32_div(9, 1e3) }, { "pitch", 13, i32_div(13, 1e3) },
+        { "yaw", 17, i32_div(17, 1e3) } }, position, velocity) },
+}
+
+local function viewpro_kind(tvb)
+    local len = tvb:len()
+    if len < 2 then return nil end
+    local h, id = tvb(0, 1):uint(), tvb(1, 1):uint()
+    local flag = len > 3 and tvb(3, 1):uint() or 0
+    if h == 0xAA and id == 0x55 and len == 5 then
+        local cmd = tvb(2, 1):uint()
+        if cmd == 0x0F then return "mode" end
+        if cmd == 0x06 then return "yaw_shift" end
+        if cmd == 0x36 then return "pitch_shift" end
+        return nil
+    end
+    if h == 0xFE then
+        if id == 0xFB then return "out1" end
+        if id == 0xFC then return "out2" end
+        if id == 0xFD then return flag == 0xFF and "out4" or "out3" end
+    elseif h == 0xF9 then
+        if id == 0xFB then return "in1" end
+        if id == 0xFC then return flag == 0xFF and "in3" or "in2" end
+    end
+    return nil
+end
+
+local function add_number(tree, name, range, value)
+    tree:add(vf[name], range, value):set_text(name .. ": " .. string.format("%.10g", value))
+end
+
+local format_names = { [0] = "out1", [1] = "out2", [2] = "out3", [3] = "out4" }
+
+function viewpro_proto.dissector(tvb, pinfo, tree)
+    pinfo.cols.protocol = "Viewpro"
+    local kind = viewpro_kind(tvb)
+    local t = tree:add(viewpro_proto, tvb(), "Viewpro " .. (kind or "?"))
+    local layout = kind and viewpro_frames[kind]
+    if not kind or (layout and tvb:len() ~= layout.size) then
+        t:add_proto_expert_info(viewpro_expert.unknown)
+        pinfo.cols.info = "Viewpro: not a complete frame"
+        return tvb:len()
+    end
+    t:add(vf.frame, tvb(0, 2), kind)
+    t:add(vf.header, tvb(0, 2))
+    pinfo.cols.info = kind
+
+    if not layout then  -- a 5-byte command: AA 55 id value FF
+        t:add(vf.id, tvb(2, 1))
+        local v = tvb(3, 1)
+        if kind == "mode" then
+            local b = v:uint()
+            t:add(vf.osd, v, b % 2 == 1 and "target" or "uav")
+            t:add(vf.network, v, math.floor(b / 8) % 2 == 1)
+            t:add(vf.serial, v, math.floor(b / 16) % 2 == 1)
+            t:add(vf.format, v, format_names[math.floor(b / 32) % 4])
+        else
+            t:add(vf.hundredths_deg, v, v:int())
+            add_number(t, "deg", v, v:int() / 100.0)
+        end
+        t:add(vf["end"], tvb(4, 1))
+        return tvb:len()
+    end
+
+    t:add(vf.id, tvb(1, 1))
+    if kind:sub(1, 3) == "out" then t:add(vf.format, tvb(1, 1), kind) end
+    if layout.year then
+        local year, year_range
+        if layout.year == "u16" then
+            year, year_range = tvb(2, 2):le_uint(), tvb(2, 2)
+        else
+            year, year_range = 2000 + tvb(2, 1):uint(), tvb(2, 1)
+            t:add(vf.flag, tvb(3, 1))
+        end
+        local time = string.format("%04d-%02d-%02dT%02d:%02d:%02dZ", year, tvb(4, 1):uint(),
+                                   tvb(5, 1):uint(), tvb(6, 1):uint(), tvb(7, 1):uint(),
+                                   tvb(8, 1):uint())
+        t:add(vf.time, tvb(2, 7), time)
+    end
+    for _, f in ipairs(layout.fields) do
+        local value, len = f[3](tvb)
+        if f[1] == "zoom" then
+            t:add(vf.zoom, tvb(f[2], len), value)
+        else
+            add_number(t, f[1], tvb(f[2], len), value)
+        end
+    end
+    local last = layout.size - 1
+    local sum = 0
+    for i = 0, last - 1 do sum = (sum + tvb(i, 1):uint()) % 256 end
+    t:add(vf.checksum, tvb(last, 1))
+    t:add(vf.checksum_computed, tvb(last, 1), sum):set_generated()
+    if tvb(last, 1):uint() == sum then
+        t:add(vf.checksum_status, tvb(last, 1), "good"):set_generated()
+    else
+        t:add(vf.checksum_status, tvb(last, 1), "bad"):set_generated()
+        t:add_proto_expert_info(viewpro_expert.bad_checksum, string.format(
+            "Bad Viewpro checksum: 0x%02x, expected 0x%02x", tvb(last, 1):uint(), sum))
+        pinfo.cols.info = kind .. " [bad checksum]"
+    end
+    return tvb:len()
+end

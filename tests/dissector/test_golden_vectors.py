@@ -24,7 +24,8 @@ import pcapng_writer  # noqa: E402
 HEADER_FIELDS = {"orion.sync", "orion.id", "orion.packet", "orion.length", "orion.request",
                  "orion.checksum", "orion.checksum.computed", "orion.checksum.status",
                  "viewpro.frame", "viewpro.header", "viewpro.id", "viewpro.checksum",
-                 "viewpro.checksum.computed", "viewpro.checksum.status", "viewpro.end"}
+                 "viewpro.checksum.computed", "viewpro.checksum.status", "viewpro.end",
+                 "viewpro.flag"}
 COUNT_KEYS = {"num_lasers", "num_cores", "num_threads", "num_cameras", "size", "length",
               "num_points"}
 
@@ -109,7 +110,10 @@ def main():
     extra = bytes([0xD0, 0x0D, first[2], len(data)]) + data
     extra += fletcher251(extra)
     bad = first[:-1] + bytes([first[-1] ^ 0x55])
-    specials = [("orion", extra.hex(), "extra"), ("orion", bad.hex(), "bad_checksum")]
+    out1 = bytes.fromhex(next(h for d, h in records if d == "viewpro"))
+    bad_viewpro = out1[:-1] + bytes([out1[-1] ^ 0x01])
+    specials = [("orion", extra.hex(), "extra"), ("orion", bad.hex(), "bad_checksum"),
+                ("viewpro", bad_viewpro.hex(), "bad_checksum")]
 
     decoded = subprocess.run([codec_json, "decode"], check=True, capture_output=True, text=True,
                              input="\n".join(f"{d} {h}" for d, h in records) + "\n"
