@@ -1144,3 +1144,134 @@ function viewpro_proto.dissector(tvb, pinfo, tree)
     end
     return tvb:len()
 end
+
+------------------------------------------------------------------------------------------------
+-- MAVLink v1/v2: header, message id and name, CRC (X.25 with crc_extra) for the messages
+-- gimbald uses (lib/mavlink; the dissector test checks this table against it).
+------------------------------------------------------------------------------------------------
+
+local mavlink_messages = {
+    [0] = { "HEARTBEAT", 50 }, [2] = { "SYSTEM_TIME", 137 }, [30] = { "ATTITUDE", 39 },
+    [33] = { "GLOBAL_POSITION_INT", 104 }, [65] = { "RC_CHANNELS", 118 },
+    [75] = { "COMMAND_INT", 158 }, [76] = { "COMMAND_LONG", 152 }, [77] = { "COMMAND_ACK", 143 },
+    [259] = { "CAMERA_INFORMATION", 92 }, [271] = { "CAMERA_FOV_STATUS", 22 },
+    [280] = { "GIMBAL_MANAGER_INFORMATION", 70 }, [281] = { "GIMBAL_MANAGER_STATUS", 48 },
+    [282] = { "GIMBAL_MANAGER_SET_ATTITUDE", 123 }, [283] = { "GIMBAL_DEVICE_INFORMATION", 74 },
+    [284] = { "GIMBAL_DEVICE_SET_ATTITUDE", 99 }, [285] = { "GIMBAL_DEVICE_ATTITUDE_STATUS", 137 },
+    [287] = { "GIMBAL_MANAGER_SET_PITCHYAW", 1 },
+}
+
+local mavlink_proto = Proto("mavlink", "MAVLink (gimbald)")
+local mf = {
+    magic = ProtoField.uint8("mavlink.magic", "Magic", base.HEX),
+    version = ProtoField.uint8("mavlink.version", "Version"),
+    len = ProtoField.uint8("mavlink.len", "Payload length"),
+    incompat_flags = ProtoField.uint8("mavlink.incompat_flags", "Incompatibility flags", base.HEX),
+    compat_flags = ProtoField.uint8("mavlink.compat_flags", "Compatibility flags", base.HEX),
+    seq = ProtoField.uint8("mavlink.seq", "Sequence"),
+    sysid = ProtoField.uint8("mavlink.sysid", "System id"),
+    compid = ProtoField.uint8("mavlink.compid", "Component id"),
+    msgid = ProtoField.uint32("mavlink.msgid", "Message id"),
+    msgname = ProtoField.string("mavlink.msgname", "Message"),
+    payload = ProtoField.bytes("mavlink.payload", "Payload"),
+    crc = ProtoField.uint16("mavlink.crc", "CRC", base.HEX),
+    crc_status = ProtoField.string("mavlink.crc.status", "CRC status"),
+    signature = ProtoField.bytes("mavlink.signature", "Signature"),
+}
+local mavlink_expert = {
+    bad_crc = ProtoExpert.new("mavlink.crc.bad", "Bad MAVLink CRC", expert.group.CHECKSUM,
+                              expert.severity.WARN),
+    short = ProtoExpert.new("mavlink.short", "MAVLink frame shorter than its header says",
+                            expert.group.MALFORMED, expert.severity.ERROR),
+}
+do
+    local list = {}
+    for _, f in pairs(mf) do list[#list + 1] = f end
+    mavlink_proto.fields = list
+    mavlink_proto.experts = { mavlink_expert.bad_crc, mavlink_expert.short }
+end
+
+local function x25(crc, byte)
+    local tmp = bit32.bxor(byte, bit32.band(crc, 0xFF))
+    tmp = bit32.band(bit32.bxor(tmp, bit32.lshift(tmp, 4)), 0xFF)
+    return bit32.band(bit32.bxor(bit32.rshift(crc, 8), bit32.lshift(tmp, 8),
+                                 bit32.lshift(tmp, 3), bit32.rshift(tmp, 4)), 0xFFFF)
+end
+
+function mavlink_proto.dissector(tvb, pinfo, tree)
+    pinfo.cols.protocol = "MAVLink"
+    local t = tree:add(mavlink_proto, tvb())
+    local magic = tvb:len() > 0 and tvb(0, 1):uint() or 0
+    local v2 = magic == 0xFD
+    local header = v2 and 10 or 6
+    if tvb:len() < header + 2 or (magic ~= 0xFD and magic ~= 0xFE) then
+        t:add_proto_expert_info(mavlink_expert.short)
+        return tvb:len()
+    end
+    local len = tvb(1, 1):uint()
+    t:add(mf.magic, tvb(0, 1))
+    t:add(mf.version, tvb(0, 1), v2 and 2 or 1)
+    t:add(mf.len, tvb(1, 1))
+    local o = 2
+    local signed = false
+    if v2 then
+        t:add(mf.incompat_flags, tvb(2, 1))
+        t:add(mf.compat_flags, tvb(3, 1))
+        signed = tvb(2, 1):uint() % 2 == 1
+        o = 4
+    end
+    t:add(mf.seq, tvb(o, 1))
+    t:add(mf.sysid, tvb(o + 1, 1))
+    t:add(mf.compid, tvb(o + 2, 1))
+    local msgid = v2 and tvb(o + 3, 3):le_uint() or tvb(o + 3, 1):uint()
+    t:add(mf.msgid, tvb(o + 3, v2 and 3 or 1), msgid)
+    local info = mavlink_messages[msgid]
+    local name = info and info[1] or ("MSG " .. msgid)
+    t:add(mf.msgname, tvb(o + 3, v2 and 3 or 1), name)
+    t:append_text(", " .. name)
+    pinfo.cols.info = name
+    if tvb:len() < header + len + 2 then
+        t:add_proto_expert_info(mavlink_expert.short)
+        return tvb:len()
+    end
+    if len > 0 then t:add(mf.payload, tvb(header, len)) end
+    local crc_range = tvb(header + len, 2)
+    t:add_le(mf.crc, crc_range)
+    if info then
+        local crc = 0xFFFF
+        for i = 1, header + len - 1 do crc = x25(crc, tvb(i, 1):uint()) end
+        crc = x25(crc, info[2])
+        if crc == crc_range:le_uint() then
+            t:add(mf.crc_status, crc_range, "good"):set_generated()
+        else
+            t:add(mf.crc_status, crc_range, "bad"):set_generated()
+            t:add_proto_expert_info(mavlink_expert.bad_crc, string.format(
+                "Bad MAVLink CRC: 0x%04x, expected 0x%04x", crc_range:le_uint(), crc))
+        end
+    end
+    if signed and tvb:len() >= header + len + 2 + 13 then
+        t:add(mf.signature, tvb(header + len + 2, 13))
+    end
+    return tvb:len()
+end
+
+------------------------------------------------------------------------------------------------
+-- gimbald-json: JSON requests (inbound) and replies (outbound) of every transport, shown by
+-- Wireshark's json dissector (filters json.member etc.).
+------------------------------------------------------------------------------------------------
+
+local json_proto = Proto("gimbald-json", "gimbald JSON")
+local jf = { text = ProtoField.string("gimbald-json.text", "Text") }
+json_proto.fields = { jf.text }
+local json_dissector = Dissector.get("json")
+
+function json_proto.dissector(tvb, pinfo, tree)
+    local t = tree:add(json_proto, tvb())
+    local request = pinfo.p2p_dir == P2P_DIR_RECV
+    t:append_text(request and " (request)" or " (reply)")
+    json_dissector:call(tvb, pinfo, tree)
+    pinfo.cols.protocol = "gimbald-json"
+    local ok, first = pcall(function() return tvb(0, math.min(tvb:len(), 80)):string() end)
+    if ok then pinfo.cols.info = (request and "request " or "reply ") .. first:gsub("[\r\n]", " ") end
+    return tvb:len()
+end

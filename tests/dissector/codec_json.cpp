@@ -10,12 +10,16 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <utility>
+#include <variant>
 #include <vector>
 
 #include "../unit/orion/golden_config.hpp"
 #include "../unit/orion/golden_control.hpp"
 #include "../unit/orion/golden_telemetry.hpp"
 #include "../unit/viewpro/vectors.hpp"
+#include "mavlink/framer.hpp"
+#include "mavlink/framing.hpp"
 #include "orion/framing.hpp"
 #include "orion/json.hpp"
 #include "orion/packets.hpp"
@@ -83,7 +87,26 @@ int print_vectors() {
     for (const std::int8_t step : {std::int8_t{100}, std::int8_t{-25}})
         std::cout << "viewpro " << to_hex(bytes_of(viewpro::encode_yaw_shift(step))) << "\n"
                   << "viewpro " << to_hex(bytes_of(viewpro::encode_pitch_shift(step))) << "\n";
+    // One v1 and one v2 frame of every MAVLink message lib/mavlink knows.
+    const auto print_mavlink = [&]<std::size_t... I>(std::index_sequence<I...>) {
+        const auto one = [&](const gimbal::mavlink::Payload& p) {
+            if (gimbal::mavlink::message_id(p) < 256)  // v1 has a one-byte message id
+                std::cout << "mavlink " << to_hex(gimbal::mavlink::encode_v1(p, 1, 154, 7)) << "\n";
+            std::cout << "mavlink " << to_hex(gimbal::mavlink::encode_v2(p, 1, 154, 8)) << "\n";
+        };
+        (one(gimbal::mavlink::Payload{std::in_place_index<I>}), ...);
+    };
+    print_mavlink(std::make_index_sequence<std::variant_size_v<gimbal::mavlink::Payload>>{});
     return missing == 0 ? 0 : 1;
+}
+
+json decode_mavlink(const Bytes& frame) {
+    json out = {{"dissector", "mavlink"}};
+    gimbal::mavlink::Framer framer;
+    for (const auto& m : framer.push(frame))
+        out["fields"] = {{"version", m.version}, {"seq", m.seq},     {"sysid", m.sysid},
+                         {"compid", m.compid},   {"msgid", m.msgid}, {"crc.status", "good"}};
+    return out;
 }
 
 json decode_orion(const Bytes& frame) {
@@ -124,7 +147,9 @@ int decode_lines() {
         std::string dissector, hex;
         in >> dissector >> hex;
         const Bytes frame = from_hex(hex);
-        json j = dissector == "orion" ? decode_orion(frame) : decode_viewpro(frame);
+        json j = dissector == "orion"     ? decode_orion(frame)
+                 : dissector == "mavlink" ? decode_mavlink(frame)
+                                          : decode_viewpro(frame);
         std::cout << j.dump() << "\n";
     }
     return 0;

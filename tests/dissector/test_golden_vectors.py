@@ -25,7 +25,8 @@ HEADER_FIELDS = {"orion.sync", "orion.id", "orion.packet", "orion.length", "orio
                  "orion.checksum", "orion.checksum.computed", "orion.checksum.status",
                  "viewpro.frame", "viewpro.header", "viewpro.id", "viewpro.checksum",
                  "viewpro.checksum.computed", "viewpro.checksum.status", "viewpro.end",
-                 "viewpro.flag"}
+                 "viewpro.flag", "mavlink.magic", "mavlink.len", "mavlink.incompat_flags",
+                 "mavlink.compat_flags", "mavlink.msgname", "mavlink.payload", "mavlink.crc"}
 COUNT_KEYS = {"num_lasers", "num_cores", "num_threads", "num_cameras", "size", "length",
               "num_points"}
 
@@ -113,7 +114,8 @@ def main():
     out1 = bytes.fromhex(next(h for d, h in records if d == "viewpro"))
     bad_viewpro = out1[:-1] + bytes([out1[-1] ^ 0x01])
     specials = [("orion", extra.hex(), "extra"), ("orion", bad.hex(), "bad_checksum"),
-                ("viewpro", bad_viewpro.hex(), "bad_checksum")]
+                ("viewpro", bad_viewpro.hex(), "bad_checksum"),
+                ("gimbald-json", b'{"id": 7, "cmd": "state"}'.hex(), "json")]
 
     decoded = subprocess.run([codec_json, "decode"], check=True, capture_output=True, text=True,
                              input="\n".join(f"{d} {h}" for d, h in records) + "\n"
@@ -146,7 +148,8 @@ def main():
             failures.append(f"packet {i + 1} ({d}): not decoded or malformed: {list(layers)}")
             continue
         shown, expert = {}, []
-        flatten_tshark(layers[d][0], shown, expert)
+        if isinstance(layers[d][0], dict):
+            flatten_tshark(layers[d][0], shown, expert)
         severities = [e.get("_ws.expert.severity", [""])[0] for e in expert
                       if isinstance(e, dict)]
         messages = [e.get("_ws.expert.message", [""])[0] for e in expert
@@ -155,6 +158,8 @@ def main():
             kind = specials[i - len(records)][2]
             if kind == "bad_checksum" and not any("checksum" in m.lower() for m in messages):
                 failures.append(f"corrupted checksum: no checksum warning ({messages})")
+            if kind == "json" and "json" not in layers:
+                failures.append(f"gimbald-json not handed to the json dissector: {list(layers)}")
             if kind == "extra" and "orion.extra" not in shown:
                 failures.append("extra bytes not shown as orion.extra")
             continue
@@ -167,6 +172,11 @@ def main():
             continue
         if d == "orion":
             prefix = "orion." + exp["name"]
+        elif d == "mavlink":
+            prefix = "mavlink"
+            if shown.get("mavlink.msgname", ["MSG"])[0].startswith("MSG"):
+                failures.append(f"packet {i + 1}: MAVLink message {exp['fields']['msgid']} "
+                                "has no name in the dissector")
         else:
             prefix = "viewpro"
             if shown.get("viewpro.frame") != [exp["kind"]]:
