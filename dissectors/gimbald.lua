@@ -16,6 +16,11 @@
 -- (lib/orion/packets_*.hpp) by tools/gen-dissector; the block between the GENERATED markers
 -- must not be edited by hand: `cmake --build build/debug --target update-dissector`.
 
+-- Installed in Wireshark's global plugin folder and also named with -X lua_script: load once
+-- (a second Proto("orion") would be an error).
+if gimbald_dissectors_loaded then return end
+gimbald_dissectors_loaded = true
+
 -- BEGIN GENERATED ORION SCHEMA (tools/gen-dissector from lib/orion/packets_*.hpp; do not edit by hand:
 -- cmake --build build/debug --target update-dissector)
 local orion_enums = {
