@@ -23,6 +23,7 @@
 #include "orion/framing.hpp"
 #include "orion/json.hpp"
 #include "orion/packets.hpp"
+#include "schema.hpp"
 #include "viewpro/viewpro.hpp"
 
 using nlohmann::json;
@@ -54,6 +55,34 @@ Bytes bytes_of(const C& c) {
     return Bytes(c.begin(), c.end());
 }
 
+Bytes payload_bytes(const orion::Payload& p) {
+    return Bytes(p.bytes.begin(), p.bytes.begin() + static_cast<long>(p.size));
+}
+
+// The golden packet with each of its flags or enum switches set to 0, re-encoded by the codec:
+// where that drops conditional fields ("only if hasGyroBias"), a vector for the other branch.
+template <class P>
+void print_switched_off(const Bytes& golden) {
+    const auto decoded = orion::decode<P>(golden);
+    if (!decoded.ok) return;
+    std::vector<gimbal::dissector::Entry> entries;
+    gimbal::dissector::EnumRegistry enums;
+    gimbal::dissector::SchemaVisitor schema(entries, enums);
+    P copy = decoded.value;
+    copy.fields(schema);
+    for (const auto& e : entries) {
+        if ((e.kind != "bits" && e.kind != "field") || e.n != 0 || !e.count_key.empty() ||
+            (e.member != "bool" && e.member != "enum"))
+            continue;
+        P p = decoded.value;
+        gimbal::dissector::SetVisitor set(e.key, 0);
+        p.fields(set);
+        const Bytes b = payload_bytes(orion::encode(p));
+        if (b.size() != golden.size())
+            std::cout << "orion " << to_hex(orion::frame_bytes(P::id, b)) << "\n";
+    }
+}
+
 int print_vectors() {
     namespace g = orion::golden_vectors;
     std::vector<g::GoldenVector> all;
@@ -71,6 +100,20 @@ int print_vectors() {
     });
     for (const auto& v : all)
         std::cout << "orion " << to_hex(orion::frame_bytes(v.id, *v.data)) << "\n";
+    for (const auto& v : all) {
+        orion::dispatch(v.id, [&]<class P>() {
+            print_switched_off<P>(*v.data);
+            // The optional tail absent: the codec's JSON keeps defaults for the absent fields,
+            // so only what the dissector shows is compared ("subset").
+            // A minimum-length packet whose counts ask for more is invalid for both sides.
+            if (P::min_length < v.data->size()) {
+                const Bytes head(v.data->begin(),
+                                 v.data->begin() + static_cast<long>(P::min_length));
+                std::cout << "orion " << to_hex(orion::frame_bytes(P::id, head))
+                          << (orion::decode<P>(head).ok ? " subset\n" : " invalid\n");
+            }
+        });
+    }
 
     using namespace viewpro_test;
     for (const auto* frame : {&icd_out1, &golden_out2, &golden_out3, &golden_out4, &golden_in1,
