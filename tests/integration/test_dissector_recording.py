@@ -85,58 +85,63 @@ class DissectorReadsRecording(gt.GimbaldTestCase):
         files = sorted(os.path.join(rec_dir, f) for f in os.listdir(rec_dir)
                        if f.endswith(".pcapng"))
         self.assertTrue(files, "no recording written")
-        latest = {}
-        malformed = 0
-        for path in files:
-            proc = subprocess.run([tshark, "-X", "lua_script:" + LUA, "-r", path, "-T", "json"],
-                                  capture_output=True, text=True, timeout=120)
-            self.assertEqual(proc.returncode, 0, proc.stderr)
-            for pkt in json.loads(proc.stdout or "[]", object_pairs_hook=pairs):
-                layers = pkt["_source"][0]["layers"][0]
-                if "_ws.malformed" in layers:
-                    malformed += 1
-                if "orion" not in layers or not isinstance(layers["orion"][0], dict):
-                    continue
-                fields = {}
-                flatten(layers["orion"][0], fields)
-                self.assertNotIn("bad", fields.get("orion.checksum.status", []))
-                if layers["frame"][0].get("frame.p2p_dir", ["1"])[0] != "1":
-                    continue  # what gimbald sent, not what the gimbal said
-                name = fields.get("orion.packet", [""])[0]
-                if "orion.request" not in fields:
-                    latest[name] = fields
-        self.assertEqual(malformed, 0)
+        compare_recording(self, tshark, state, files)
 
-        steps = field_steps()
-        compared = 0
-        for state_key, packet in STATE_PACKETS.items():
-            shown = state.get(state_key)
-            if shown is None:
+
+def compare_recording(self, tshark, state, files):
+    """tshark reads `files`; the latest inbound packet of each STATE kind matches `state`."""
+    latest = {}
+    malformed = 0
+    for path in files:
+        proc = subprocess.run([tshark, "-X", "lua_script:" + LUA, "-r", path, "-T", "json"],
+                              capture_output=True, text=True, timeout=120)
+        self.assertEqual(proc.returncode, 0, proc.stderr)
+        for pkt in json.loads(proc.stdout or "[]", object_pairs_hook=pairs):
+            layers = pkt["_source"][0]["layers"][0]
+            if "_ws.malformed" in layers:
+                malformed += 1
+            if "orion" not in layers or not isinstance(layers["orion"][0], dict):
                 continue
-            self.assertIn(packet, latest, "STATE has %s but the recording no %s" %
-                          (state_key, packet))
-            fields = latest[packet]
-            for key, value in shown.items():
-                field = "orion.%s.%s" % (packet, key)
-                if field not in fields:
-                    continue  # derived (utc, roll, target, age_s) or not on the wire
-                values = value if isinstance(value, list) else [value]
-                got = fields[field]
-                self.assertEqual(len(got), len(values), field)
-                step = steps.get((packet, key), 1.0)
-                for want, g in zip(values, got):
-                    compared += 1
-                    with self.subTest(field=field):
-                        if isinstance(want, bool):
-                            self.assertEqual(g in ("1", "True", "true"), want)
-                        elif isinstance(want, (int, float)):
-                            self.assertLessEqual(abs(float(g) - want), step, field)
-                        else:
-                            self.assertEqual(str(want), g, field)
-        print("compared %d field values of %d packet kinds" % (compared, len(latest)))
-        self.assertGreaterEqual(compared, 36)
-        for key in ("lat", "lon", "alt", "pan", "tilt", "mode"):
-            self.assertIn("orion.geolocate_telemetry." + key, latest["geolocate_telemetry"])
+            fields = {}
+            flatten(layers["orion"][0], fields)
+            self.assertNotIn("bad", fields.get("orion.checksum.status", []))
+            if layers["frame"][0].get("frame.p2p_dir", ["1"])[0] != "1":
+                continue  # what gimbald sent, not what the gimbal said
+            name = fields.get("orion.packet", [""])[0]
+            if "orion.request" not in fields:
+                latest[name] = fields
+    self.assertEqual(malformed, 0)
+
+    steps = field_steps()
+    compared = 0
+    for state_key, packet in STATE_PACKETS.items():
+        shown = state.get(state_key)
+        if shown is None:
+            continue
+        self.assertIn(packet, latest, "STATE has %s but the recording no %s" %
+                      (state_key, packet))
+        fields = latest[packet]
+        for key, value in shown.items():
+            field = "orion.%s.%s" % (packet, key)
+            if field not in fields:
+                continue  # derived (utc, roll, target, age_s) or not on the wire
+            values = value if isinstance(value, list) else [value]
+            got = fields[field]
+            self.assertEqual(len(got), len(values), field)
+            step = steps.get((packet, key), 1.0)
+            for want, g in zip(values, got):
+                compared += 1
+                with self.subTest(field=field):
+                    if isinstance(want, bool):
+                        self.assertEqual(g in ("1", "True", "true"), want)
+                    elif isinstance(want, (int, float)):
+                        self.assertLessEqual(abs(float(g) - want), step, field)
+                    else:
+                        self.assertEqual(str(want), g, field)
+    print("compared %d field values of %d packet kinds" % (compared, len(latest)))
+    self.assertGreaterEqual(compared, 36)
+    for key in ("lat", "lon", "alt", "pan", "tilt", "mode"):
+        self.assertIn("orion.geolocate_telemetry." + key, latest["geolocate_telemetry"])
 
 
 def check_record_supported():
