@@ -2,7 +2,9 @@
 """A recording of gimbald + gimbal-sim, read by tshark with dissectors/gimbald.lua
 (contract section 12): no malformed packets or bad checksums, and the fields of the latest
 packet of every kind gimbald keeps in STATE (telemetry, gps, ins, performance, ...) match what
-STATE shows, by name (lat, lon, alt, pan, tilt, mode, ...), each to one step of its wire field.
+STATE shows, by name (lat, lon, alt, pan, tilt, mode, ...), each to one step of its wire field
+(the step comes from the dissector's generated schema); the geopoint command gimbald sent
+shows the values asked for, and the JSON requests and replies are decoded too.
 
 Skipped (77) when tshark is missing or this gimbald has no `record` configuration yet.
 """
@@ -85,13 +87,20 @@ class DissectorReadsRecording(gt.GimbaldTestCase):
         files = sorted(os.path.join(rec_dir, f) for f in os.listdir(rec_dir)
                        if f.endswith(".pcapng"))
         self.assertTrue(files, "no recording written")
-        compare_recording(self, tshark, state, files)
+        sent, json_records = compare_recording(self, tshark, state, files)
+        # The command went out as a geopoint_cmd with the values asked for, and the JSON
+        # requests and replies are there too.
+        self.assertIn("geopoint_cmd", sent)
+        for key, want in (("lat", 47.4), ("lon", 8.55), ("alt", 480.0)):
+            got = float(sent["geopoint_cmd"]["orion.geopoint_cmd." + key][0])
+            self.assertAlmostEqual(got, want, delta=1e-3, msg=key)
+        self.assertGreaterEqual(json_records, 2)
 
 
 def compare_recording(self, tshark, state, files):
     """tshark reads `files`; the latest inbound packet of each STATE kind matches `state`."""
-    latest = {}
-    malformed = 0
+    latest, sent = {}, {}
+    malformed = json_records = 0
     for path in files:
         proc = subprocess.run([tshark, "-X", "lua_script:" + LUA, "-r", path, "-T", "json"],
                               capture_output=True, text=True, timeout=120)
@@ -100,15 +109,17 @@ def compare_recording(self, tshark, state, files):
             layers = pkt["_source"][0]["layers"][0]
             if "_ws.malformed" in layers:
                 malformed += 1
+            if "json" in layers:
+                json_records += 1
             if "orion" not in layers or not isinstance(layers["orion"][0], dict):
                 continue
             fields = {}
             flatten(layers["orion"][0], fields)
             self.assertNotIn("bad", fields.get("orion.checksum.status", []))
-            if layers["frame"][0].get("frame.p2p_dir", ["1"])[0] != "1":
-                continue  # what gimbald sent, not what the gimbal said
             name = fields.get("orion.packet", [""])[0]
-            if "orion.request" not in fields:
+            if layers["frame"][0].get("frame.p2p_dir", ["1"])[0] != "1":
+                sent[name] = fields  # what gimbald sent, not what the gimbal said
+            elif "orion.request" not in fields:
                 latest[name] = fields
     self.assertEqual(malformed, 0)
 
@@ -142,6 +153,7 @@ def compare_recording(self, tshark, state, files):
     self.assertGreaterEqual(compared, 36)
     for key in ("lat", "lon", "alt", "pan", "tilt", "mode"):
         self.assertIn("orion.geolocate_telemetry." + key, latest["geolocate_telemetry"])
+    return sent, json_records
 
 
 def check_record_supported():
