@@ -97,6 +97,66 @@ class DissectorReadsRecording(gt.GimbaldTestCase):
         self.assertGreaterEqual(json_records, 2)
 
 
+    def test_viewpro_recording_matches_state(self):
+        tshark = shutil.which("tshark")
+        if not tshark:
+            self.skipTest("tshark not installed")
+        rec_dir = os.path.join(self.workdir, "rec-viewpro")
+        os.makedirs(rec_dir)
+        sim = self.start_sim("--protocol", "viewpro")
+        config = {"gimbals": [gt.viewpro_tcp("nose", sim.port)],
+                  "record": {"dir": rec_dir, "max_file_mb": 100, "max_total_mb": 1000}}
+        daemon = self.start_daemon(config)
+        c = self.client(daemon)
+        self.wait_connected(c, telemetry=False)
+        self.assertTrue(gt.wait_for(lambda: c.request("state")["state"].get("output"), 5.0))
+        time.sleep(1.0)
+        sim.stop()
+        time.sleep(0.5)
+        output = c.request("state")["state"]["output"]
+        daemon.stop(signal.SIGTERM)
+
+        latest = None
+        for path in sorted(os.path.join(rec_dir, f) for f in os.listdir(rec_dir)):
+            proc = subprocess.run([tshark, "-X", "lua_script:" + LUA, "-r", path, "-T", "json"],
+                                  capture_output=True, text=True, timeout=120)
+            self.assertEqual(proc.returncode, 0, proc.stderr)
+            for pkt in json.loads(proc.stdout or "[]", object_pairs_hook=pairs):
+                layers = pkt["_source"][0]["layers"][0]
+                self.assertNotIn("_ws.malformed", layers)
+                if "viewpro" not in layers:
+                    continue
+                fields = {}
+                flatten(layers["viewpro"][0], fields)
+                self.assertEqual(fields.get("viewpro.checksum.status", ["good"]), ["good"])
+                if fields.get("viewpro.frame", [""])[0].startswith("out"):
+                    latest = fields
+        self.assertIsNotNone(latest, "no OUT frame in the recording")
+        want = {}
+
+        def walk(prefix, value):
+            if isinstance(value, dict):
+                for k, v in value.items():
+                    walk(prefix + "." + k, v)
+            else:
+                want[prefix] = value
+        walk("viewpro", output)
+        compared = 0
+        for field, value in want.items():
+            if field.endswith(".age_s"):
+                continue  # gimbald's own bookkeeping
+            self.assertIn(field, latest)
+            compared += 1
+            got = latest[field][0]
+            if isinstance(value, (int, float)) and not isinstance(value, bool):
+                self.assertAlmostEqual(float(got), value, delta=1e-4 + 1e-7 * abs(value),
+                                       msg=field)
+            else:
+                self.assertEqual(got, str(value), field)
+        print("compared %d Viewpro fields (%s)" % (compared, output.get("format")))
+        self.assertGreaterEqual(compared, 10)
+
+
 def compare_recording(self, tshark, state, files):
     """tshark reads `files`; the latest inbound packet of each STATE kind matches `state`."""
     latest, sent = {}, {}
