@@ -611,34 +611,57 @@ local orion_expert = {
 
 local orion_fields = {}  -- abbreviation -> ProtoField
 
+-- How a field is carried, for the field's description (Wireshark shows it as the blurb).
+local function wire_text(e)
+    local t
+    if e.kind == "bits" then
+        t = "B" .. e.width
+    elseif e.enc == "sf" then
+        t = "F" .. (8 * e.size) .. ":" .. e.sig
+    elseif e.enc == "f32" or e.enc == "f64" then
+        t = "IEEE " .. e.enc
+    elseif e.enc then
+        t = (e.enc == "i" and "I" or "U") .. (8 * e.size)
+    else
+        t = e.kind
+    end
+    if e.factor then t = t .. string.format(", scaled by %.10g", e.factor) end
+    if e.offset then t = t .. string.format(" from %.10g", e.offset) end
+    if e.radians then t = t .. ", radians on the wire, degrees here" end
+    if e.cond then t = t .. ", only if " .. e.cond.key .. (e.cond.present and " is " or " is not ")
+                          .. table.concat(e.cond.values, "/") end
+    return t
+end
+
 -- One ProtoField per declared key: doubles for scaled values (already in contract units),
 -- strings for enum names (filter with orion.geolocate_telemetry.mode == "geopoint").
 local function make_orion_fields(prefix, entries)
     for _, e in ipairs(entries) do
         local abbr = prefix .. "." .. (e.key or "")
         local k = e.kind
+        local desc = abbr:sub(7) .. ": " .. wire_text(e)
         if k == "group" then
-            orion_fields[abbr] = ProtoField.none(abbr, e.key)
+            orion_fields[abbr] = ProtoField.none(abbr, e.key, desc)
             make_orion_fields(abbr, e.fields)
         elseif k == "field" or k == "bits" or k == "count" then
             if orion_fields[abbr] == nil then
                 local m = e.member
                 if m == "float" then
-                    orion_fields[abbr] = ProtoField.double(abbr, e.key)
+                    orion_fields[abbr] = ProtoField.double(abbr, e.key, desc)
                 elseif m == "bool" then
-                    orion_fields[abbr] = ProtoField.bool(abbr, e.key)
+                    orion_fields[abbr] = ProtoField.bool(abbr, e.key, base.NONE, nil, nil, desc)
                 elseif m == "enum" then
-                    orion_fields[abbr] = ProtoField.string(abbr, e.key)
+                    orion_fields[abbr] = ProtoField.string(abbr, e.key, desc)
                 elseif e.enc == "i" then
-                    orion_fields[abbr] = ProtoField.int32(abbr, e.key)
+                    orion_fields[abbr] = ProtoField.int32(abbr, e.key, base.DEC, nil, nil, desc)
                 else
-                    orion_fields[abbr] = ProtoField.uint32(abbr, e.key)
+                    orion_fields[abbr] = ProtoField.uint32(abbr, e.key, base.DEC, nil, nil, desc)
                 end
             end
         elseif k == "string" or k == "fixed_string" then
-            orion_fields[abbr] = ProtoField.string(abbr, e.key)
+            orion_fields[abbr] = ProtoField.string(abbr, e.key, desc)
         elseif k == "ipv4" then
-            orion_fields[abbr] = ProtoField.ipv4(abbr, e.key)
+            orion_fields[abbr] = ProtoField.ipv4(abbr, e.key, desc)
         end
     end
 end
