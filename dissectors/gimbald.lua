@@ -665,7 +665,13 @@ local function make_orion_fields(prefix, entries)
         end
     end
 end
-for _, p in pairs(orion_packets) do make_orion_fields("orion." .. p.name, p.fields) end
+-- orion.<packet> itself is a field too, so `-Y orion.geolocate_telemetry` selects a packet kind.
+local orion_packet_fields = {}
+for _, p in pairs(orion_packets) do
+    orion_packet_fields[p.name] = ProtoField.none("orion." .. p.name, p.name)
+    orion_fields["orion." .. p.name] = orion_packet_fields[p.name]
+    make_orion_fields("orion." .. p.name, p.fields)
+end
 
 do
     local list = {}
@@ -922,7 +928,7 @@ local function dissect_orion_frame(tvb, pinfo, tree, offset)
         t:add(of.request, tvb(offset + 3, 1), true)
         info = "request " .. name
     elseif p then
-        local body = t:add(orion_proto, tvb(offset + 4, len), name)
+        local body = t:add(orion_packet_fields[p.name], tvb(offset + 4, len))
         local s = new_state(tvb, offset + 4, len)
         decode_entries(s, body, "orion." .. p.name, p.fields, {})
         if s.failed then
