@@ -1,0 +1,359 @@
+"""gimbal-replay and gimbal-export on a real recording (contract section 12, issue 12).
+
+A 30 s simulated flight: gimbald connected to gimbal-sim over TCP, recording on, with a
+geopoint and then a path commanded during it. The recording is replayed at --speed 10 into
+a second gimbald, and the telemetry both daemons show is compared at matching gimbal system
+times (system_time_ms): lat, lon, alt, pan, tilt and mode must be equal. The same file is
+exported as GeoJSON (checked against RFC 7946's structure), KML (parsed as XML, KML 2.2
+names) and CSV (one row per telemetry packet, counted by an independent pcapng reader here).
+
+The recording comes from gimbald's own recorder (the "record" config key) when this gimbald
+has it; otherwise a recording proxy between gimbald and gimbal-sim writes the same format
+(pcapng_test_writer.py), so the replay and export tools are tested either way."""
+
+import csv
+import io
+import json
+import math
+import os
+import socket
+import struct
+import subprocess
+import sys
+import threading
+import time
+import unittest
+import xml.etree.ElementTree as ET
+
+import gimbaltest as gt
+from pcapng_test_writer import INBOUND, OUTBOUND, PcapngWriter, split_orion
+
+GIMBAL_REPLAY = os.environ.get("GIMBAL_REPLAY")
+GIMBAL_EXPORT = os.environ.get("GIMBAL_EXPORT")
+FLIGHT_S = 30.0
+SPEED = 10
+COMPARED = ("lat", "lon", "alt", "pan", "tilt", "mode")
+KML = "{http://www.opengis.net/kml/2.2}"
+
+
+# --- an independent pcapng reader (not the C++ one under test) -----------------------------
+
+def read_pcapng(path):
+    """Yields (interface_name, time_us, direction, dissector, pdu) for every EPB."""
+    data = open(path, "rb").read()
+    at, endian, names = 0, "<", []
+    while at + 12 <= len(data):
+        if data[at:at + 4] == b"\x0a\x0d\x0d\x0a":
+            endian = "<" if data[at + 8:at + 12] == b"\x4d\x3c\x2b\x1a" else ">"
+            names = []
+        block_type, total = struct.unpack_from(endian + "II", data, at)
+        if total < 12 or at + total > len(data):
+            break  # cut short: stop at the last complete block
+        body = data[at + 8:at + total - 4]
+        if block_type == 1:
+            name, opt = "", 8
+            while opt + 4 <= len(body):
+                code, length = struct.unpack_from(endian + "HH", body, opt)
+                if code == 0:
+                    break
+                if code == 2:
+                    name = body[opt + 4:opt + 4 + length].decode()
+                opt += 4 + length + (-length % 4)
+            names.append(name)
+        elif block_type == 6:
+            itf, hi, lo, cap, _ = struct.unpack_from(endian + "IIIII", body, 0)
+            packet = body[20:20 + cap]
+            opt, flags = 20 + cap + (-cap % 4), 0
+            while opt + 4 <= len(body):
+                code, length = struct.unpack_from(endian + "HH", body, opt)
+                if code == 0:
+                    break
+                if code == 2:
+                    flags = struct.unpack_from(endian + "I", body, opt + 4)[0]
+                opt += 4 + length + (-length % 4)
+            dissector, tlv = "", 0
+            while tlv + 4 <= len(packet):
+                tag, length = struct.unpack_from(">HH", packet, tlv)
+                tlv += 4
+                if tag == 0:
+                    break
+                if tag == 12:
+                    dissector = packet[tlv:tlv + length].decode()
+                tlv += length + (-length % 4)
+            yield names[itf], (hi << 32) | lo, flags & 3, dissector, packet[tlv:]
+        at += total
+
+
+def telemetry_system_times(path, gimbal):
+    """system_time_ms of every GeolocateTelemetry frame the gimbal sent, from the raw bytes."""
+    stream = b"".join(pdu for name, _, direction, _, pdu in read_pcapng(path)
+                      if name == "gimbal:" + gimbal and direction == INBOUND)
+    frames, _ = split_orion(stream)
+    return [struct.unpack_from("<I", f, 4)[0] for kind, f in frames
+            if kind == "orion" and f[2] == 212 and f[3] >= 4]
+
+
+# --- the recording proxy (used while gimbald has no recorder) ------------------------------
+
+class RecordingProxy:
+    """TCP proxy gimbald -> proxy -> gimbal-sim that records both directions as gimbald's
+    recorder would: interface gimbal:<name>, one exported PDU per Orion frame."""
+
+    def __init__(self, path, gimbal, upstream_port):
+        self.writer = PcapngWriter(path, [("gimbal:" + gimbal, "orion tcp 127.0.0.1:%d" %
+                                           upstream_port)])
+        self.lock = threading.Lock()
+        self.upstream_port = upstream_port
+        self.listener = socket.socket(socket.AF_INET, socket.SOCK_STREAM)
+        self.listener.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+        self.listener.bind(("127.0.0.1", 0))
+        self.listener.listen(1)
+        self.port = self.listener.getsockname()[1]
+        self.sockets = []
+        self.stopping = False
+        threading.Thread(target=self._accept, daemon=True).start()
+
+    def _accept(self):
+        try:
+            client, _ = self.listener.accept()
+        except OSError:
+            return
+        upstream = socket.create_connection(("127.0.0.1", self.upstream_port))
+        self.sockets += [client, upstream]
+        threading.Thread(target=self._pump, args=(upstream, client, INBOUND), daemon=True).start()
+        threading.Thread(target=self._pump, args=(client, upstream, OUTBOUND), daemon=True).start()
+
+    def _pump(self, source, sink, direction):
+        pending = b""
+        while True:
+            try:
+                chunk = source.recv(65536)
+            except OSError:
+                return
+            if not chunk:
+                return
+            now_us = time.time_ns() // 1000
+            pieces, pending = split_orion(pending + chunk)
+            with self.lock:
+                if not self.stopping:
+                    for dissector, pdu in pieces:
+                        self.writer.packet(0, now_us, dissector, pdu, direction)
+            try:
+                sink.sendall(chunk)
+            except OSError:
+                return
+
+    def close(self):
+        with self.lock:
+            self.stopping = True
+            self.writer.close()
+        for s in [self.listener] + self.sockets:
+            try:
+                s.close()
+            except OSError:
+                pass
+
+
+def gimbald_can_record(workdir):
+    """True when this gimbald accepts the "record" configuration key."""
+    path = os.path.join(workdir, "check.json")
+    with open(path, "w") as f:
+        json.dump({"gimbals": [gt.orion_tcp("main", 1)],
+                   "record": {"dir": os.path.join(workdir, "check")}}, f)
+    return subprocess.run([gt.GIMBALD, "-c", path, "--check-config"], capture_output=True,
+                          timeout=20).returncode == 0
+
+
+# --- the test ---------------------------------------------------------------------------------
+
+def telemetry_by_system_time(messages):
+    out = {}
+    for m in messages:
+        t = m.get("state", {}).get("telemetry")
+        if t:
+            out[t["system_time_ms"]] = {k: t[k] for k in COMPARED}
+    return out
+
+
+class ReplayExportTest(gt.GimbaldTestCase):
+    def record_flight(self):
+        """Flies 30 s with a geopoint and a path; returns (recording path, telemetry seen)."""
+        sim = self.start_sim()
+        record_dir = os.path.join(self.workdir, "recordings")
+        proxy = None
+        config = {"gimbals": [gt.orion_tcp("main", sim.port)]}
+        if gimbald_can_record(self.workdir):
+            config["record"] = {"dir": record_dir}
+        else:
+            os.makedirs(record_dir)
+            proxy = RecordingProxy(os.path.join(record_dir, "proxy.pcapng"), "main", sim.port)
+            self.addCleanup(proxy.close)
+            config["gimbals"] = [gt.orion_tcp("main", proxy.port)]
+        sys.stderr.write("recording with %s\n" % ("the test proxy" if proxy else "gimbald"))
+        daemon = self.start_daemon(config)
+        client = self.client(daemon)
+        state = self.wait_connected(client)
+        self.assertOk(client.request("subscribe", rate_hz=50, keys=["telemetry"], ttl_s=120))
+        lat, lon = state["telemetry"]["lat"], state["telemetry"]["lon"]
+        start = time.monotonic()
+        seen = client.collect(8)
+        self.assertOk(client.request("geopoint", lat=lat + 0.004, lon=lon + 0.004, alt=100))
+        seen += client.collect(10)
+        points = [{"lat": lat + 0.002 * k, "lon": lon - 0.003, "alt": 120} for k in range(3)]
+        self.assertOk(client.request("path", points=points))
+        seen += client.collect(FLIGHT_S - (time.monotonic() - start))
+        daemon.stop()
+        if proxy:
+            proxy.close()
+        files = sorted(os.path.join(record_dir, f) for f in os.listdir(record_dir)
+                       if f.endswith(".pcapng"))
+        self.assertEqual(len(files), 1, files)
+        return files[0], telemetry_by_system_time(seen)
+
+    def replay(self, path):
+        """Replays the recording at 10x into a second gimbald; returns the telemetry seen."""
+        replay = subprocess.Popen([GIMBAL_REPLAY, path, "--tcp", "0", "--speed", str(SPEED),
+                                   "--progress-every", "0"],
+                                  stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+        self.addCleanup(gt.stop_process, replay)
+        line = gt.read_line(replay.stdout, gt.START_TIMEOUT_S).decode()
+        self.assertTrue(line and line.startswith("tcp: "), line)
+        port = int(line.strip().rsplit(":", 1)[1])
+        daemon = self.start_daemon({"gimbals": [gt.orion_tcp("main", port)]})
+        client = self.client(daemon)
+        self.wait_connected(client, timeout=gt.START_TIMEOUT_S, telemetry=False)
+        self.assertOk(client.request("subscribe", rate_hz=50, keys=["telemetry"], ttl_s=60))
+        seen = []
+        deadline = time.monotonic() + FLIGHT_S / SPEED + 10
+        while replay.poll() is None and time.monotonic() < deadline:
+            seen += client.collect(0.5)
+        self.assertEqual(replay.wait(timeout=5), 0, replay.stderr.read().decode())
+        out = replay.stdout.read().decode()
+        self.assertIn("playing: gimbal main (orion)", out)
+        self.assertIn("done: ", out)
+        seen += client.collect(0.3)
+        daemon.stop()
+        return telemetry_by_system_time(seen)
+
+    def export(self, path, fmt, *args):
+        out = os.path.join(self.workdir, "export." + fmt)
+        result = subprocess.run([GIMBAL_EXPORT, path, "--format", fmt, "-o", out, *args],
+                                capture_output=True, text=True, timeout=30)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        with open(out, encoding="utf-8") as f:
+            return f.read()
+
+    def test_record_replay_and_export(self):
+        path, flight = self.record_flight()
+        self.assertGreater(len(flight), 100, "too little telemetry seen in flight")
+        modes = {v["mode"] for v in flight.values()}
+        self.assertTrue({"geopoint", "path"} <= modes, modes)
+
+        replayed = self.replay(path)
+        common = sorted(set(flight) & set(replayed))
+        self.assertGreater(len(common), 50, "too few matching system times: %d of %d" %
+                           (len(common), len(replayed)))
+        for t in common:
+            self.assertEqual(flight[t], replayed[t], "telemetry at system_time_ms %d" % t)
+        self.assertTrue({"geopoint", "path"} <= {replayed[t]["mode"] for t in common})
+
+        system_times = telemetry_system_times(path, "main")
+        self.assertGreater(len(system_times), 250)
+        self.check_csv(self.export(path, "csv"), system_times, flight)
+        self.check_geojson(json.loads(self.export(path, "geojson", "--footprint-every", "5")),
+                           flight)
+        self.check_kml(self.export(path, "kml"))
+
+    def check_csv(self, text, system_times, flight):
+        rows = list(csv.reader(io.StringIO(text)))
+        header, rows = rows[0], rows[1:]
+        for column in ("time", "system_time_ms", "lat", "lon", "alt", "pan", "tilt",
+                       "target_lat", "target_lon", "target_alt", "mode"):
+            self.assertIn(column, header)
+        self.assertEqual(len(rows), len(system_times), "one row per telemetry packet")
+        col = {name: i for i, name in enumerate(header)}
+        self.assertEqual([int(r[col["system_time_ms"]]) for r in rows], system_times)
+        for r in rows:
+            self.assertEqual(len(r), len(header))
+            self.assertRegex(r[col["time"]], r"^\d{4}-\d\d-\d\dT\d\d:\d\d:\d\d\.\d{3}Z$")
+            t = int(r[col["system_time_ms"]])
+            if t in flight:
+                self.assertAlmostEqual(float(r[col["lat"]]), flight[t]["lat"], places=7)
+                self.assertAlmostEqual(float(r[col["pan"]]), flight[t]["pan"], places=4)
+                self.assertEqual(r[col["mode"]], flight[t]["mode"])
+
+    def check_position(self, position, three_d):
+        self.assertIsInstance(position, list)
+        self.assertEqual(len(position), 3 if three_d else 2)
+        self.assertTrue(all(isinstance(x, (int, float)) for x in position))
+        lon, lat = position[0], position[1]
+        self.assertTrue(-180 <= lon <= 180 and -90 <= lat <= 90, position)
+
+    def check_geojson(self, doc, flight):
+        """RFC 7946: FeatureCollection of Features; [lon, lat, alt]; closed CCW rings."""
+        self.assertEqual(doc["type"], "FeatureCollection")
+        self.assertIsInstance(doc["features"], list)
+        some = next(iter(flight.values()))
+        kinds = {}
+        for feature in doc["features"]:
+            self.assertEqual(feature["type"], "Feature")
+            self.assertIsInstance(feature["properties"], dict)
+            geometry = feature["geometry"]
+            kinds.setdefault(feature["properties"]["kind"], []).append(geometry)
+            if geometry["type"] == "LineString":
+                coords = geometry["coordinates"]
+                self.assertGreaterEqual(len(coords), 2)
+                for c in coords:
+                    self.check_position(c, True)
+            else:
+                self.assertEqual(geometry["type"], "Polygon")
+                for ring in geometry["coordinates"]:
+                    self.assertGreaterEqual(len(ring), 4)
+                    self.assertEqual(ring[0], ring[-1], "ring not closed")
+                    for c in ring:
+                        self.check_position(c, True)
+                    area = sum(a[0] * b[1] - b[0] * a[1] for a, b in zip(ring, ring[1:]))
+                    self.assertGreater(area, 0, "exterior ring not counter-clockwise")
+        self.assertEqual(len(kinds.get("aircraft_track", [])), 1)
+        self.assertGreaterEqual(len(kinds.get("target_track", [])), 1)
+        self.assertGreaterEqual(len(kinds.get("footprint", [])), 5)  # 30 s every 5 s
+        track = kinds["aircraft_track"][0]["coordinates"]
+        # Longitude first: the track lies where the flight's telemetry was.
+        self.assertLess(abs(track[0][0] - some["lon"]) + abs(track[0][1] - some["lat"]), 0.1)
+
+    def check_kml(self, text):
+        root = ET.fromstring(text.encode())
+        self.assertEqual(root.tag, KML + "kml")
+        allowed = {"kml", "Document", "name", "Style", "LineStyle", "PolyStyle", "color", "width",
+                   "Placemark", "Folder", "TimeSpan", "begin", "end", "TimeStamp", "when",
+                   "styleUrl", "ExtendedData", "Data", "value", "LineString", "tessellate",
+                   "altitudeMode", "coordinates", "Polygon", "outerBoundaryIs", "LinearRing"}
+        for element in root.iter():
+            self.assertTrue(element.tag.startswith(KML), element.tag)
+            self.assertIn(element.tag[len(KML):], allowed)
+        document = root.find(KML + "Document")
+        self.assertIsNotNone(document)
+        placemarks = list(document.iter(KML + "Placemark"))
+        lines = [p.find(KML + "LineString") for p in placemarks if p.find(KML + "LineString")
+                 is not None]
+        polygons = [p.find(KML + "Polygon") for p in placemarks if p.find(KML + "Polygon")
+                    is not None]
+        self.assertGreaterEqual(len(lines), 2)
+        self.assertGreaterEqual(len(polygons), 3)  # 30 s every 10 s
+        for geometry in lines + polygons:
+            self.assertEqual(geometry.find(KML + "altitudeMode").text, "absolute")
+        for coords in root.iter(KML + "coordinates"):
+            for tuple_text in coords.text.split():
+                lon, lat, alt = (float(x) for x in tuple_text.split(","))
+                self.assertTrue(-180 <= lon <= 180 and -90 <= lat <= 90)
+        for polygon in polygons:
+            ring = polygon.find(KML + "outerBoundaryIs/" + KML + "LinearRing/" + KML + "coordinates")
+            tuples = ring.text.split()
+            self.assertEqual(tuples[0], tuples[-1])
+
+
+if __name__ == "__main__":
+    if not GIMBAL_REPLAY or not GIMBAL_EXPORT:
+        print("skipped: GIMBAL_REPLAY or GIMBAL_EXPORT not set")
+        sys.exit(gt.SKIP)
+    gt.main()
