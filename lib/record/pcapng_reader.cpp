@@ -1,6 +1,8 @@
 #include "record/pcapng_reader.hpp"
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 #include <limits>
@@ -288,12 +290,12 @@ bool PcapngReader::read_packet(std::span<const std::uint8_t> body, Packet& packe
 bool read_file(const std::string& path, std::vector<std::uint8_t>& out, std::string& error) {
     std::ifstream in(path, std::ios::binary);
     if (!in) {
-        error = path + ": cannot open";
+        error = std::string("cannot open: ") + std::strerror(errno);
         return false;
     }
     out.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
     if (in.bad()) {
-        error = path + ": read error";
+        error = std::string("read error: ") + std::strerror(errno);
         return false;
     }
     return true;

@@ -78,17 +78,21 @@ int main(int argc, char** argv) {
     CLI::App app{description, "gimbal-export"};
     app.footer(footer);
     app.get_formatter()->column_width(30);
-    app.add_option("FILE", file, "Recording (pcapng) to read");
-    app.add_option("--format", format, "Output format")
-        ->check(CLI::IsMember({"geojson", "kml", "csv"}));
+    app.add_option("FILE", file, "Recording (pcapng) to read")->type_name("");
+    app.add_option("--format", format, "Output format: geojson, kml or csv")
+        ->type_name("FORMAT")
+        ->check(CLI::IsMember({"geojson", "kml", "csv"}).description(""));
     app.add_option("--gimbal", gimbal,
                    "Gimbal to export (its interface gimbal:NAME); needed when the recording "
-                   "holds several");
+                   "holds several")
+        ->type_name("NAME");
     app.add_option("--footprint-every", footprint_every_s,
                    "Seconds between camera footprints; 0 = every packet")
-        ->check(CLI::NonNegativeNumber)
+        ->type_name("S")
+        ->check(CLI::NonNegativeNumber.description(""))
         ->capture_default_str();
-    app.add_option("-o,--output", output, "Write to OUT instead of standard output");
+    app.add_option("-o,--output", output, "Write to OUT instead of standard output")
+        ->type_name("OUT");
     app.add_flag("--version", version, "Print the version and exit");
     try {
         app.parse(argc, argv);

@@ -68,27 +68,34 @@ ParsedOptions parse_options(int argc, char** argv) {
     CLI::App app{description, "gimbal-replay"};
     app.footer(footer);
     app.get_formatter()->column_width(30);
-    app.add_option("FILE", o.file,
-                   "Recording (pcapng) to play");  // checked below: --version needs none
+    // Not required() here: --version needs no FILE; checked after parsing.
+    app.add_option("FILE", o.file, "Recording (pcapng) to play")->type_name("");
     app.add_option("--gimbal", o.gimbal,
                    "Gimbal to play (its interface gimbal:NAME); needed when the recording "
-                   "holds several");
-    app.add_option("--speed", o.speed, "Playback speed factor (2 = twice as fast)")
-        ->check(CLI::Range(0.001, 1000.0))
+                   "holds several")
+        ->type_name("NAME");
+    app.add_option("--speed", o.speed, "Playback speed factor, 0.001..1000 (2 = twice as fast)")
+        ->type_name("N")
+        ->check(CLI::Range(0.001, 1000.0).description(""))
         ->capture_default_str();
-    app.add_option("--bind", o.bind, "Address the TCP server listens on")->capture_default_str();
+    app.add_option("--bind", o.bind, "Address the TCP server listens on")
+        ->type_name("ADDRESS")
+        ->capture_default_str();
     app.add_option("--tcp", o.port, "TCP port; 0 picks a free one (printed)")
+        ->type_name("PORT")
         ->capture_default_str();
     app.add_flag("--no-tcp", no_tcp, "Do not serve TCP");
     app.add_option("--pty", o.pty_link,
                    "Serve a pseudo-terminal (prints its device path); with PATH, also make "
                    "a symlink there")
+        ->type_name("[PATH]")
         ->expected(0, 1);
     app.add_flag("--loop", o.loop, "Start again from the beginning at the end, forever");
     app.add_flag("--hold", o.hold, "At the end, keep the endpoints open (silent) until stopped");
     app.add_option("--progress-every", o.progress_every_s,
                    "Seconds between progress lines; 0 = none")
-        ->check(CLI::NonNegativeNumber)
+        ->type_name("S")
+        ->check(CLI::NonNegativeNumber.description(""))
         ->capture_default_str();
     app.add_flag("--version", version, "Print the version and exit");
 
