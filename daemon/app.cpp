@@ -8,6 +8,7 @@
 #include "link/tcp_link.hpp"
 #include "logging.hpp"
 #include "notify.hpp"
+#include "record/recording_link.hpp"
 #include "session/orion_protocol.hpp"
 #include "session/viewpro_protocol.hpp"
 #include "sim/orion_sim.hpp"
@@ -21,10 +22,17 @@ namespace notify = gimbal::notify;
 
 App::App(const cfg::Config& config)
     : config_(config), signals_(io_, SIGINT, SIGTERM, SIGHUP), watchdog_timer_(io_) {
+    if (config_.record) start_recorder();
     std::vector<GimbalSession*> raw;
-    for (const auto& g : config_.gimbals) {
+    for (std::size_t i = 0; i < config_.gimbals.size(); ++i) {
+        const auto& g = config_.gimbals[i];
+        auto link = make_link(g);
+        if (recorder_)  // interface i is gimbal i (start_recorder)
+            link = std::make_unique<record::RecordingLink>(std::move(link), *recorder_,
+                                                           static_cast<std::uint32_t>(i),
+                                                           std::string(cfg::to_string(g.protocol)));
         sessions_.push_back(std::make_unique<GimbalSession>(
-            io_, g.name, make_protocol(g), make_link(g), config_.laser.fire_timeout_s,
+            io_, g.name, make_protocol(g), std::move(link), config_.laser.fire_timeout_s,
             [this](const std::string& gimbal, const gimbal::state::Event& e) {
                 events_.publish(gimbal, e);
                 if (e.kind == "link") update_status();
@@ -100,6 +108,59 @@ App::App(const cfg::Config& config)
     }
     if (config_.mqtt)
         mqtt_ = std::make_unique<mqtt::Bridge>(io_, *config_.mqtt, *request_path_, events_);
+    tap_recorder();
+}
+
+// Interfaces (docs/recording.md): one per gimbal in config order, then `mavlink` when a
+// vehicle source exists, then `json`.
+void App::start_recorder() {
+    record::RecorderOptions options;
+    options.dir = config_.record->dir;
+    options.max_file_mb = config_.record->max_file_mb;
+    options.max_total_mb = config_.record->max_total_mb;
+    options.user_application = std::string("gimbald ") + GIMBALD_VERSION;
+    for (const auto& g : config_.gimbals) {
+        const auto protocol = std::string(cfg::to_string(g.protocol));
+        const auto type = std::string(cfg::link_type(g.link));
+        options.interfaces.push_back(
+            {"gimbal:" + g.name,
+             protocol + " " + (type == "sim" ? type : type + " " + cfg::describe(g.link))});
+    }
+    if (config_.vehicle) {
+        std::string source;
+        if (const auto* udp = std::get_if<cfg::UdpSource>(&config_.vehicle->source))
+            source = "udp " + udp->bind.to_string() + ":" + std::to_string(udp->port);
+        else if (const auto* serial = std::get_if<cfg::SerialSource>(&config_.vehicle->source))
+            source = "serial " + serial->device + "@" + std::to_string(serial->baud);
+        options.interfaces.push_back({"mavlink", "mavlink " + source});
+    }
+    options.interfaces.push_back({"json", "gimbald JSON requests and replies"});
+    recorder_ = std::make_unique<record::Recorder>(io_, std::move(options));
+}
+
+void App::tap_recorder() {
+    for (auto& session : sessions_)
+        session->add_state_key("record", [this] {
+            return recorder_ ? recorder_->snapshot() : nlohmann::json(nullptr);
+        });
+    if (!recorder_) return;
+    const auto json_interface =
+        static_cast<std::uint32_t>(sessions_.size() + (config_.vehicle ? 1 : 0));
+    request_path_->add_tap([this, json_interface](const RequestSource&, std::string_view request,
+                                                  std::string_view reply) {
+        recorder_->record(json_interface, record::Direction::inbound, "gimbald-json", request);
+        if (!reply.empty())
+            recorder_->record(json_interface, record::Direction::outbound, "gimbald-json", reply);
+    });
+    if (config_.vehicle && vehicle_->source()) {
+        const auto mavlink_interface = static_cast<std::uint32_t>(sessions_.size());
+        vehicle_->source()->set_tap([this, mavlink_interface](bool outbound,
+                                                              std::span<const std::uint8_t> bytes) {
+            recorder_->record(mavlink_interface,
+                              outbound ? record::Direction::outbound : record::Direction::inbound,
+                              "mavlink", bytes);
+        });
+    }
 }
 
 App::~App() = default;
@@ -183,6 +244,8 @@ void App::shutdown() {
     for (auto& s : sessions_) s->stop();
     server_->stop();
     if (mqtt_) mqtt_->stop();  // publishes {"online": false}, then disconnects
+    // Last: the cease-fire packets above are in the recording. Joins the writer thread.
+    if (recorder_) recorder_->stop();
     signals_.cancel();
     watchdog_timer_.cancel();
 }

@@ -14,6 +14,7 @@
 #include "gimbal_session.hpp"
 #include "mavlink_endpoint.hpp"
 #include "mqtt/mqtt_bridge.hpp"
+#include "record/recorder.hpp"
 #include "request_path.hpp"
 #include "vehicle_feed.hpp"
 
@@ -31,6 +32,8 @@ class App {
   private:
     std::unique_ptr<gimbal::session::Protocol> make_protocol(const gimbal::daemon::GimbalConfig& g);
     std::unique_ptr<Link> make_link(const gimbal::daemon::GimbalConfig& g);
+    void start_recorder();
+    void tap_recorder();
     void on_signal(const boost::system::error_code& ec, int signo);
     void shutdown();
     void arm_watchdog();
@@ -40,6 +43,8 @@ class App {
     boost::asio::io_context io_;
     boost::asio::signal_set signals_;
     boost::asio::steady_timer watchdog_timer_;
+    // Declared before everything that records into it, so it outlives them.
+    std::unique_ptr<record::Recorder> recorder_;  // contract section 12; null unless `record`
     std::vector<std::unique_ptr<GimbalSession>> sessions_;
     EventHub events_;
     std::unique_ptr<RequestPath> request_path_;

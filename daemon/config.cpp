@@ -6,6 +6,7 @@
 #include "secret_file.hpp"
 #include "state/messages.hpp"
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <fmt/format.h>
@@ -801,6 +802,29 @@ MqttConfig read_mqtt(Fields& f) {
     return mqtt;
 }
 
+// ---- record (contract section 12) ----------------------------------------------------------
+
+RecordConfig read_record(Fields& f) {
+    RecordConfig record;
+    if (f.string("dir", record.dir, Presence::required)) {
+        // Checked here so --check-config and start-up both name the path and the reason.
+        struct stat info {};
+        if (record.dir.empty())
+            f.problem("dir", "must not be empty");
+        else if (::stat(record.dir.c_str(), &info) != 0)
+            f.problem("dir", fmt::format("{}: {}", record.dir, std::strerror(errno)));
+        else if (!S_ISDIR(info.st_mode))
+            f.problem("dir", fmt::format("{}: not a directory", record.dir));
+        else if (::access(record.dir.c_str(), W_OK | X_OK) != 0)
+            f.problem("dir", fmt::format("{}: not writable: {}", record.dir, std::strerror(errno)));
+    }
+    f.number("max_file_mb", record.max_file_mb, {0.001, 1e6});
+    f.number("max_total_mb", record.max_total_mb, {0.001, 1e9});
+    if (record.max_total_mb < record.max_file_mb)
+        f.problem("max_total_mb", "must be at least max_file_mb");
+    return record;
+}
+
 json mqtt_to_json(const MqttConfig& m) {
     auto optional = [](const std::optional<std::string>& s) {
         return s ? json(*s) : json(nullptr);
@@ -1010,6 +1034,7 @@ ConfigResult parse_config(std::string_view text, GimbalsSection gimbals) {
     section(root, "vehicle", [&](Fields& f) { config.vehicle = read_vehicle(f); });
     section(root, "mavlink", [&](Fields& f) { read_mavlink(f, config.mavlink); });
     section(root, "mqtt", [&](Fields& f) { config.mqtt = read_mqtt(f); });
+    section(root, "record", [&](Fields& f) { config.record = read_record(f); });
     root.finish();
     if (config.mavlink.gimbal_manager && !config.vehicle)
         problems.add("mavlink.gimbal_manager",
@@ -1171,6 +1196,10 @@ json to_json(const Config& config, bool show_token) {
         {"targets", m.targets},
         {"signing_key_file", m.signing_key_file ? json(*m.signing_key_file) : json(nullptr)}};
     if (config.mqtt) out["mqtt"] = mqtt_to_json(*config.mqtt);
+    if (config.record)
+        out["record"] = {{"dir", config.record->dir},
+                         {"max_file_mb", config.record->max_file_mb},
+                         {"max_total_mb", config.record->max_total_mb}};
     return out;
 }
 

@@ -223,6 +223,15 @@ struct MqttConfig {
     bool operator==(const MqttConfig&) const = default;
 };
 
+// record (contract section 12, docs/recording.md): the flight recorder; off unless set.
+// Sizes are megabytes (10^6 bytes) and may be fractions (tests rotate at 0.05).
+struct RecordConfig {
+    std::string dir;
+    double max_file_mb = 100;
+    double max_total_mb = 2000;
+    bool operator==(const RecordConfig&) const = default;
+};
+
 struct Config {
     std::vector<GimbalConfig> gimbals;
     CommandConfig command;
@@ -233,6 +242,7 @@ struct Config {
     std::optional<VehicleConfig> vehicle;
     MavlinkConfig mavlink;
     std::optional<MqttConfig> mqtt;
+    std::optional<RecordConfig> record;
     bool operator==(const Config&) const = default;
 };
 

@@ -100,6 +100,12 @@ void VehicleSource::remember_peer() {
 }
 
 bool VehicleSource::send(std::span<const std::uint8_t> frame) {
+    const bool sent = send_frame(frame);
+    if (sent && tap_) tap_(true, frame);
+    return sent;
+}
+
+bool VehicleSource::send_frame(std::span<const std::uint8_t> frame) {
     if (serial_) return serial_->send(std::vector<std::uint8_t>(frame.begin(), frame.end()));
     if (!socket_) return false;
     bool any = false;
@@ -134,6 +140,7 @@ std::vector<std::string> VehicleSource::peers() const {
 }
 
 void VehicleSource::on_bytes(std::span<const std::uint8_t> bytes) {
+    if (tap_) tap_(false, bytes);
     framer_.push(bytes, [this](const gimbal::mavlink::Message& m) { on_message_(m); });
 }
 

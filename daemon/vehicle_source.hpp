@@ -40,6 +40,10 @@ class VehicleSource {
     // the serial port; false when it could not be queued anywhere.
     bool send(std::span<const std::uint8_t> frame);
     void set_targets(std::vector<boost::asio::ip::udp::endpoint> targets);
+    // The flight recorder: every chunk received (a UDP datagram, a serial read) and every
+    // frame sent. `outbound` is false for received bytes.
+    using Tap = std::function<void(bool outbound, std::span<const std::uint8_t> bytes)>;
+    void set_tap(Tap tap) { tap_ = std::move(tap); }
     // Inside a MessageHandler call: where the message came from ("udp 127.0.0.1:14551",
     // "serial /dev/ttyACM0").
     std::string current_peer() const;
@@ -50,6 +54,7 @@ class VehicleSource {
   private:
     void do_receive();
     void on_bytes(std::span<const std::uint8_t> bytes);
+    bool send_frame(std::span<const std::uint8_t> frame);
     void remember_peer();
 
     MessageHandler on_message_;
@@ -61,6 +66,7 @@ class VehicleSource {
     std::vector<boost::asio::ip::udp::endpoint> targets_;
     std::unique_ptr<Link> serial_;  // serial source
     std::string description_;
+    Tap tap_;
     bool stopped_ = true;
 };
 

@@ -1,4 +1,4 @@
-// Reads gimbald recordings (docs/recording-format.md): pcapng sections of Section Header,
+// Reads gimbald recordings (docs/recording.md): pcapng sections of Section Header,
 // Interface Description and Enhanced Packet Blocks, in either byte order, whose packets are
 // Wireshark "exported PDU" records (TLVs naming the dissector, then the PDU bytes).
 // Pure: works on bytes already in memory; packets are views into them.

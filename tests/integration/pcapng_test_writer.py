@@ -1,4 +1,4 @@
-"""Test-only pcapng writer following docs/recording-format.md (standard library only).
+"""Test-only pcapng writer following docs/recording.md (standard library only).
 
 Used by the replay/export tests to make recordings without gimbald (and to write the
 fuzz seed corpus). It writes what gimbald's recorder writes: an SHB, one IDB per

@@ -20,7 +20,7 @@ SYNOPSIS
                      [--footprint-every S] [-o OUT]
 
 DESCRIPTION
-       Reads a pcapng recording written by gimbald (docs/recording-format.md),
+       Reads a pcapng recording written by gimbald (docs/recording.md),
        decodes what one gimbal sent - Orion GeolocateTelemetry packets, or
        Viewpro OUT1..OUT4 frames - with the same codec and state code gimbald
        uses, and writes one of:

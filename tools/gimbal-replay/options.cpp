@@ -17,7 +17,7 @@ SYNOPSIS
 
 DESCRIPTION
        Reads a pcapng recording written by gimbald (the "record" configuration,
-       docs/recording-format.md) and sends the bytes one gimbal sent during the
+       docs/recording.md) and sends the bytes one gimbal sent during the
        flight - the inbound PDUs of its interface "gimbal:NAME", in order - to
        whoever connects, as gimbal-sim does: a TCP server (one client at a time;
        a new client replaces the old one) and/or a pseudo-terminal. The recorded

@@ -1,0 +1,66 @@
+// The recording's files on disk (docs/recording.md), used by the recorder's writer thread
+// only: names sortable by time, rotation at max_file_bytes (every file starts with the SHB
+// and all IDBs), the oldest files deleted past max_total_bytes, fdatasync on request.
+// A chunk is written whole blocks at a time; a failed write (disk full) is cut back to the
+// last whole block so the file stays readable, and its packets are counted as dropped.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace gimbald::record {
+
+struct RecordFilesOptions {
+    std::filesystem::path dir;
+    std::uint64_t max_file_bytes = 100ull * 1000 * 1000;
+    std::uint64_t max_total_bytes = 2000ull * 1000 * 1000;
+    std::vector<std::uint8_t> header;  // SHB + IDBs, first bytes of every file
+};
+
+// "gimbald-20261125T120000Z-0001.pcapng": UTC start time, then a per-process sequence.
+std::string recording_file_name(std::int64_t unix_seconds, unsigned sequence);
+// True for names recording_file_name() makes (the only files rotation deletes).
+bool is_recording_file_name(std::string_view name);
+
+class RecordFiles {
+  public:
+    explicit RecordFiles(RecordFilesOptions options);
+    ~RecordFiles();
+    RecordFiles(const RecordFiles&) = delete;
+    RecordFiles& operator=(const RecordFiles&) = delete;
+
+    // Opens the first file. Returns an error text ("<path>: <reason>"), empty on success.
+    std::string open_first(std::int64_t unix_seconds);
+    // Writes the whole pcapng blocks in `blocks`, rotating between blocks. Returns how many
+    // packet blocks could not be written (write or open errors).
+    std::uint64_t write(std::span<const std::uint8_t> blocks, std::int64_t unix_seconds);
+    void sync();
+    void close();
+
+    const std::string& current_path() const { return path_; }
+    std::uint64_t current_bytes() const { return size_; }
+    std::uint64_t files_deleted() const { return deleted_; }
+    // The last error ("<path>: <reason>"), cleared by take_error().
+    std::string take_error();
+
+  private:
+    bool open_next(std::int64_t unix_seconds);
+    bool write_all(std::span<const std::uint8_t> bytes);
+    void enforce_total();
+    void set_error(const std::string& path, int err);
+
+    RecordFilesOptions options_;
+    int fd_ = -1;
+    std::string path_;
+    std::uint64_t size_ = 0;
+    bool has_packets_ = false;
+    bool dirty_ = false;
+    unsigned sequence_ = 0;
+    std::uint64_t deleted_ = 0;
+    std::string error_;
+};
+
+}  // namespace gimbald::record
