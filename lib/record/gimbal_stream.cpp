@@ -8,7 +8,7 @@ namespace {
 
 constexpr std::string_view gimbal_prefix = "gimbal:";
 
-GimbalInterfaceInfo describe(const Interface& itf) {
+GimbalInterfaceInfo describe(const RecordedInterface& itf) {
     GimbalInterfaceInfo info;
     info.name = itf.name.substr(gimbal_prefix.size());
     info.description = itf.description;
@@ -17,7 +17,7 @@ GimbalInterfaceInfo describe(const Interface& itf) {
     return info;
 }
 
-bool is_gimbal(const Interface& itf) {
+bool is_gimbal(const RecordedInterface& itf) {
     return itf.name.starts_with(gimbal_prefix) && itf.name.size() > gimbal_prefix.size();
 }
 
@@ -35,7 +35,7 @@ bool load_gimbal_stream(std::span<const std::uint8_t> file, const std::string& n
     // First pass: which gimbals exist (every section; rotated files repeat them all).
     {
         PcapngReader reader(file);
-        Packet p;
+        RecordedPacket p;
         std::size_t seen_sections = 0;
         auto collect = [&] {
             for (const auto& itf : reader.interfaces()) {
@@ -83,15 +83,15 @@ bool load_gimbal_stream(std::span<const std::uint8_t> file, const std::string& n
     }
 
     PcapngReader reader(file);
-    Packet p;
+    RecordedPacket p;
     const std::string wanted = std::string(gimbal_prefix) + out.gimbal.name;
     while (reader.next(p)) {
         if (reader.interfaces()[p.interface_id].name != wanted) continue;
-        if (p.direction == Direction::outbound) {
+        if (p.direction == RecordedDirection::outbound) {
             ++out.outbound_pdus;
             continue;
         }
-        if (p.direction != Direction::inbound) continue;
+        if (p.direction != RecordedDirection::inbound) continue;
         if (!p.pdu_error.empty()) {
             ++out.bad_pdus;
             continue;

@@ -14,7 +14,6 @@ namespace {
 constexpr std::uint32_t block_section_header = 0x0A0D0D0A;
 constexpr std::uint32_t block_interface = 0x00000001;
 constexpr std::uint32_t block_enhanced_packet = 0x00000006;
-constexpr std::uint32_t byte_order_magic = 0x1A2B3C4D;
 constexpr std::size_t block_overhead = 12;  // type, total length, trailing total length
 
 constexpr std::uint16_t opt_end = 0;
@@ -72,7 +71,7 @@ std::string as_text(std::span<const std::uint8_t> value) {
 }
 
 // ticks / ticks_per_second + offset, in microseconds, saturated to int64.
-std::int64_t to_microseconds(std::uint64_t ticks, const Interface& itf) {
+std::int64_t to_microseconds(std::uint64_t ticks, const RecordedInterface& itf) {
     constexpr auto max = std::numeric_limits<std::int64_t>::max();
     constexpr auto min = std::numeric_limits<std::int64_t>::min();
     const std::uint64_t whole_s = ticks / itf.ticks_per_second;
@@ -105,7 +104,7 @@ const char* to_string(Stop s) {
     return "?";
 }
 
-void parse_exported_pdu(std::span<const std::uint8_t> data, Packet& packet) {
+void parse_exported_pdu(std::span<const std::uint8_t> data, RecordedPacket& packet) {
     packet.dissector.clear();
     packet.pdu = {};
     packet.pdu_error.clear();
@@ -135,7 +134,7 @@ bool PcapngReader::fail(Stop why, std::string message) {
     return false;
 }
 
-bool PcapngReader::next(Packet& packet) {
+bool PcapngReader::next(RecordedPacket& packet) {
     while (stop_ == Stop::none) {
         const std::size_t left = bytes_.size() - offset_;
         if (left == 0)
@@ -217,7 +216,7 @@ bool PcapngReader::read_interface(std::span<const std::uint8_t> body) {
         stop_message_ = "interface description too short";
         return false;
     }
-    Interface itf;
+    RecordedInterface itf;
     itf.link_type = load16(body.data(), big_endian_);
     itf.snaplen = load32(body.data() + 4, big_endian_);
     bool ok = true;
@@ -247,7 +246,7 @@ bool PcapngReader::read_interface(std::span<const std::uint8_t> body) {
     return true;
 }
 
-bool PcapngReader::read_packet(std::span<const std::uint8_t> body, Packet& packet) {
+bool PcapngReader::read_packet(std::span<const std::uint8_t> body, RecordedPacket& packet) {
     // interface u32, timestamp high u32, low u32, captured u32, original u32, data, options
     if (body.size() < 20) {
         stop_message_ = "enhanced packet block too short";
@@ -264,8 +263,8 @@ bool PcapngReader::read_packet(std::span<const std::uint8_t> body, Packet& packe
         stop_message_ = "packet data runs past its block";
         return false;
     }
-    const Interface& itf = interfaces_[interface_id];
-    packet = Packet{};
+    const RecordedInterface& itf = interfaces_[interface_id];
+    packet = RecordedPacket{};
     packet.interface_id = interface_id;
     const std::uint64_t ticks = std::uint64_t{load32(body.data() + 4, big_endian_)} << 32 |
                                 load32(body.data() + 8, big_endian_);
@@ -280,9 +279,9 @@ bool PcapngReader::read_packet(std::span<const std::uint8_t> body, Packet& packe
         }
     });
     const std::uint32_t direction = packet.flags & 3u;  // 3 is not defined
-    packet.direction = direction == 1   ? Direction::inbound
-                       : direction == 2 ? Direction::outbound
-                                        : Direction::unknown;
+    packet.direction = direction == 1   ? RecordedDirection::inbound
+                       : direction == 2 ? RecordedDirection::outbound
+                                        : RecordedDirection::unknown;
     if (itf.link_type == linktype_upper_pdu) parse_exported_pdu(packet.data, packet);
     return true;
 }

@@ -13,13 +13,14 @@
 #include <string>
 #include <vector>
 
+#include "record/pcapng_writer.hpp"  // block types, option codes, linktype_upper_pdu
+
 namespace gimbal::record {
 
-inline constexpr std::uint16_t linktype_upper_pdu = 252;  // LINKTYPE_WIRESHARK_UPPER_PDU
 
-enum class Direction : std::uint8_t { unknown = 0, inbound = 1, outbound = 2 };
+enum class RecordedDirection : std::uint8_t { unknown = 0, inbound = 1, outbound = 2 };
 
-struct Interface {
+struct RecordedInterface {
     std::uint16_t link_type = 0;
     std::uint32_t snaplen = 0;
     std::string name;                            // if_name
@@ -28,14 +29,14 @@ struct Interface {
     std::int64_t offset_s = 0;                   // if_tsoffset
 };
 
-struct Packet {
+struct RecordedPacket {
     std::uint32_t interface_id = 0;
     std::int64_t timestamp_us = 0;  // microseconds since the Unix epoch
     std::uint32_t original_length = 0;
     std::span<const std::uint8_t> data;  // captured bytes: TLVs + PDU for upper-PDU links
     bool has_flags = false;
     std::uint32_t flags = 0;  // epb_flags
-    Direction direction = Direction::unknown;
+    RecordedDirection direction = RecordedDirection::unknown;
     // Exported-PDU view (link type 252 only): the dissector named by the TLVs and the bytes
     // after them. When the TLVs are malformed, pdu_error says why and pdu is empty.
     std::string dissector;
@@ -55,7 +56,7 @@ const char* to_string(Stop);
 
 // Parses the exported-PDU TLVs at the start of `data`: tag u16 BE, length u16 BE, value
 // padded to 4 bytes, ended by tag 0. Sets packet.dissector/pdu or packet.pdu_error.
-void parse_exported_pdu(std::span<const std::uint8_t> data, Packet& packet);
+void parse_exported_pdu(std::span<const std::uint8_t> data, RecordedPacket& packet);
 
 class PcapngReader {
   public:
@@ -64,7 +65,7 @@ class PcapngReader {
 
     // The next packet (EPB) in file order; false at the end of what can be read, then stop()
     // tells why.
-    bool next(Packet& packet);
+    bool next(RecordedPacket& packet);
 
     Stop stop() const { return stop_; }
     const std::string& stop_message() const { return stop_message_; }
@@ -72,7 +73,7 @@ class PcapngReader {
     std::size_t offset() const { return offset_; }
 
     // Interfaces of the current section (a new Section Header Block starts a new list).
-    const std::vector<Interface>& interfaces() const { return interfaces_; }
+    const std::vector<RecordedInterface>& interfaces() const { return interfaces_; }
     std::size_t sections() const { return sections_; }
     std::uint64_t packets() const { return packets_; }
     std::uint64_t skipped_blocks() const { return skipped_blocks_; }
@@ -82,7 +83,7 @@ class PcapngReader {
     bool fail(Stop why, std::string message);
     bool read_section_header(std::span<const std::uint8_t> block);
     bool read_interface(std::span<const std::uint8_t> body);
-    bool read_packet(std::span<const std::uint8_t> body, Packet& packet);
+    bool read_packet(std::span<const std::uint8_t> body, RecordedPacket& packet);
 
     std::span<const std::uint8_t> bytes_;
     std::size_t offset_ = 0;
@@ -90,7 +91,7 @@ class PcapngReader {
     bool in_section_ = false;
     Stop stop_ = Stop::none;
     std::string stop_message_;
-    std::vector<Interface> interfaces_;
+    std::vector<RecordedInterface> interfaces_;
     std::size_t sections_ = 0;
     std::uint64_t packets_ = 0;
     std::uint64_t skipped_blocks_ = 0;

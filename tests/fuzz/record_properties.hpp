@@ -19,7 +19,7 @@ inline std::string check_record_reader(std::span<const std::uint8_t> input) {
                (s.data() >= outer.data() && s.data() + s.size() <= outer.data() + outer.size());
     };
     r::PcapngReader reader(input);
-    r::Packet packet;
+    r::RecordedPacket packet;
     std::uint64_t count = 0;
     std::size_t last_offset = 0;
     while (reader.next(packet)) {

@@ -158,6 +158,7 @@ class RecordingProxy:
 def gimbald_can_record(workdir):
     """True when this gimbald accepts the "record" configuration key."""
     path = os.path.join(workdir, "check.json")
+    os.makedirs(os.path.join(workdir, "check"), exist_ok=True)  # record.dir must exist
     with open(path, "w") as f:
         json.dump({"gimbals": [gt.orion_tcp("main", 1)],
                    "record": {"dir": os.path.join(workdir, "check")}}, f)
@@ -181,12 +182,12 @@ class ReplayExportTest(gt.GimbaldTestCase):
         """Flies 30 s with a geopoint and a path; returns (recording path, telemetry seen)."""
         sim = self.start_sim()
         record_dir = os.path.join(self.workdir, "recordings")
+        os.makedirs(record_dir)
         proxy = None
         config = {"gimbals": [gt.orion_tcp("main", sim.port)]}
         if gimbald_can_record(self.workdir):
             config["record"] = {"dir": record_dir}
         else:
-            os.makedirs(record_dir)
             proxy = RecordingProxy(os.path.join(record_dir, "proxy.pcapng"), "main", sim.port)
             self.addCleanup(proxy.close)
             config["gimbals"] = [gt.orion_tcp("main", proxy.port)]

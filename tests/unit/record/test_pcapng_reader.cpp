@@ -43,10 +43,10 @@ const Bytes golden_le = {
 
 const Bytes crown_request = {0xD0, 0x0D, 0x28, 0x00, 0x0B, 0xCA};
 
-std::vector<r::Packet> read_all(const Bytes& bytes, r::Stop expected_stop) {
+std::vector<r::RecordedPacket> read_all(const Bytes& bytes, r::Stop expected_stop) {
     r::PcapngReader reader(bytes);
-    std::vector<r::Packet> packets;
-    r::Packet p;
+    std::vector<r::RecordedPacket> packets;
+    r::RecordedPacket p;
     while (reader.next(p)) packets.push_back(p);
     CHECK(reader.stop() == expected_stop);
     return packets;
@@ -60,7 +60,7 @@ Bytes span_bytes(std::span<const std::uint8_t> s) {
 
 TEST_CASE("golden little-endian file", "[record]") {
     r::PcapngReader reader(golden_le);
-    r::Packet p;
+    r::RecordedPacket p;
     REQUIRE(reader.next(p));
     REQUIRE(reader.interfaces().size() == 1);
     CHECK(reader.interfaces()[0].name == "gimbal:sim");
@@ -70,7 +70,7 @@ TEST_CASE("golden little-endian file", "[record]") {
     CHECK(p.timestamp_us == 1764072000123456);
     CHECK(p.original_length == 22);
     CHECK(p.has_flags);
-    CHECK(p.direction == r::Direction::inbound);
+    CHECK(p.direction == r::RecordedDirection::inbound);
     CHECK(p.dissector == "orion");
     CHECK(p.pdu_error.empty());
     CHECK(span_bytes(p.pdu) == crown_request);
@@ -102,10 +102,10 @@ TEST_CASE("big-endian sections read the same", "[record]") {
     CHECK(packets[0].timestamp_us == 1764072000123456);
     CHECK(packets[0].dissector == "orion");
     CHECK(span_bytes(packets[0].pdu) == crown_request);
-    CHECK(packets[0].direction == r::Direction::inbound);
+    CHECK(packets[0].direction == r::RecordedDirection::inbound);
     CHECK(packets[1].interface_id == 1);
     CHECK(packets[1].dissector == "gimbald-json");
-    CHECK(packets[1].direction == r::Direction::outbound);
+    CHECK(packets[1].direction == r::RecordedDirection::outbound);
     CHECK(std::string(packets[1].pdu.begin(), packets[1].pdu.end()) == reply);
 }
 
@@ -143,7 +143,7 @@ TEST_CASE("unknown blocks are skipped; a new section starts new interfaces", "[r
     b.epb(0, 1, Builder::exported_pdu("orion", crown_request));
     b.shb().idb("second", 6, 1).epb(0, 2, {9, 8, 7}, std::nullopt);
     r::PcapngReader reader(b.out);
-    r::Packet p;
+    r::RecordedPacket p;
     REQUIRE(reader.next(p));
     CHECK(reader.interfaces().at(0).name == "first");
     CHECK(reader.skipped_blocks() == 2);
@@ -154,7 +154,7 @@ TEST_CASE("unknown blocks are skipped; a new section starts new interfaces", "[r
     CHECK(p.dissector.empty());  // link type 1 is not exported PDUs: no TLVs parsed
     CHECK(span_bytes(p.data) == Bytes{9, 8, 7});
     CHECK_FALSE(p.has_flags);
-    CHECK(p.direction == r::Direction::unknown);
+    CHECK(p.direction == r::RecordedDirection::unknown);
     CHECK_FALSE(reader.next(p));
     CHECK(reader.stop() == r::Stop::end);
 }
@@ -185,7 +185,7 @@ TEST_CASE("a cut at every offset reads every complete block and reports the cut"
         CAPTURE(cut);
         const Bytes part(all.begin(), all.begin() + static_cast<std::ptrdiff_t>(cut));
         r::PcapngReader reader(part);
-        r::Packet p;
+        r::RecordedPacket p;
         std::size_t got = 0;
         while (reader.next(p)) {
             CHECK(p.timestamp_us == static_cast<std::int64_t>(100 + got));
@@ -215,7 +215,7 @@ TEST_CASE("garbage is refused without reading past the input", "[record]") {
         const std::string text = "this is not a capture file at all.";
         r::PcapngReader reader(
             std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
-        r::Packet p;
+        r::RecordedPacket p;
         CHECK_FALSE(reader.next(p));
         CHECK(reader.stop() == r::Stop::corrupt);
         CHECK(reader.stop_message().find("not a pcapng file") != std::string::npos);
@@ -227,7 +227,7 @@ TEST_CASE("garbage is refused without reading past the input", "[record]") {
         b.epb(0, 2, Builder::exported_pdu("orion", crown_request));
         b.out[b.out.size() - 4] ^= 0x40;
         r::PcapngReader reader(b.out);
-        r::Packet p;
+        r::RecordedPacket p;
         CHECK(reader.next(p));
         CHECK_FALSE(reader.next(p));
         CHECK(reader.stop() == r::Stop::corrupt);
