@@ -1,6 +1,7 @@
 #include "record/recorder.hpp"
 
 #include <chrono>
+#include <csignal>
 #include <cmath>
 #include <stdexcept>
 #include <utility>
@@ -35,6 +36,9 @@ Recorder::Recorder(boost::asio::io_context& io, RecorderOptions options)
       report_timer_(io),
       buffer_full_log_(log::Level::warn, "record_dropped", "packets not recorded"),
       write_error_log_(log::Level::error, "record_write_error", "packets lost to write errors") {
+    // A file-size limit (ulimit -f) must be a write error (EFBIG), handled like a full disk,
+    // not the default SIGXFSZ that would kill the daemon.
+    std::signal(SIGXFSZ, SIG_IGN);
     if (auto error = files_.open_first(unix_seconds_now()); !error.empty())
         throw std::runtime_error("record: cannot create a recording file: " + error);
     file_ = files_.current_path();

@@ -10,6 +10,7 @@ kill -9 and a file cut mid-block, STATE `record`, and configuration errors.
 """
 
 import glob
+import resource
 import json
 import os
 import shutil
@@ -118,6 +119,25 @@ def mavlink_heartbeat(seq):
     return b"\xfd" + body + struct.pack("<H", crc)
 
 
+class LimitedDaemon(gt.Daemon):
+    """gimbald under a file-size limit (ulimit -f): its writes past `limit` bytes fail with
+    EFBIG, as on a full disk."""
+
+    limit = 0
+
+    def _launch(self):
+        limit = self.limit
+
+        def preexec():
+            resource.setrlimit(resource.RLIMIT_FSIZE, (limit, limit))
+        real_popen = subprocess.Popen
+        subprocess.Popen = lambda *a, **k: real_popen(*a, preexec_fn=preexec, **k)
+        try:
+            super()._launch()
+        finally:
+            subprocess.Popen = real_popen
+
+
 def recordings(directory):
     return sorted(glob.glob(os.path.join(directory, "gimbald-*.pcapng")))
 
@@ -140,6 +160,7 @@ class Recording(gt.GimbaldTestCase):
         mav_port = gt.free_port()
         config = self.record_config(sim.port)
         config["vehicle"] = {"source": {"type": "udp", "bind": "127.0.0.1", "port": mav_port}}
+        config["mavlink"] = {"gimbal_manager": True}  # gimbald answers on the vehicle link
         daemon = self.start_daemon(config)
         c = self.client(daemon)
         self.wait_connected(c)
@@ -154,6 +175,8 @@ class Recording(gt.GimbaldTestCase):
         for hb in heartbeats:
             mav.sendto(hb, ("127.0.0.1", mav_port))
             time.sleep(0.1)
+        mav.settimeout(2.0)
+        heard = [mav.recv(1024) for _ in range(3)]  # gimbald's frames to the peer it heard
         for _ in range(3):
             reply = c.request("state")
             self.assertOk(reply)
@@ -213,6 +236,11 @@ class Recording(gt.GimbaldTestCase):
         mav_in = [p["pdu"] for p in packets if p["iface"] == 1 and p["flags"] == 1]
         self.assertEqual(mav_in, heartbeats)
         self.assertTrue(all(p["dissector"] == "mavlink" for p in packets if p["iface"] == 1))
+        mav_out = [p["pdu"] for p in packets if p["iface"] == 1 and p["flags"] == 2]
+        self.assertTrue(all(f[0] == 0xFD for f in mav_out))
+        self.assertIn(heard[0], mav_out)
+        start = mav_out.index(heard[0])
+        self.assertEqual(mav_out[start:start + len(heard)], heard)
 
         # JSON: every request inbound, its reply outbound right after it.
         js = [p for p in packets if p["iface"] == 2]
@@ -299,6 +327,32 @@ class Recording(gt.GimbaldTestCase):
         if code:
             self.assertIn("cut short", err)
 
+    def test_disk_full_is_logged_and_counted_and_gimbald_keeps_running(self):
+        sim = self.start_sim()
+        LimitedDaemon.limit = 16000  # the recording reaches it in a few seconds
+        daemon = LimitedDaemon(self.workdir, self.record_config(sim.port))
+        self.addCleanup(gt.finish_daemon, daemon)
+        c = self.client(daemon)
+        self.wait_connected(c)
+        error = daemon.wait_log(lambda e: e.get("event") == "record_write_error", 30.0)
+        self.assertTrue(error, "no record_write_error: %s" % daemon.log_text()[-2000:])
+        self.assertIn("File too large", error["error"])
+        self.assertIn(self.dir, error["error"])
+        record = c.request("state")["state"]["record"]
+        self.assertGreater(record["dropped"], 0)
+        self.assertTrue(daemon.running())
+        # Still serving: the gimbal link and the command socket are unaffected.
+        before = c.request("state")["state"]["link"]["rx_packets"]
+        self.assertTrue(gt.wait_for(
+            lambda: c.request("state")["state"]["link"]["rx_packets"] > before + 5, 5.0))
+        self.assertEqual(daemon.stop(signal.SIGTERM), 0)
+        rec = parse(record["file"])
+        self.assertEqual(rec["whole_bytes"], rec["size"], "a failed write left a partial block")
+        self.assertLessEqual(rec["size"], 16000)
+        code, rows, err = tshark_fields(record["file"], "frame.interface_id")
+        self.assertEqual(code, 0, err)
+        self.assertEqual(len(rows), len(rec["packets"]))
+
     def test_configuration_errors_name_the_path(self):
         missing = os.path.join(self.workdir, "no-such-dir")
         a_file = os.path.join(self.workdir, "a-file")
@@ -309,7 +363,7 @@ class Recording(gt.GimbaldTestCase):
             with open(config_path, "w") as f:
                 json.dump({"gimbals": [gt.orion_tcp("main", 1)], "record": {"dir": directory}},
                           f)
-            for extra in (["--check-config"], []):
+            for extra in (["--check-config"], []):  # start-up: exit 1 before opening anything
                 proc = subprocess.run([gt.GIMBALD, "-c", config_path] + extra,
                                       capture_output=True, timeout=20)
                 text = (proc.stdout + proc.stderr).decode()
@@ -327,6 +381,35 @@ class Recording(gt.GimbaldTestCase):
         self.assertEqual(proc.returncode, 1)
         self.assertIn("record.max_total_mb", text)
         self.assertIn("record.x", text)
+
+    def test_viewpro_and_sim_links(self):
+        daemon = self.start_daemon({"record": {"dir": self.dir}}, ("--sim", "orion,viewpro"))
+        c = self.client(daemon)
+        self.wait_connected(c, "sim-orion")
+        self.wait_connected(c, "sim-viewpro", telemetry=False)
+        self.assertTrue(gt.wait_for(
+            lambda: c.request("state", gimbal="sim-viewpro")["state"].get("output"), 5.0))
+        time.sleep(1.5)  # a few more output frames
+        self.assertEqual(daemon.stop(signal.SIGTERM), 0)
+        files = recordings(self.dir)
+        self.assertEqual(len(files), 1)
+        rec = parse(files[0])
+        self.assertEqual([i[:2] for i in rec["interfaces"]],
+                         [("gimbal:sim-orion", "orion sim"), ("gimbal:sim-viewpro", "viewpro sim"),
+                          ("json", "gimbald JSON requests and replies")])
+        viewpro_in = [p for p in rec["packets"] if p["iface"] == 1 and p["flags"] == 1]
+        self.assertGreater(len(viewpro_in), 5)
+        self.assertEqual({p["dissector"] for p in viewpro_in}, {"viewpro"})
+        self.assertTrue(all(p["pdu"][0] == 0xFE for p in viewpro_in))
+        viewpro_out = [p for p in rec["packets"] if p["iface"] == 1 and p["flags"] == 2]
+        self.assertEqual({p["dissector"] for p in viewpro_out}, {"viewpro"})
+        self.assertTrue(viewpro_out, "the mode command sent on connect is not recorded")
+        orion_in = [p for p in rec["packets"] if p["iface"] == 0 and p["flags"] == 1]
+        self.assertTrue(all(fletcher_ok(p["pdu"]) for p in orion_in))
+        code, rows, err = tshark_fields(files[0], "frame.interface_name",
+                                        "exported_pdu.prot_name")
+        self.assertEqual(code, 0, err)
+        self.assertEqual(len(rows), len(rec["packets"]))
 
     def test_state_record_is_null_when_off(self):
         daemon = self.start_daemon({"gimbals": [{"name": "sim", "protocol": "orion",

@@ -205,16 +205,16 @@ TEST_CASE("files rotate at max_file_bytes and the oldest go past max_total_bytes
     REQUIRE(files.open_first(1764072000).empty());
     Bytes blocks;
     const Bytes pdu(60, 0xAA);
+    const std::size_t block = gimbal::record::packet_block_size("orion", pdu.size());
     for (int i = 0; i < 100; ++i)
         gimbal::record::append_packet(blocks, {0, static_cast<std::uint64_t>(i),
                                                gimbal::record::Direction::inbound, "orion", pdu});
     for (std::size_t at = 0; at < blocks.size();) {  // chunks of 10 blocks
-        const std::size_t n = std::min<std::size_t>(10 * 112, blocks.size() - at);
+        const std::size_t n = std::min<std::size_t>(10 * block, blocks.size() - at);
         CHECK(files.write(std::span(blocks).subspan(at, n), 1764072000) == 0);
         at += n;
     }
     files.close();
-    CHECK(gimbal::record::packet_block_size("orion", 60) == 112);
     auto all = recordings(dir.path);
     CHECK(std::find(all.begin(), all.end(), dir.path / "notes.txt") != all.end());
     all.erase(std::remove(all.begin(), all.end(), dir.path / "notes.txt"), all.end());
