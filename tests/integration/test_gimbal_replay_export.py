@@ -7,22 +7,19 @@ times (system_time_ms): lat, lon, alt, pan, tilt and mode must be equal. The sam
 exported as GeoJSON (checked against RFC 7946's structure), KML (parsed as XML, KML 2.2
 names) and CSV (one row per telemetry packet, counted by an independent pcapng reader here).
 
-The recording comes from gimbald's own recorder (the "record" config key) when this gimbald
-has it; otherwise a recording proxy between gimbald and gimbal-sim writes the same format
-(pcapng_test_writer.py), so the replay and export tools are tested either way."""
+The flight is recorded by gimbald's own recorder (the "record" configuration). The shorter
+checks (damaged files, pty, Viewpro, bad input) use recordings written here by
+pcapng_test_writer.py from gimbal-sim's bytes."""
 
 import csv
 import io
 import json
-import math
 import os
 import socket
 import struct
 import subprocess
 import sys
-import threading
 import time
-import unittest
 import xml.etree.ElementTree as ET
 
 import gimbaltest as gt
@@ -94,78 +91,6 @@ def telemetry_system_times(path, gimbal):
             if kind == "orion" and f[2] == 212 and f[3] >= 4]
 
 
-# --- the recording proxy (used while gimbald has no recorder) ------------------------------
-
-class RecordingProxy:
-    """TCP proxy gimbald -> proxy -> gimbal-sim that records both directions as gimbald's
-    recorder would: interface gimbal:<name>, one exported PDU per Orion frame."""
-
-    def __init__(self, path, gimbal, upstream_port):
-        self.writer = PcapngWriter(path, [("gimbal:" + gimbal, "orion tcp 127.0.0.1:%d" %
-                                           upstream_port)])
-        self.lock = threading.Lock()
-        self.upstream_port = upstream_port
-        self.listener = socket.socket(socket.AF_INET, socket.SOCK_STREAM)
-        self.listener.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
-        self.listener.bind(("127.0.0.1", 0))
-        self.listener.listen(1)
-        self.port = self.listener.getsockname()[1]
-        self.sockets = []
-        self.stopping = False
-        threading.Thread(target=self._accept, daemon=True).start()
-
-    def _accept(self):
-        try:
-            client, _ = self.listener.accept()
-        except OSError:
-            return
-        upstream = socket.create_connection(("127.0.0.1", self.upstream_port))
-        self.sockets += [client, upstream]
-        threading.Thread(target=self._pump, args=(upstream, client, INBOUND), daemon=True).start()
-        threading.Thread(target=self._pump, args=(client, upstream, OUTBOUND), daemon=True).start()
-
-    def _pump(self, source, sink, direction):
-        pending = b""
-        while True:
-            try:
-                chunk = source.recv(65536)
-            except OSError:
-                return
-            if not chunk:
-                return
-            now_us = time.time_ns() // 1000
-            pieces, pending = split_orion(pending + chunk)
-            with self.lock:
-                if not self.stopping:
-                    for dissector, pdu in pieces:
-                        self.writer.packet(0, now_us, dissector, pdu, direction)
-            try:
-                sink.sendall(chunk)
-            except OSError:
-                return
-
-    def close(self):
-        with self.lock:
-            self.stopping = True
-            self.writer.close()
-        for s in [self.listener] + self.sockets:
-            try:
-                s.close()
-            except OSError:
-                pass
-
-
-def gimbald_can_record(workdir):
-    """True when this gimbald accepts the "record" configuration key."""
-    path = os.path.join(workdir, "check.json")
-    os.makedirs(os.path.join(workdir, "check"), exist_ok=True)  # record.dir must exist
-    with open(path, "w") as f:
-        json.dump({"gimbals": [gt.orion_tcp("main", 1)],
-                   "record": {"dir": os.path.join(workdir, "check")}}, f)
-    return subprocess.run([gt.GIMBALD, "-c", path, "--check-config"], capture_output=True,
-                          timeout=20).returncode == 0
-
-
 # --- the test ---------------------------------------------------------------------------------
 
 def telemetry_by_system_time(messages):
@@ -183,16 +108,8 @@ class ReplayExportTest(gt.GimbaldTestCase):
         sim = self.start_sim()
         record_dir = os.path.join(self.workdir, "recordings")
         os.makedirs(record_dir)
-        proxy = None
-        config = {"gimbals": [gt.orion_tcp("main", sim.port)]}
-        if gimbald_can_record(self.workdir):
-            config["record"] = {"dir": record_dir}
-        else:
-            proxy = RecordingProxy(os.path.join(record_dir, "proxy.pcapng"), "main", sim.port)
-            self.addCleanup(proxy.close)
-            config["gimbals"] = [gt.orion_tcp("main", proxy.port)]
-        sys.stderr.write("recording with %s\n" % ("the test proxy" if proxy else "gimbald"))
-        daemon = self.start_daemon(config)
+        daemon = self.start_daemon({"gimbals": [gt.orion_tcp("main", sim.port)],
+                                    "record": {"dir": record_dir}})
         client = self.client(daemon)
         state = self.wait_connected(client)
         self.assertOk(client.request("subscribe", rate_hz=50, keys=["telemetry"], ttl_s=120))
@@ -205,8 +122,6 @@ class ReplayExportTest(gt.GimbaldTestCase):
         self.assertOk(client.request("path", points=points))
         seen += client.collect(FLIGHT_S - (time.monotonic() - start))
         daemon.stop()
-        if proxy:
-            proxy.close()
         files = sorted(os.path.join(record_dir, f) for f in os.listdir(record_dir)
                        if f.endswith(".pcapng"))
         self.assertEqual(len(files), 1, files)
