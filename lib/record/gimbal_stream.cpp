@@ -106,4 +106,37 @@ bool load_gimbal_stream(std::span<const std::uint8_t> file, const std::string& n
     return true;
 }
 
+bool load_gimbal_files(const std::vector<std::string>& paths, const std::string& name,
+                       GimbalStream& out, std::vector<std::string>& warnings, std::string& error) {
+    out = GimbalStream{};
+    std::string wanted = name;
+    for (const auto& path : paths) {
+        std::vector<std::uint8_t> bytes;
+        GimbalStream part;
+        if (!read_file(path, bytes, error) || !load_gimbal_stream(bytes, wanted, part, error)) {
+            error = path + ": " + error;
+            return false;
+        }
+        if (part.stop != Stop::end)
+            warnings.push_back(path + ": " + to_string(part.stop) + " (" + part.stop_message + ")");
+        if (part.bad_pdus > 0)
+            warnings.push_back(path + ": " + std::to_string(part.bad_pdus) +
+                               " packets with malformed exported-PDU tags skipped");
+        if (out.gimbal.name.empty()) {
+            out.gimbal = part.gimbal;
+            out.all_gimbals = part.all_gimbals;
+            wanted = part.gimbal.name;  // the later files must hold the same gimbal
+        } else if (out.gimbal.protocol.empty()) {
+            out.gimbal.protocol = part.gimbal.protocol;
+        }
+        out.bytes += part.bytes;
+        out.outbound_pdus += part.outbound_pdus;
+        out.bad_pdus += part.bad_pdus;
+        out.stop = part.stop;
+        out.stop_message = part.stop_message;
+        for (auto& chunk : part.chunks) out.chunks.push_back(std::move(chunk));
+    }
+    return true;
+}
+
 }  // namespace gimbal::record

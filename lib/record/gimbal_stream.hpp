@@ -40,4 +40,11 @@ struct GimbalStream {
 bool load_gimbal_stream(std::span<const std::uint8_t> file, const std::string& name,
                         GimbalStream& out, std::string& error);
 
+// Several files of one recording in order (gimbald rotates files; each stands alone): reads
+// each with load_gimbal_stream and appends its chunks. A file cut short or damaged does not
+// end the list; `warnings` gets one line per such file ("FILE: truncated (...)"). False with
+// `error` ("FILE: reason") when a file cannot be read, is not a recording, or lacks the gimbal.
+bool load_gimbal_files(const std::vector<std::string>& paths, const std::string& name,
+                       GimbalStream& out, std::vector<std::string>& warnings, std::string& error);
+
 }  // namespace gimbal::record

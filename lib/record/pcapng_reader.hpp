@@ -17,7 +17,6 @@
 
 namespace gimbal::record {
 
-
 enum class RecordedDirection : std::uint8_t { unknown = 0, inbound = 1, outbound = 2 };
 
 struct RecordedInterface {

@@ -82,9 +82,10 @@ def read_pcapng(path):
         at += total
 
 
-def telemetry_system_times(path, gimbal):
-    """system_time_ms of every GeolocateTelemetry frame the gimbal sent, from the raw bytes."""
-    stream = b"".join(pdu for name, _, direction, _, pdu in read_pcapng(path)
+def telemetry_system_times(paths, gimbal):
+    """system_time_ms of every GeolocateTelemetry frame the gimbal sent, from the raw bytes
+    of the recording's files in order."""
+    stream = b"".join(pdu for path in paths for name, _, direction, _, pdu in read_pcapng(path)
                       if name == "gimbal:" + gimbal and direction == INBOUND)
     frames, _ = split_orion(stream)
     return [struct.unpack_from(">I", f, 4)[0] for kind, f in frames
@@ -104,12 +105,14 @@ def telemetry_by_system_time(messages):
 
 class ReplayExportTest(gt.GimbaldTestCase):
     def record_flight(self):
-        """Flies 30 s with a geopoint and a path; returns (recording path, telemetry seen)."""
+        """Flies 30 s with a geopoint and a path; returns (recording files, telemetry seen).
+        Files rotate at 20 kB, so the flight spans several and the tools read them as one."""
         sim = self.start_sim()
         record_dir = os.path.join(self.workdir, "recordings")
         os.makedirs(record_dir)
         daemon = self.start_daemon({"gimbals": [gt.orion_tcp("main", sim.port)],
-                                    "record": {"dir": record_dir}})
+                                    "record": {"dir": record_dir, "max_file_mb": 0.02,
+                                               "max_total_mb": 10}})
         client = self.client(daemon)
         state = self.wait_connected(client)
         self.assertOk(client.request("subscribe", rate_hz=50, keys=["telemetry"], ttl_s=120))
@@ -124,12 +127,12 @@ class ReplayExportTest(gt.GimbaldTestCase):
         daemon.stop()
         files = sorted(os.path.join(record_dir, f) for f in os.listdir(record_dir)
                        if f.endswith(".pcapng"))
-        self.assertEqual(len(files), 1, files)
-        return files[0], telemetry_by_system_time(seen)
+        self.assertGreaterEqual(len(files), 2, files)
+        return files, telemetry_by_system_time(seen)
 
-    def replay(self, path):
+    def replay(self, paths):
         """Replays the recording at 10x into a second gimbald; returns the telemetry seen."""
-        replay = subprocess.Popen([GIMBAL_REPLAY, path, "--tcp", "0", "--speed", str(SPEED),
+        replay = subprocess.Popen([GIMBAL_REPLAY, *paths, "--tcp", "0", "--speed", str(SPEED),
                                    "--progress-every", "0"],
                                   stdout=subprocess.PIPE, stderr=subprocess.PIPE)
         self.addCleanup(lambda: (gt.stop_process(replay), replay.stdout.close(),
@@ -153,26 +156,27 @@ class ReplayExportTest(gt.GimbaldTestCase):
         daemon.stop()
         return telemetry_by_system_time(seen)
 
-    def export(self, path, fmt, *args):
+    def export(self, paths, fmt, *args):
         out = os.path.join(self.workdir, "export." + fmt)
-        result = subprocess.run([GIMBAL_EXPORT, path, "--format", fmt, "-o", out, *args],
+        result = subprocess.run([GIMBAL_EXPORT, *paths, "--format", fmt, "-o", out, *args],
                                 capture_output=True, text=True, timeout=30)
         self.assertEqual(result.returncode, 0, result.stderr)
         with open(out, encoding="utf-8") as f:
             return f.read()
 
     def test_record_replay_and_export(self):
-        path, flight = self.record_flight()
+        paths, flight = self.record_flight()
         self.assertGreater(len(flight), 100, "too little telemetry seen in flight")
         modes = {v["mode"] for v in flight.values()}
         self.assertTrue({"geopoint", "path"} <= modes, modes)
 
-        replayed = self.replay(path)
-        system_times = telemetry_system_times(path, "main")
+        replayed = self.replay(paths)
+        system_times = telemetry_system_times(paths, "main")
         common = sorted(set(flight) & set(replayed))
-        sys.stderr.write("flight: %d telemetry packets recorded, %d seen in flight, %d seen in "
-                         "replay, %d compared\n" % (len(system_times), len(flight),
-                                                     len(replayed), len(common)))
+        sys.stderr.write("flight: %d files, %d telemetry packets recorded, %d seen in flight, "
+                         "%d seen in replay, %d compared\n" % (len(paths), len(system_times),
+                                                              len(flight), len(replayed),
+                                                              len(common)))
         # Everything the replay showed was recorded, and it showed a fair sample of it
         # (STATE at 50 Hz of telemetry arriving at 100 Hz).
         self.assertLessEqual(set(replayed), set(system_times))
@@ -184,10 +188,10 @@ class ReplayExportTest(gt.GimbaldTestCase):
         self.assertTrue({"geopoint", "path"} <= {replayed[t]["mode"] for t in common})
 
         self.assertGreater(len(system_times), 250)
-        self.check_csv(self.export(path, "csv"), system_times, flight)
-        self.check_geojson(json.loads(self.export(path, "geojson", "--footprint-every", "5")),
+        self.check_csv(self.export(paths, "csv"), system_times, flight)
+        self.check_geojson(json.loads(self.export(paths, "geojson", "--footprint-every", "5")),
                            flight)
-        self.check_kml(self.export(path, "kml"))
+        self.check_kml(self.export(paths, "kml"))
 
     def check_csv(self, text, system_times, flight):
         rows = list(csv.reader(io.StringIO(text)))

@@ -16,7 +16,7 @@ constexpr const char* description = R"(NAME
        gimbald recording, for QGIS, Google Earth or a spreadsheet
 
 SYNOPSIS
-       gimbal-export FILE --format geojson|kml|csv [--gimbal NAME]
+       gimbal-export FILE... --format geojson|kml|csv [--gimbal NAME]
                      [--footprint-every S] [-o OUT]
 
 DESCRIPTION
@@ -45,8 +45,9 @@ DESCRIPTION
        are the image corners projected onto the ground at the target's altitude
        (Orion only: Viewpro frames carry no field of view); a footprint is drawn
        for the first packet that has one and then every --footprint-every
-       seconds of receive time. A recording cut short by a crash is exported up
-       to its last complete block, with a warning.
+       seconds of receive time. Several FILEs are read as one recording, in the
+       order given (gimbald rotates files). A file cut short by a crash is read
+       up to its last complete block, with a warning.
 )";
 
 constexpr const char* footer = R"(OUTPUT
@@ -68,7 +69,7 @@ EXAMPLES
 
 int main(int argc, char** argv) {
     namespace fe = gimbal::flight_export;
-    std::string file;
+    std::vector<std::string> files;
     std::string format;
     std::string gimbal;
     std::string output;
@@ -78,7 +79,8 @@ int main(int argc, char** argv) {
     CLI::App app{description, "gimbal-export"};
     app.footer(footer);
     app.get_formatter()->column_width(30);
-    app.add_option("FILE", file, "Recording (pcapng) to read")->type_name("");
+    app.add_option("FILE", files, "Recording (pcapng) to read; several: in this order")
+        ->type_name("");
     app.add_option("--format", format, "Output format: geojson, kml or csv")
         ->type_name("FORMAT")
         ->check(CLI::IsMember({"geojson", "kml", "csv"}).description(""));
@@ -103,26 +105,26 @@ int main(int argc, char** argv) {
         std::cout << "gimbal-export " << GIMBALD_VERSION << "\n";
         return 0;
     }
-    if (file.empty() || format.empty()) {
+    if (files.empty() || format.empty()) {
         std::cerr << "gimbal-export: FILE and --format are required\n"
                      "Run with --help for more information.\n";
         return 1;
     }
 
-    std::vector<std::uint8_t> bytes;
     std::string error;
+    std::vector<std::string> warnings;
     gimbal::record::GimbalStream stream;
     fe::Flight flight;
-    if (!gimbal::record::read_file(file, bytes, error) ||
-        !gimbal::record::load_gimbal_stream(bytes, gimbal, stream, error) ||
-        !fe::build_flight(stream, flight, error)) {
-        std::cerr << "gimbal-export: " << file << ": " << error << std::endl;
+    if (!gimbal::record::load_gimbal_files(files, gimbal, stream, warnings, error)) {
+        std::cerr << "gimbal-export: " << error << std::endl;
         return 1;
     }
-    if (stream.stop != gimbal::record::Stop::end)
-        std::cerr << "gimbal-export: warning: " << file << " is "
-                  << gimbal::record::to_string(stream.stop) << " (" << stream.stop_message
-                  << "); exporting what came before" << std::endl;
+    if (!fe::build_flight(stream, flight, error)) {
+        std::cerr << "gimbal-export: " << error << std::endl;
+        return 1;
+    }
+    for (const auto& w : warnings)
+        std::cerr << "gimbal-export: warning: " << w << "; exporting what came before" << std::endl;
 
     const std::string text = format == "geojson" ? fe::to_geojson(flight, footprint_every_s)
                              : format == "kml"   ? fe::to_kml(flight, footprint_every_s)

@@ -15,21 +15,16 @@ int main(int argc, char** argv) {
     if (!parsed.options) return parsed.exit_status;
     const auto& options = *parsed.options;
 
-    std::vector<std::uint8_t> file;
     std::string error;
+    std::vector<std::string> warnings;
     gimbal::record::GimbalStream stream;
-    if (!gimbal::record::read_file(options.file, file, error) ||
-        !gimbal::record::load_gimbal_stream(file, options.gimbal, stream, error)) {
-        std::cerr << "gimbal-replay: " << options.file << ": " << error << std::endl;
+    if (!gimbal::record::load_gimbal_files(options.files, options.gimbal, stream, warnings,
+                                           error)) {
+        std::cerr << "gimbal-replay: " << error << std::endl;
         return 1;
     }
-    if (stream.stop != gimbal::record::Stop::end)
-        std::cerr << "gimbal-replay: warning: " << options.file << " is "
-                  << gimbal::record::to_string(stream.stop) << " (" << stream.stop_message
-                  << "); playing what came before" << std::endl;
-    if (stream.bad_pdus > 0)
-        std::cerr << "gimbal-replay: warning: " << stream.bad_pdus
-                  << " packets with malformed exported-PDU tags skipped" << std::endl;
+    for (const auto& w : warnings)
+        std::cerr << "gimbal-replay: warning: " << w << "; playing what came before" << std::endl;
     if (stream.chunks.empty())
         std::cerr << "gimbal-replay: warning: gimbal " << stream.gimbal.name
                   << " sent nothing in this recording" << std::endl;

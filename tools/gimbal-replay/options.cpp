@@ -12,7 +12,7 @@ constexpr const char* description = R"(NAME
        simulated gimbal
 
 SYNOPSIS
-       gimbal-replay FILE [--gimbal NAME] [--speed N] [--tcp PORT] [--pty [PATH]]
+       gimbal-replay FILE... [--gimbal NAME] [--speed N] [--tcp PORT] [--pty [PATH]]
                      [--no-tcp] [--loop] [--hold]
 
 DESCRIPTION
@@ -34,8 +34,11 @@ DESCRIPTION
        other field are the recorded ones. Only gimbald's own clock-derived
        values (age_s, stale, last_rx_age_s) follow the replay's pace.
 
-       A recording cut short by a crash plays up to its last complete block
-       (with a warning); so does one damaged in the middle.
+       Several FILEs are played as one recording, in the order given (gimbald
+       rotates files: gimbal-replay /var/lib/gimbald/recordings/gimbald-20261125T*
+       plays a flight that spans several). A file cut short by a crash plays up
+       to its last complete block (with a warning); so does one damaged in the
+       middle.
 )";
 
 constexpr const char* footer = R"(OUTPUT
@@ -69,7 +72,8 @@ ParsedOptions parse_options(int argc, char** argv) {
     app.footer(footer);
     app.get_formatter()->column_width(30);
     // Not required() here: --version needs no FILE; checked after parsing.
-    app.add_option("FILE", o.file, "Recording (pcapng) to play")->type_name("");
+    app.add_option("FILE", o.files, "Recording (pcapng) to play; several: in this order")
+        ->type_name("");
     app.add_option("--gimbal", o.gimbal,
                    "Gimbal to play (its interface gimbal:NAME); needed when the recording "
                    "holds several")
@@ -108,7 +112,7 @@ ParsedOptions parse_options(int argc, char** argv) {
         std::cout << "gimbal-replay " << GIMBALD_VERSION << "\n";
         return {std::nullopt, 0};
     }
-    if (o.file.empty()) {
+    if (o.files.empty()) {
         std::cerr << "gimbal-replay: FILE is required\nRun with --help for more information.\n";
         return {std::nullopt, 1};
     }

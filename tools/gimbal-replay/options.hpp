@@ -4,12 +4,13 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace gimbal_replay {
 
 struct ReplayOptions {
-    std::string file;
-    std::string gimbal;  // empty: the only gimbal in the recording
+    std::vector<std::string> files;  // one recording: its files in order
+    std::string gimbal;              // empty: the only gimbal in the recording
     double speed = 1.0;
     bool tcp = true;
     std::string bind = "127.0.0.1";

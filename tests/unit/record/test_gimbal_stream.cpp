@@ -1,6 +1,11 @@
 // load_gimbal_stream: which gimbal's bytes a replay or export gets out of a recording.
+#include <unistd.h>
+
 #include <catch2/catch.hpp>
+#include <filesystem>
+#include <fstream>
 #include <string>
+#include <vector>
 
 #include "pcapng_builder.hpp"
 #include "record/gimbal_stream.hpp"
@@ -95,4 +100,34 @@ TEST_CASE("a cut-short recording gives what came before and says so", "[record]"
     CHECK_FALSE(s.stop_message.empty());
     REQUIRE(s.chunks.size() == 1);
     CHECK(s.chunks[0].bytes == Bytes{7});
+}
+
+TEST_CASE("rotated files read as one recording, a cut one in the middle included", "[record]") {
+    namespace fs = std::filesystem;
+    const fs::path dir =
+        fs::temp_directory_path() / ("gimbal-stream-test-" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    const auto write = [&](const std::string& name, const Bytes& bytes) {
+        std::ofstream(dir / name, std::ios::binary)
+            .write(reinterpret_cast<const char*>(bytes.data()),
+                   static_cast<std::streamsize>(bytes.size()));
+        return (dir / name).string();
+    };
+    const std::string first = write("1.pcapng", two_gimbals(true));  // cut: its last PDU lost
+    const std::string second = write("2.pcapng", two_gimbals());
+    r::GimbalStream s;
+    std::vector<std::string> warnings;
+    std::string error;
+    REQUIRE(r::load_gimbal_files({first, second}, "main", s, warnings, error));
+    CHECK(s.gimbal.protocol == "orion");
+    CHECK(s.chunks.size() == 6);  // 3 from each: the cut lost only a Viewpro PDU
+    REQUIRE(warnings.size() >= 1);
+    CHECK(warnings[0].find("1.pcapng: truncated") != std::string::npos);
+    CHECK(s.stop == r::Stop::end);  // of the last file
+
+    warnings.clear();
+    CHECK_FALSE(
+        r::load_gimbal_files({second, (dir / "missing").string()}, "main", s, warnings, error));
+    CHECK(error.find("missing: cannot open") != std::string::npos);
+    fs::remove_all(dir);
 }
