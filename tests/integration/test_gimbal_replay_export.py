@@ -15,6 +15,7 @@ import csv
 import io
 import json
 import os
+import re
 import socket
 import struct
 import subprocess
@@ -151,7 +152,13 @@ class ReplayExportTest(gt.GimbaldTestCase):
         self.assertEqual(replay.wait(timeout=5), 0, replay.stderr.read().decode())
         out = replay.stdout.read().decode()
         self.assertIn("playing: gimbal main (orion)", out)
-        self.assertIn("done: ", out)
+        # Recorded timing divided by --speed: ~30 s of recording in ~3 s.
+        done = re.search(r"done: \d+ packets, \d+ bytes, ([\d.]+) s recorded in ([\d.]+) s", out)
+        self.assertIsNotNone(done, out)
+        recorded_s, played_s = float(done.group(1)), float(done.group(2))
+        self.assertGreater(recorded_s, FLIGHT_S - 3)
+        self.assertGreater(played_s, recorded_s / SPEED - 0.2)
+        self.assertLess(played_s, recorded_s / SPEED + 1.5)
         seen += client.collect(0.3)
         daemon.stop()
         return telemetry_by_system_time(seen)
