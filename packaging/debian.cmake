@@ -88,8 +88,10 @@ path, laser and camera control. It reads the aircraft's state as MAVLink and
 forwards it to every gimbal. It runs as a hardened systemd service with
 JSON-lines logs.
 
-The package also holds gimbalctl, the command-line client, and gimbal-sim,
-simulated gimbals for tests, demos and operator training. The service is
+The package also holds gimbalctl, the command-line client, gimbal-sim,
+simulated gimbals for tests, demos and operator training, and gimbal-replay
+and gimbal-export, which play a flight recording back through gimbald or
+export its tracks and camera footprints as GeoJSON, KML or CSV. The service is
 enabled but not started: list the gimbals in /etc/gimbald/gimbald.json first.")
 # Dependencies from the binaries (dpkg-shlibdeps), plus systemd for the unit and the
 # sysusers file the postinst applies.

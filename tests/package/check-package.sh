@@ -64,7 +64,8 @@ expect -rw-r--r-- usr/share/doc/gimbald/examples/gimbald.json
 # Tools added later (gimbal-replay, gimbal-export) and the dissector come with their sources.
 src=$(dirname "$0")/../..
 for tool in gimbal-replay gimbal-export; do
-  [ -d "$src/tools/$tool" ] && expect -rwxr-xr-x "usr/bin/$tool"
+  [ -d "$src/tools/$tool" ] && expect -rwxr-xr-x "usr/bin/$tool" \
+    && expect -rw-r--r-- "usr/share/man/man1/$tool.1.gz"
 done
 # The operator console (contract section 11), served from here by default.
 [ -f "$src/web/index.html" ] && expect -rw-r--r-- usr/share/gimbald/web/index.html

@@ -34,6 +34,8 @@ class TcpServer {
     // Closes the current client (fault injection); the server keeps listening.
     void drop_client();
     std::uint64_t dropped_bytes() const { return dropped_bytes_; }
+    // Bytes queued for the client and not yet written (gimbal-replay drains them at its end).
+    std::size_t queued_bytes() const { return client_ ? client_->queued_bytes : 0; }
 
   private:
     struct Client {
