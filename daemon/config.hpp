@@ -235,6 +235,8 @@ struct HttpConfig {
     double idle_timeout_s = 30;            // a request must arrive (and finish) within this
     unsigned ws_queue_max = 64;            // messages queued for one WebSocket client
     bool operator==(const HttpConfig&) const = default;
+};
+
 // record (contract section 12, docs/recording.md): the flight recorder; off unless set.
 // Sizes are megabytes (10^6 bytes) and may be fractions (tests rotate at 0.05).
 struct RecordConfig {
