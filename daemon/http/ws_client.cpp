@@ -95,6 +95,7 @@ void WsClient::do_write() {
 void WsClient::on_write(const boost::system::error_code& ec, std::size_t) {
     writing_ = false;
     if (ec) return fail(ec, "write");
+    if (closed_) return;  // dropped after this write had finished
     queue_.pop_front();
     if (pending_close_) {
         // A close frame may not overlap a write: it goes out once the write is done.
@@ -130,7 +131,7 @@ void WsClient::close_with(websocket::close_code code, std::string reason) {
 void WsClient::close() {
     if (closed_) return;
     closed_ = true;
-    queue_.clear();
+    // The queue stays: a write in flight still reads its front; it goes with this object.
     boost::system::error_code ignored;
     beast::get_lowest_layer(ws_).socket().shutdown(boost::asio::ip::tcp::socket::shutdown_both,
                                                    ignored);

@@ -529,6 +529,19 @@ class HttpConfigured(gt.GimbaldTestCase):
         s.close()
         self.assertEqual(ht.get_json(port, "/api/console")[0], 200)
 
+    def test_http_port_in_use_is_exit_2(self):
+        taken = socket.socket(socket.AF_INET, socket.SOCK_STREAM)
+        self.addCleanup(taken.close)
+        taken.bind(("127.0.0.1", 0))
+        taken.listen(1)
+        daemon = self.start_daemon(
+            {"gimbals": [{"name": "s", "protocol": "orion", "link": {"type": "sim"}}],
+             "http": {"port": taken.getsockname()[1]}}, wait_started=False)
+        self.assertEqual(daemon.proc.wait(timeout=gt.START_TIMEOUT_S), 2)
+        self.assertEqual(daemon.stop(), 2)  # checked here: the cleanup expects no exit
+        failure = daemon.wait_log(lambda e: e.get("event") == "runtime_failure")
+        self.assertIn("in use", failure["msg"])
+
     def test_sigterm_with_open_connections_stops_at_once(self):
         daemon = self.start_daemon(with_http(
             {"gimbals": [{"name": "s", "protocol": "orion", "link": {"type": "sim"}}]}))
