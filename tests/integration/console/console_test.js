@@ -293,11 +293,15 @@ async function main() {
     for (let i = 0; i < 12 && (await readDrawn(page)).hook.drawn.px_per_m < 1; i++) {
       await page.click('#zoom-in');
     }
-    const zoomed = await readDrawn(page);
-    const stZoomed = ref.byTime.get(zoomed.hook.drawn.system_time_ms);
-    check(zoomed.hook.drawn.px_per_m >= 1 && stZoomed,
-      `zoomed in to ${zoomed.hook.drawn.px_per_m} px/m with the + button`);
-    if (stZoomed) {
+    let zoomed = null;
+    let stZoomed = null;
+    await waitFor(async () => {
+      zoomed = await readDrawn(page);
+      stZoomed = ref.byTime.get(zoomed.hook.drawn.system_time_ms);
+      return stZoomed;
+    }, 3000, 150);
+    check(zoomed.hook.drawn.px_per_m >= 1, `zoomed in to ${zoomed.hook.drawn.px_per_m} px/m with the + button`);
+    if (check(!!stZoomed, 'zoomed frame matched to its STATE')) {
       const r = compareFrame(zoomed, stZoomed, zoomed.hook.drawn.system_time_ms);
       check(r.ok, `zoomed frame: aircraft, target and footprint within ${PIXEL_TOLERANCE} px (worst ${r.worst.toFixed(2)} px)`);
     }
