@@ -418,11 +418,14 @@ async function laserSequence(browser, dir) {
     command: { port: commandPort }, laser: { allow_fire: true },
     http: { bind: '127.0.0.1', port: httpPort, tiles_url: `http://127.0.0.1:${tiles.port}/{z}/{x}/{y}.svg` },
   }));
-  const daemon = start(GIMBALD, ['--sim', '-c', cfgPath, '--log-level', 'warn']);
-  const lasersOf = async () => {
+  const daemon = start(GIMBALD, ['--sim', 'orion,viewpro', '-c', cfgPath, '--log-level', 'warn']);
+  const stateOf = async (name) => {
     const r = await httpGet(httpPort, '/api/state');
     if (!r || r.status !== 200) return null;
-    const g = Object.values(JSON.parse(r.body).gimbals)[0];
+    return JSON.parse(r.body).gimbals[name] || null;
+  };
+  const lasersOf = async () => {
+    const g = await stateOf('sim-orion');
     return g && g.lasers;
   };
   if (!check(!!(await waitFor(lasersOf, 10000)), 'laser daemon up with laser states')) return;
@@ -467,8 +470,38 @@ async function laserSequence(browser, dir) {
   await page.click('#laser-cease-0');
   const ceased = await waitFor(async () => { const l = await lasersOf(); return l && !l[0].active; }, 3000);
   check(!!ceased, 'cease stops laser 0');
+  await viewproView(page, stateOf);
   await page.close();
   await stop(daemon);
+}
+
+// A Viewpro gimbal: the aircraft where output.uav says, the target at output.target (the
+// simulated Viewpro hovers with a fixed gimbal, so STATE does not move), its output panel,
+// and no geopoint from a map click.
+async function viewproView(page, stateOf) {
+  await page.select('#gimbal-select', 'sim-viewpro');
+  const st = await waitFor(async () => {
+    const s = await stateOf('sim-viewpro');
+    return s && s.output && s.output.uav && s.output.target ? s : null;
+  }, 5000);
+  if (!check(!!st, 'Viewpro STATE has output.uav and output.target')) return;
+  const d = await waitFor(async () => {
+    const x = await readDrawn(page);
+    return x.hook.drawn && x.hook.drawn.gimbal === 'sim-viewpro' ? x : null;
+  }, 5000);
+  if (!check(!!d, 'plan view switched to sim-viewpro')) return;
+  const out = st.output;
+  const P = projector(out.uav.lat, out.uav.lon, d.width / 2, d.height / 2, d.hook.drawn.px_per_m);
+  const e = P.screen(out.target.lat, out.target.lon);
+  check(dist(d.aircraft, P.screen(out.uav.lat, out.uav.lon)) <= PIXEL_TOLERANCE && d.target && dist(d.target, e) <= PIXEL_TOLERANCE,
+    `Viewpro: aircraft at output.uav, target at output.target (${d.target ? dist(d.target, e).toFixed(2) : '-'} px)`);
+  const vp = await page.$eval('#vp-uav', (x) => x.textContent);
+  check(!(await page.$eval('#viewpro-panel', (x) => x.hidden)) && vp.startsWith(out.uav.lat.toFixed(6)),
+    `Viewpro output panel shows the UAV (${vp})`);
+  await page.mouse.click(d.left + d.width / 2 + 50, d.top + d.height / 2 + 50);
+  const said = await page.$eval('#last-command', (x) => x.textContent);
+  check(said.includes('Orion command') && !(await page.evaluate(() => window.gimbaldConsole.lastClick.reply)),
+    'Viewpro: a map click sends no geopoint and says why');
 }
 
 function readRx(file) {
