@@ -263,6 +263,19 @@ async function main() {
     check(!!posRx, 'gimbal received OrionCmd position pan 20 tilt -55 from the position control');
     await waitFor(() => ref.latest && ref.latest.telemetry.footprint && Math.abs(ref.latest.telemetry.tilt - -55) < 1, 5000);
 
+    // Rate pad (pan right at 10 deg/s for 1 s) and camera zoom (x2 with the + button).
+    let mark = readRx(rxLog).length;
+    await page.click('[data-rate="1,0"]');
+    const rateRx = await waitFor(() => readRx(rxLog).slice(mark).find((l) => l.id === 1 && l.packet && l.packet.mode === 'rate'), 3000);
+    // Rates travel in coarse wire units (10 deg/s arrives as 10.03).
+    check(rateRx && Math.abs(rateRx.packet.target[0] - 10) < 0.1 && Math.abs(rateRx.packet.target[1]) < 0.01 && Math.abs(rateRx.packet.impulse_time_s - 1) < 0.01,
+      `rate pad: OrionCmd rate ${rateRx ? JSON.stringify(rateRx.packet) : 'not received'}`);
+    mark = readRx(rxLog).length;
+    await page.click('#zoom-plus');
+    const zoomRx = await waitFor(() => readRx(rxLog).slice(mark).find((l) => l.id === 97), 3000);
+    check(zoomRx && zoomRx.packet && zoomRx.packet.zoom === 2 && zoomRx.packet.index === 0,
+      `camera zoom +: CameraState ${zoomRx ? JSON.stringify(zoomRx.packet) : 'not received'}`);
+
     // Drawn positions against STATE: frames whose telemetry time we also received.
     const results = [];
     let unmatched = 0;
