@@ -1,5 +1,7 @@
 #include "http_connection.hpp"
 
+#include <boost/asio/write.hpp>
+#include <boost/beast/core/string.hpp>
 #include <boost/beast/http/error.hpp>
 #include <boost/beast/http/read.hpp>
 #include <boost/beast/http/write.hpp>
@@ -64,10 +66,36 @@ void HttpConnection::do_read() {
     parser_.emplace();
     parser_->header_limit(header_limit);
     parser_->body_limit(body_limit);
+    // One deadline for the whole request, header and body: a client that trickles bytes
+    // cannot hold the connection longer than that.
     stream_.expires_after(idle(server_.idle_timeout_s()));
-    beast::http::async_read(stream_, buffer_, *parser_,
-                            [self = shared_from_this()](const boost::system::error_code& ec,
-                                                        std::size_t n) { self->on_read(ec, n); });
+    beast::http::async_read_header(
+        stream_, buffer_, *parser_,
+        [self = shared_from_this()](const boost::system::error_code& ec, std::size_t n) {
+            self->on_header(ec, n);
+        });
+}
+
+void HttpConnection::on_header(const boost::system::error_code& ec, std::size_t n) {
+    if (ec || closed_ || parser_->is_done()) return on_read(ec, n);
+    auto read_body = [self = shared_from_this()] {
+        beast::http::async_read(
+            self->stream_, self->buffer_, *self->parser_,
+            [self](const boost::system::error_code& e, std::size_t m) { self->on_read(e, m); });
+    };
+    // curl and others wait a second for this before they send a body over 1 KiB.
+    const auto expect = parser_->get()[beast::http::field::expect];
+    if (beast::iequals(expect, "100-continue")) {
+        static const std::string go_on = "HTTP/1.1 100 Continue\r\n\r\n";
+        asio::async_write(stream_, asio::buffer(go_on),
+                          [self = shared_from_this(), read_body](const boost::system::error_code& e,
+                                                                 std::size_t) {
+                              if (e) return self->fail(e, "write");
+                              read_body();
+                          });
+        return;
+    }
+    read_body();
 }
 
 void HttpConnection::on_read(const boost::system::error_code& ec, std::size_t) {

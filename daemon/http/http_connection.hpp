@@ -30,6 +30,7 @@ class HttpConnection : public std::enable_shared_from_this<HttpConnection> {
 
   private:
     void do_read();
+    void on_header(const boost::system::error_code& ec, std::size_t n);
     void on_read(const boost::system::error_code& ec, std::size_t n);
     void do_write(Response response);
     void on_write(const boost::system::error_code& ec, std::size_t n);

@@ -1,6 +1,7 @@
 #include "stream_hub.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 
 #include "command/envelope.hpp"
@@ -142,8 +143,12 @@ void StreamHub::tick() {
     for (auto* client : clients) {
         auto& s = client->subscription();
         if (!s.open || !s.state || s.next_state_s > horizon) continue;
-        // The next period from the last one, without bursts to catch up after a stall.
-        s.next_state_s = std::max(s.next_state_s + 1.0 / s.rate_hz, now);
+        // The next multiple of the period on the daemon's clock: clients at the same rate
+        // share one snapshot and one JSON text per tick, however their connections were
+        // spread in time (50 browsers at 2 Hz: 2 snapshots a second, not 100). No bursts to
+        // catch up after a stall.
+        const double period = 1.0 / s.rate_hz;
+        s.next_state_s = (std::floor(horizon / period) + 1.0) * period;
     }
 }
 

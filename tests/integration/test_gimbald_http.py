@@ -284,6 +284,23 @@ class HttpWithSimulator(gt.GimbaldTestCase):
         finally:
             conn.close()
 
+    def test_expect_100_continue(self):
+        body = json.dumps({"cmd": "ping", "id": "e" * 2000}).encode()
+        s = socket.create_connection(("127.0.0.1", self.port))
+        self.addCleanup(s.close)
+        s.settimeout(2)
+        s.sendall(b"POST /api/command HTTP/1.1\r\nHost: x\r\nExpect: 100-continue\r\n"
+                  b"Content-Length: %d\r\n\r\n" % len(body))
+        self.assertEqual(s.recv(25), b"HTTP/1.1 100 Continue\r\n\r\n")
+        s.sendall(body)
+        raw = b""
+        while b'"pong"' not in raw:
+            chunk = s.recv(65536)
+            self.assertTrue(chunk, "closed before the reply")
+            raw += chunk
+        self.assertEqual(ht.status_of(raw), 200)
+        self.assertIn(b'"pong":true', raw)
+
     # --- the WebSocket stream --------------------------------------------------------
 
     def ws(self, **kwargs):
@@ -300,12 +317,14 @@ class HttpWithSimulator(gt.GimbaldTestCase):
         self.assertIn("telemetry", first["state"])
         start = time.monotonic()
         states = 0
-        while time.monotonic() - start < 2.9:
+        while time.monotonic() - start < 4.0:
             msg = w.recv_json(timeout=3)
             if msg.get("type") == "state":
                 states += 1
-        # 2 Hz for ~2.9 s after the first: 5 or 6 more.
-        self.assertIn(states, (5, 6))
+        # 2 Hz for 4 s: 8, give or take one, and one more that a busy machine may have held
+        # back in the socket before the clock started.
+        self.assertGreaterEqual(states, 7)
+        self.assertLessEqual(states, 10)
         # An event: the mode change a command causes reaches the stream.
         self.assertOk(self.c.request("mode", mode="track"))
         event = w.wait_json(lambda m: m.get("type") == "event" and m.get("event") == "mode",
@@ -324,11 +343,11 @@ class HttpWithSimulator(gt.GimbaldTestCase):
         self.assertEqual(set(msg["state"]), {"protocol", "link", "stale", "telemetry"})
         t0 = time.monotonic()
         n = 0
-        while time.monotonic() - t0 < 1.0:
+        while time.monotonic() - t0 < 2.0:
             if w.recv_json().get("type") == "state":
                 n += 1
-        self.assertGreaterEqual(n, 8)
-        self.assertLessEqual(n, 12)
+        self.assertGreaterEqual(n, 17)  # 10 Hz, with slack for a busy machine
+        self.assertLessEqual(n, 24)
         # The same validation as the UDP subscribe.
         w.send_json({"cmd": "subscribe", "id": 10, "rate_hz": 500})
         self.assertEqual(w.wait_json(lambda m: m.get("id") == 10)["error"]["code"],
@@ -518,7 +537,7 @@ class HttpConfigured(gt.GimbaldTestCase):
         self.addCleanup(streaming.close)
         self.assertEqual(streaming.recv_json()["type"], "state")
         idle = socket.create_connection(("127.0.0.1", port))  # keep-alive, between requests
-        idle.sendall(b"GET /healthz HTTP/1.1\r\nHost: x\r\n\r\n")
+        idle.sendall(b"GET /api/console HTTP/1.1\r\nHost: x\r\n\r\n")
         idle.settimeout(5)
         self.assertEqual(ht.status_of(idle.recv(65536)), 200)
         partial = socket.create_connection(("127.0.0.1", port))  # half a request
