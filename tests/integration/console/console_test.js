@@ -263,6 +263,19 @@ async function main() {
     check(!!posRx, 'gimbal received OrionCmd position pan 20 tilt -55 from the position control');
     await waitFor(() => ref.latest && ref.latest.telemetry.footprint && Math.abs(ref.latest.telemetry.tilt - -55) < 1, 5000);
 
+    // Rate pad (pan right at 10 deg/s for 1 s) and camera zoom (x2 with the + button).
+    let mark = readRx(rxLog).length;
+    await page.click('[data-rate="1,0"]');
+    const rateRx = await waitFor(() => readRx(rxLog).slice(mark).find((l) => l.id === 1 && l.packet && l.packet.mode === 'rate'), 3000);
+    // Rates travel in coarse wire units (10 deg/s arrives as 10.03).
+    check(rateRx && Math.abs(rateRx.packet.target[0] - 10) < 0.1 && Math.abs(rateRx.packet.target[1]) < 0.01 && Math.abs(rateRx.packet.impulse_time_s - 1) < 0.01,
+      `rate pad: OrionCmd rate ${rateRx ? JSON.stringify(rateRx.packet) : 'not received'}`);
+    mark = readRx(rxLog).length;
+    await page.click('#zoom-plus');
+    const zoomRx = await waitFor(() => readRx(rxLog).slice(mark).find((l) => l.id === 97), 3000);
+    check(zoomRx && zoomRx.packet && zoomRx.packet.zoom === 2 && zoomRx.packet.index === 0,
+      `camera zoom +: CameraState ${zoomRx ? JSON.stringify(zoomRx.packet) : 'not received'}`);
+
     // Drawn positions against STATE: frames whose telemetry time we also received.
     const results = [];
     let unmatched = 0;
@@ -293,11 +306,15 @@ async function main() {
     for (let i = 0; i < 12 && (await readDrawn(page)).hook.drawn.px_per_m < 1; i++) {
       await page.click('#zoom-in');
     }
-    const zoomed = await readDrawn(page);
-    const stZoomed = ref.byTime.get(zoomed.hook.drawn.system_time_ms);
-    check(zoomed.hook.drawn.px_per_m >= 1 && stZoomed,
-      `zoomed in to ${zoomed.hook.drawn.px_per_m} px/m with the + button`);
-    if (stZoomed) {
+    let zoomed = null;
+    let stZoomed = null;
+    await waitFor(async () => {
+      zoomed = await readDrawn(page);
+      stZoomed = ref.byTime.get(zoomed.hook.drawn.system_time_ms);
+      return stZoomed;
+    }, 3000, 150);
+    check(zoomed.hook.drawn.px_per_m >= 1, `zoomed in to ${zoomed.hook.drawn.px_per_m} px/m with the + button`);
+    if (check(!!stZoomed, 'zoomed frame matched to its STATE')) {
       const r = compareFrame(zoomed, stZoomed, zoomed.hook.drawn.system_time_ms);
       check(r.ok, `zoomed frame: aircraft, target and footprint within ${PIXEL_TOLERANCE} px (worst ${r.worst.toFixed(2)} px)`);
     }
@@ -414,11 +431,14 @@ async function laserSequence(browser, dir) {
     command: { port: commandPort }, laser: { allow_fire: true },
     http: { bind: '127.0.0.1', port: httpPort, tiles_url: `http://127.0.0.1:${tiles.port}/{z}/{x}/{y}.svg` },
   }));
-  const daemon = start(GIMBALD, ['--sim', '-c', cfgPath, '--log-level', 'warn']);
-  const lasersOf = async () => {
+  const daemon = start(GIMBALD, ['--sim', 'orion,viewpro', '-c', cfgPath, '--log-level', 'warn']);
+  const stateOf = async (name) => {
     const r = await httpGet(httpPort, '/api/state');
     if (!r || r.status !== 200) return null;
-    const g = Object.values(JSON.parse(r.body).gimbals)[0];
+    return JSON.parse(r.body).gimbals[name] || null;
+  };
+  const lasersOf = async () => {
+    const g = await stateOf('sim-orion');
     return g && g.lasers;
   };
   if (!check(!!(await waitFor(lasersOf, 10000)), 'laser daemon up with laser states')) return;
@@ -463,8 +483,38 @@ async function laserSequence(browser, dir) {
   await page.click('#laser-cease-0');
   const ceased = await waitFor(async () => { const l = await lasersOf(); return l && !l[0].active; }, 3000);
   check(!!ceased, 'cease stops laser 0');
+  await viewproView(page, stateOf);
   await page.close();
   await stop(daemon);
+}
+
+// A Viewpro gimbal: the aircraft where output.uav says, the target at output.target (the
+// simulated Viewpro hovers with a fixed gimbal, so STATE does not move), its output panel,
+// and no geopoint from a map click.
+async function viewproView(page, stateOf) {
+  await page.select('#gimbal-select', 'sim-viewpro');
+  const st = await waitFor(async () => {
+    const s = await stateOf('sim-viewpro');
+    return s && s.output && s.output.uav && s.output.target ? s : null;
+  }, 5000);
+  if (!check(!!st, 'Viewpro STATE has output.uav and output.target')) return;
+  const d = await waitFor(async () => {
+    const x = await readDrawn(page);
+    return x.hook.drawn && x.hook.drawn.gimbal === 'sim-viewpro' ? x : null;
+  }, 5000);
+  if (!check(!!d, 'plan view switched to sim-viewpro')) return;
+  const out = st.output;
+  const P = projector(out.uav.lat, out.uav.lon, d.width / 2, d.height / 2, d.hook.drawn.px_per_m);
+  const e = P.screen(out.target.lat, out.target.lon);
+  check(dist(d.aircraft, P.screen(out.uav.lat, out.uav.lon)) <= PIXEL_TOLERANCE && d.target && dist(d.target, e) <= PIXEL_TOLERANCE,
+    `Viewpro: aircraft at output.uav, target at output.target (${d.target ? dist(d.target, e).toFixed(2) : '-'} px)`);
+  const vp = await page.$eval('#vp-uav', (x) => x.textContent);
+  check(!(await page.$eval('#viewpro-panel', (x) => x.hidden)) && vp.startsWith(out.uav.lat.toFixed(6)),
+    `Viewpro output panel shows the UAV (${vp})`);
+  await page.mouse.click(d.left + d.width / 2 + 50, d.top + d.height / 2 + 50);
+  const said = await page.$eval('#last-command', (x) => x.textContent);
+  check(said.includes('Orion command') && !(await page.evaluate(() => window.gimbaldConsole.lastClick.reply)),
+    'Viewpro: a map click sends no geopoint and says why');
 }
 
 function readRx(file) {
