@@ -279,6 +279,9 @@ class Recording(gt.GimbaldTestCase):
                         "fewer than 6 files opened: %s" % daemon.events("record_file"))
         self.assertEqual(daemon.stop(signal.SIGTERM), 0)
         opened = [e["file"] for e in daemon.events("record_file")]
+        # Every file started is logged once, in order: sequence numbers 1..N.
+        self.assertEqual([int(f.rsplit("-", 1)[1].split(".")[0]) for f in opened],
+                         list(range(1, len(opened) + 1)))
         files = recordings(self.dir)
         self.assertEqual(files, sorted(files))
         self.assertEqual(files, opened[-len(files):], "newest files kept, in name order")
