@@ -202,6 +202,7 @@ class Recording(gt.GimbaldTestCase):
 
         files = recordings(self.dir)
         self.assertEqual(files, [record["file"]])
+        self.assertEqual(os.stat(files[0]).st_mode & 0o777 & ~0o640, 0, "readable by others")
         rec = parse(files[0])
         self.assertEqual(rec["whole_bytes"], rec["size"], "SIGTERM left a partial block")
         self.assertTrue(rec["userappl"].startswith("gimbald "))
