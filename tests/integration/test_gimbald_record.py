@@ -202,6 +202,7 @@ class Recording(gt.GimbaldTestCase):
 
         files = recordings(self.dir)
         self.assertEqual(files, [record["file"]])
+        self.assertEqual(os.stat(files[0]).st_mode & 0o777 & ~0o640, 0, "readable by others")
         rec = parse(files[0])
         self.assertEqual(rec["whole_bytes"], rec["size"], "SIGTERM left a partial block")
         self.assertTrue(rec["userappl"].startswith("gimbald "))
@@ -279,6 +280,9 @@ class Recording(gt.GimbaldTestCase):
                         "fewer than 6 files opened: %s" % daemon.events("record_file"))
         self.assertEqual(daemon.stop(signal.SIGTERM), 0)
         opened = [e["file"] for e in daemon.events("record_file")]
+        # Every file started is logged once, in order: sequence numbers 1..N.
+        self.assertEqual([int(f.rsplit("-", 1)[1].split(".")[0]) for f in opened],
+                         list(range(1, len(opened) + 1)))
         files = recordings(self.dir)
         self.assertEqual(files, sorted(files))
         self.assertEqual(files, opened[-len(files):], "newest files kept, in name order")
