@@ -11,6 +11,7 @@
 --   viewpro       Viewpro frames in both directions (mode/adjust commands, IN1..IN3, OUT1..OUT4).
 --   mavlink       MAVLink v1/v2 header, message id and name.
 --   gimbald-json  gimbald's JSON requests and replies (handed to Wireshark's json dissector).
+--   orion-tcp     OrionPublic in live TCP captures (port 8747, or Decode As), reassembled.
 --
 -- The Orion part interprets a schema table generated from the codec's packet declarations
 -- (lib/orion/packets_*.hpp) by tools/gen-dissector; the block between the GENERATED markers
@@ -974,6 +975,29 @@ function orion_proto.dissector(tvb, pinfo, tree)
     end
     pinfo.cols.info = table.concat(infos, ", ")
     return tvb:len()
+end
+
+-- OrionPublic over TCP (captures of a network gimbal, not gimbald recordings): the stream is
+-- cut into frames by their length byte, with TCP reassembly. Port 8747 (gimbald's examples);
+-- other ports via Decode As... > TCP port > ORION-TCP.
+local orion_tcp_proto = Proto("orion-tcp", "OrionPublic over TCP")
+
+local function orion_frame_length(tvb, pinfo, offset)
+    return 6 + tvb(offset + 3, 1):uint()
+end
+
+local function dissect_one_orion_frame(tvb, pinfo, tree)
+    return orion_proto.dissector(tvb, pinfo, tree)
+end
+
+function orion_tcp_proto.dissector(tvb, pinfo, tree)
+    dissect_tcp_pdus(tvb, tree, 4, orion_frame_length, dissect_one_orion_frame)
+    return tvb:len()
+end
+
+do
+    local tcp_port = DissectorTable.get("tcp.port")
+    tcp_port:add(8747, orion_tcp_proto)
 end
 
 ------------------------------------------------------------------------------------------------
