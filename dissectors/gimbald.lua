@@ -17,11 +17,6 @@
 -- (lib/orion/packets_*.hpp) by tools/gen-dissector; the block between the GENERATED markers
 -- must not be edited by hand: `cmake --build build/debug --target update-dissector`.
 
--- Installed in Wireshark's global plugin folder and also named with -X lua_script: load once
--- (a second Proto("orion") would be an error).
-if gimbald_dissectors_loaded then return end
-gimbald_dissectors_loaded = true
-
 -- BEGIN GENERATED ORION SCHEMA (tools/gen-dissector from lib/orion/packets_*.hpp; do not edit by hand:
 -- cmake --build build/debug --target update-dissector)
 local orion_enums = {
@@ -565,6 +560,30 @@ local orion_packets = {
   } },
 }
 -- END GENERATED ORION SCHEMA
+
+-- Installed in Wireshark's global plugin folder and also named with -X lua_script: load once
+-- (a second Proto("orion") would be an error). When the two copies differ, say which one runs:
+-- a test of a working copy must not silently test an older installed one.
+local function file_fingerprint()
+    local source = debug.getinfo(1, "S").source
+    local f = source:sub(1, 1) == "@" and io.open(source:sub(2), "rb")
+    if not f then return source end
+    local text = f:read("*a")
+    f:close()
+    local h = 0
+    for i = 1, #text do h = (h * 31 + text:byte(i)) % 4294967291 end
+    return string.format("%d:%d", #text, h)
+end
+local this_copy = { path = debug.getinfo(1, "S").source:sub(2), fingerprint = file_fingerprint() }
+if _G.gimbald_dissectors_loaded then
+    local loaded = _G.gimbald_dissectors_loaded
+    if loaded.fingerprint ~= this_copy.fingerprint then
+        report_failure("Lua: gimbald.lua: " .. this_copy.path .. " differs from the copy already " ..
+                       "loaded (" .. loaded.path .. "), which is the one in use")
+    end
+    return
+end
+_G.gimbald_dissectors_loaded = this_copy  -- _G: each script has its own environment
 
 local rad2deg = 180.0 / math.pi
 
