@@ -84,6 +84,7 @@ bool RecordFiles::open_next(std::int64_t unix_seconds) {
             set_error(path, err);
             return false;
         }
+        opened_.push_back(path);
         enforce_total();
         return true;
     }
