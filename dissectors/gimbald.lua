@@ -11,15 +11,11 @@
 --   viewpro       Viewpro frames in both directions (mode/adjust commands, IN1..IN3, OUT1..OUT4).
 --   mavlink       MAVLink v1/v2 header, message id and name.
 --   gimbald-json  gimbald's JSON requests and replies (handed to Wireshark's json dissector).
+--   orion-tcp     OrionPublic in live TCP captures (port 8747, or Decode As), reassembled.
 --
 -- The Orion part interprets a schema table generated from the codec's packet declarations
 -- (lib/orion/packets_*.hpp) by tools/gen-dissector; the block between the GENERATED markers
 -- must not be edited by hand: `cmake --build build/debug --target update-dissector`.
-
--- Installed in Wireshark's global plugin folder and also named with -X lua_script: load once
--- (a second Proto("orion") would be an error).
-if gimbald_dissectors_loaded then return end
-gimbald_dissectors_loaded = true
 
 -- BEGIN GENERATED ORION SCHEMA (tools/gen-dissector from lib/orion/packets_*.hpp; do not edit by hand:
 -- cmake --build build/debug --target update-dissector)
@@ -565,6 +561,30 @@ local orion_packets = {
 }
 -- END GENERATED ORION SCHEMA
 
+-- Installed in Wireshark's global plugin folder and also named with -X lua_script: load once
+-- (a second Proto("orion") would be an error). When the two copies differ, say which one runs:
+-- a test of a working copy must not silently test an older installed one.
+local function file_fingerprint()
+    local source = debug.getinfo(1, "S").source
+    local f = source:sub(1, 1) == "@" and io.open(source:sub(2), "rb")
+    if not f then return source end
+    local text = f:read("*a")
+    f:close()
+    local h = 0
+    for i = 1, #text do h = (h * 31 + text:byte(i)) % 4294967291 end
+    return string.format("%d:%d", #text, h)
+end
+local this_copy = { path = debug.getinfo(1, "S").source:sub(2), fingerprint = file_fingerprint() }
+if _G.gimbald_dissectors_loaded then
+    local loaded = _G.gimbald_dissectors_loaded
+    if loaded.fingerprint ~= this_copy.fingerprint then
+        report_failure("Lua: gimbald.lua: " .. this_copy.path .. " differs from the copy already " ..
+                       "loaded (" .. loaded.path .. "), which is the one in use")
+    end
+    return
+end
+_G.gimbald_dissectors_loaded = this_copy  -- _G: each script has its own environment
+
 local rad2deg = 180.0 / math.pi
 
 ------------------------------------------------------------------------------------------------
@@ -974,6 +994,29 @@ function orion_proto.dissector(tvb, pinfo, tree)
     end
     pinfo.cols.info = table.concat(infos, ", ")
     return tvb:len()
+end
+
+-- OrionPublic over TCP (captures of a network gimbal, not gimbald recordings): the stream is
+-- cut into frames by their length byte, with TCP reassembly. Port 8747 (gimbald's examples);
+-- other ports via Decode As... > TCP port > ORION-TCP.
+local orion_tcp_proto = Proto("orion-tcp", "OrionPublic over TCP")
+
+local function orion_frame_length(tvb, pinfo, offset)
+    return 6 + tvb(offset + 3, 1):uint()
+end
+
+local function dissect_one_orion_frame(tvb, pinfo, tree)
+    return orion_proto.dissector(tvb, pinfo, tree)
+end
+
+function orion_tcp_proto.dissector(tvb, pinfo, tree)
+    dissect_tcp_pdus(tvb, tree, 4, orion_frame_length, dissect_one_orion_frame)
+    return tvb:len()
+end
+
+do
+    local tcp_port = DissectorTable.get("tcp.port")
+    tcp_port:add(8747, orion_tcp_proto)
 end
 
 ------------------------------------------------------------------------------------------------

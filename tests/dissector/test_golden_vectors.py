@@ -91,6 +91,39 @@ def same(expected, shown):
     return str(expected) == shown
 
 
+def check_tcp_stream(tshark, lua, tmp, frames):
+    """Orion frames as one TCP stream from port 8747, cut into 97-byte segments: tshark must
+    reassemble and decode every frame, each checksum good. Returns a list of failures."""
+    stream = b"".join(frames)
+    text = []
+    for start in range(0, len(stream), 97):
+        seg = stream[start:start + 97]
+        for i in range(0, len(seg), 16):
+            text.append("%06x " % i + " ".join("%02x" % b for b in seg[i:i + 16]))
+        text.append("")
+    txt, pcap = os.path.join(tmp, "tcp.txt"), os.path.join(tmp, "tcp.pcap")
+    with open(txt, "w") as f:
+        f.write("\n".join(text) + "\n")
+    text2pcap = shutil.which("text2pcap")
+    if not text2pcap:
+        return ["text2pcap missing (wireshark-common)"]
+    subprocess.run([text2pcap, "-q", "-T", "8747,40000", txt, pcap], check=True,
+                   capture_output=True)
+    proc = subprocess.run([tshark, "-X", f"lua_script:{lua}", "-r", pcap, "-T", "fields",
+                           "-e", "orion.packet", "-e", "orion.checksum.status"],
+                          capture_output=True, text=True)
+    names, statuses = [], []
+    for line in proc.stdout.split("\n"):
+        if line.strip():
+            n, st = line.split("\t")
+            names += n.split(",")
+            statuses += st.split(",")
+    if len(names) != len(frames) or set(statuses) != {"good"}:
+        return [f"TCP stream: {len(frames)} frames sent, tshark decoded {len(names)} "
+                f"({set(statuses)})"]
+    return []
+
+
 def main():
     codec_json, lua = sys.argv[1], sys.argv[2]
     tshark = shutil.which("tshark")
@@ -223,7 +256,10 @@ def main():
             if field.endswith("_tree") or field in ("orion." + exp.get("name", ""),):
                 continue
             failures.append(f"{field}: shown by the dissector, not in the codec's JSON")
-    print(f"{len(packets)} packets, {checked} field values compared")
+    orion_frames = [bytes.fromhex(h) for d, h in records if d == "orion"]
+    failures += check_tcp_stream(tshark, lua, tmp, orion_frames)
+    print(f"{len(packets)} packets, {checked} field values compared, "
+          f"{len(orion_frames)} Orion frames over TCP")
     for f in failures:
         print("FAIL", f)
     if len(packets) != len(records) + len(specials):

@@ -121,6 +121,7 @@ class DissectorReadsRecording(gt.GimbaldTestCase):
             proc = subprocess.run([tshark, "-X", "lua_script:" + LUA, "-r", path, "-T", "json"],
                                   capture_output=True, text=True, timeout=120)
             self.assertEqual(proc.returncode, 0, proc.stderr)
+            self.assertNotIn("Lua", proc.stderr)  # a Lua error, or another copy of the dissector
             for pkt in json.loads(proc.stdout or "[]", object_pairs_hook=pairs):
                 layers = pkt["_source"][0]["layers"][0]
                 self.assertNotIn("_ws.malformed", layers)
@@ -165,6 +166,7 @@ def compare_recording(self, tshark, state, files):
         proc = subprocess.run([tshark, "-X", "lua_script:" + LUA, "-r", path, "-T", "json"],
                               capture_output=True, text=True, timeout=120)
         self.assertEqual(proc.returncode, 0, proc.stderr)
+        self.assertNotIn("Lua", proc.stderr)  # a Lua error, or another copy of the dissector
         for pkt in json.loads(proc.stdout or "[]", object_pairs_hook=pairs):
             layers = pkt["_source"][0]["layers"][0]
             if "_ws.malformed" in layers:
