@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "config.hpp"
+#include "http/command_metrics.hpp"
 #include "http/static_files.hpp"
 
 using namespace gimbal::daemon;
@@ -156,4 +157,22 @@ TEST_CASE("content types by extension", "[http]") {
     CHECK(content_type("d.json") == "application/json");
     CHECK(content_type("x.bin") == "application/octet-stream");
     CHECK(content_type("noext") == "application/octet-stream");
+}
+
+TEST_CASE("command metrics: counts by cmd and result, unknown names folded", "[http]") {
+    gimbald::http::CommandMetrics m;
+    m.observe({"udp", std::string("ping"), "ok", 0.0001});
+    m.observe({"http", std::string("ping"), "ok", 0.0002});
+    m.observe({"udp", std::string("geopoint"), "out_of_range", 0.003});
+    m.observe({"udp", std::nullopt, "bad_json", 0.00001});
+    m.observe({"udp", std::string("made-up-1"), "unknown_cmd", 0.00001});
+    m.observe({"udp", std::string("made-up-2"), "unknown_cmd", 0.00001});
+    const auto& t = m.totals();
+    CHECK(t.at({"ping", "ok"}) == 2);
+    CHECK(t.at({"geopoint", "out_of_range"}) == 1);
+    CHECK(t.at({"none", "bad_json"}) == 1);
+    CHECK(t.at({"unknown", "unknown_cmd"}) == 2);
+    CHECK(t.size() == 4);
+    CHECK(m.durations().count() == 6);
+    CHECK(m.durations().sum() == Approx(0.00333));
 }
