@@ -2,7 +2,9 @@
 
 #include <chrono>
 #include <csignal>
+#include <filesystem>
 
+#include "http/static_files.hpp"
 #include "link/serial_link.hpp"
 #include "link/sim_link.hpp"
 #include "link/tcp_link.hpp"
@@ -108,7 +110,38 @@ App::App(const cfg::Config& config)
     }
     if (config_.mqtt)
         mqtt_ = std::make_unique<mqtt::Bridge>(io_, *config_.mqtt, *request_path_, events_);
+    if (config_.http) start_http();
     tap_recorder();
+}
+
+void App::start_http() {
+    const auto& h = *config_.http;
+    http::HttpServerOptions options;
+    options.bind = h.bind.to_string();
+    options.port = h.port;
+    options.max_connections = h.max_connections;
+    options.idle_timeout_s = h.idle_timeout_s;
+    options.ws_queue_max = h.ws_queue_max;
+    options.api.console = h.console;
+    options.api.web_root =
+        h.web_root ? std::filesystem::path(*h.web_root) : http::default_web_root();
+    options.api.tiles_url = h.tiles_url;
+    options.allowed = [this](const boost::asio::ip::address& a) {
+        return config_.command.allowed(a);
+    };
+    http::DaemonView view;
+    view.config = &config_;
+    view.path = request_path_.get();
+    view.udp_subscribers = [this] { return server_->subscribers(); };
+    view.udp_dropped_sources = [this] { return server_->dropped_sources(); };
+    view.vehicle_up = [this] {
+        return config_.vehicle && vehicle_->vehicle_state().fresh(vehicle_->monotonic_s());
+    };
+    view.mqtt_up = [this] { return mqtt_ && mqtt_->state_key().value("connected", false); };
+    http_ = std::make_unique<http::HttpServer>(io_, std::move(options), std::move(view));
+    events_.add([this](const std::string& gimbal, const gimbal::state::Event& e) {
+        http_->publish_event(gimbal, e);
+    });
 }
 
 // Interfaces (docs/recording.md): one per gimbal in config order, then `mavlink` when a
@@ -244,6 +277,7 @@ void App::shutdown() {
     for (auto& s : sessions_) s->stop();
     server_->stop();
     if (mqtt_) mqtt_->stop();  // publishes {"online": false}, then disconnects
+    if (http_) http_->stop();
     // Last: the cease-fire packets above are in the recording. Joins the writer thread.
     if (recorder_) recorder_->stop();
     signals_.cancel();
@@ -278,6 +312,7 @@ int App::run() {
     vehicle_->start();
     if (mavlink_) mavlink_->start();
     if (mqtt_) mqtt_->start();
+    if (http_) http_->start();
     signals_.async_wait([this](const boost::system::error_code& e, int s) { on_signal(e, s); });
     const auto local = server_->local_endpoint();
     nlohmann::json gimbals = nlohmann::json::array();
@@ -285,10 +320,15 @@ int App::run() {
         gimbals.push_back({{"name", g.name},
                            {"protocol", std::string(cfg::to_string(g.protocol))},
                            {"link", cfg::describe(g.link)}});
-    log::info("start", "gimbald started",
-              {{"version", GIMBALD_VERSION},
-               {"command", local.address().to_string() + ":" + std::to_string(local.port())},
-               {"gimbals", gimbals}});
+    nlohmann::json started = {
+        {"version", GIMBALD_VERSION},
+        {"command", local.address().to_string() + ":" + std::to_string(local.port())},
+        {"gimbals", gimbals}};
+    if (http_) {
+        const auto web = http_->local_endpoint();
+        started["http"] = web.address().to_string() + ":" + std::to_string(web.port());
+    }
+    log::info("start", "gimbald started", started);
     notify::ready();
     update_status();
     arm_watchdog();

@@ -12,6 +12,7 @@
 #include "config.hpp"
 #include "event_hub.hpp"
 #include "gimbal_session.hpp"
+#include "http/http_server.hpp"
 #include "mavlink_endpoint.hpp"
 #include "mqtt/mqtt_bridge.hpp"
 #include "record/recorder.hpp"
@@ -37,6 +38,7 @@ class App {
     void on_signal(const boost::system::error_code& ec, int signo);
     void shutdown();
     void arm_watchdog();
+    void start_http();
     void update_status();
 
     gimbal::daemon::Config config_;
@@ -51,7 +53,8 @@ class App {
     std::unique_ptr<CommandServer> server_;
     std::unique_ptr<VehicleFeed> vehicle_;
     std::unique_ptr<MavlinkEndpoint> mavlink_;
-    std::unique_ptr<mqtt::Bridge> mqtt_;  // contract section 9; null unless `mqtt` is set
+    std::unique_ptr<mqtt::Bridge> mqtt_;      // contract section 9; null unless `mqtt` is set
+    std::unique_ptr<http::HttpServer> http_;  // contract section 11; null unless `http` is set
     bool stopping_ = false;
 };
 

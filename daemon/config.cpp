@@ -845,6 +845,41 @@ json mqtt_to_json(const MqttConfig& m) {
             {"queue_max", m.queue_max}};
 }
 
+// ---- http (contract section 11) ----------------------------------------------------------
+
+HttpConfig read_http(Fields& f) {
+    HttpConfig http;
+    read_address(f, "bind", http.bind);
+    f.integer("port", http.port, {0, 65535});  // 0: any free port (tests)
+    f.boolean("console", http.console);
+    optional_string(f, "tiles_url", http.tiles_url);
+    if (http.tiles_url && (http.tiles_url->find("{z}") == std::string::npos ||
+                           http.tiles_url->find("{x}") == std::string::npos ||
+                           http.tiles_url->find("{y}") == std::string::npos))
+        f.problem("tiles_url", "must be an XYZ template with {z}, {x} and {y}");
+    optional_string(f, "web_root", http.web_root);
+    if (http.web_root && http.web_root->front() != '/')
+        f.problem("web_root", "must be an absolute path");
+    f.integer("max_connections", http.max_connections, {1, 10000});
+    f.number("idle_timeout_s", http.idle_timeout_s, {1, 3600});
+    f.integer("ws_queue_max", http.ws_queue_max, {2, 100000});
+    return http;
+}
+
+json http_to_json(const HttpConfig& h) {
+    auto optional = [](const std::optional<std::string>& s) {
+        return s ? json(*s) : json(nullptr);
+    };
+    return {{"bind", h.bind.to_string()},
+            {"port", h.port},
+            {"console", h.console},
+            {"tiles_url", optional(h.tiles_url)},
+            {"web_root", optional(h.web_root)},
+            {"max_connections", h.max_connections},
+            {"idle_timeout_s", h.idle_timeout_s},
+            {"ws_queue_max", h.ws_queue_max}};
+}
+
 // Object sections with no cross-dependencies: read each when present.
 template <class Read>
 void section(Fields& root, std::string_view key, Read read) {
@@ -1034,8 +1069,17 @@ ConfigResult parse_config(std::string_view text, GimbalsSection gimbals) {
     section(root, "vehicle", [&](Fields& f) { config.vehicle = read_vehicle(f); });
     section(root, "mavlink", [&](Fields& f) { read_mavlink(f, config.mavlink); });
     section(root, "mqtt", [&](Fields& f) { config.mqtt = read_mqtt(f); });
+    section(root, "http", [&](Fields& f) { config.http = read_http(f); });
     section(root, "record", [&](Fields& f) { config.record = read_record(f); });
     root.finish();
+    // POST /api/command reaches the laser like a datagram: the same start-up refusal.
+    if (config.http && config.laser.allow_fire && !config.http->bind.is_loopback() &&
+        config.command.auth == AuthMode::none)
+        problems.add("http.bind", "laser.allow_fire is true and http.bind (" +
+                                      config.http->bind.to_string() +
+                                      ") is not a loopback address: anyone on that network "
+                                      "could fire the laser; set command.auth to \"signed\" or "
+                                      "bind to 127.0.0.1");
     if (config.mavlink.gimbal_manager && !config.vehicle)
         problems.add("mavlink.gimbal_manager",
                      "needs a vehicle section: the gimbal manager talks on vehicle.source");
@@ -1196,6 +1240,7 @@ json to_json(const Config& config, bool show_token) {
         {"targets", m.targets},
         {"signing_key_file", m.signing_key_file ? json(*m.signing_key_file) : json(nullptr)}};
     if (config.mqtt) out["mqtt"] = mqtt_to_json(*config.mqtt);
+    if (config.http) out["http"] = http_to_json(*config.http);
     if (config.record)
         out["record"] = {{"dir", config.record->dir},
                          {"max_file_mb", config.record->max_file_mb},

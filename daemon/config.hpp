@@ -223,6 +223,20 @@ struct MqttConfig {
     bool operator==(const MqttConfig&) const = default;
 };
 
+// http (contract section 11): metrics, health, API, WebSocket stream and the operator console;
+// off unless the section is set. Limits: docs/http.md.
+struct HttpConfig {
+    boost::asio::ip::address bind = boost::asio::ip::make_address_v4("127.0.0.1");
+    std::uint16_t port = 8761;
+    bool console = true;                   // serve the console (GET / and static files)
+    std::optional<std::string> tiles_url;  // XYZ template for the console's background map
+    std::optional<std::string> web_root;   // null: the installed console directory
+    unsigned max_connections = 64;         // HTTP and WebSocket connections together
+    double idle_timeout_s = 30;            // a request must arrive (and finish) within this
+    unsigned ws_queue_max = 64;            // messages queued for one WebSocket client
+    bool operator==(const HttpConfig&) const = default;
+};
+
 // record (contract section 12, docs/recording.md): the flight recorder; off unless set.
 // Sizes are megabytes (10^6 bytes) and may be fractions (tests rotate at 0.05).
 struct RecordConfig {
@@ -242,6 +256,7 @@ struct Config {
     std::optional<VehicleConfig> vehicle;
     MavlinkConfig mavlink;
     std::optional<MqttConfig> mqtt;
+    std::optional<HttpConfig> http;
     std::optional<RecordConfig> record;
     bool operator==(const Config&) const = default;
 };

@@ -40,6 +40,8 @@ class GimbalSession {
     // Position telemetry received so far: a listener sees whether a chunk carried any.
     std::uint64_t telemetry_count() const { return protocol_->telemetry_count(); }
     std::string link_type() const { return link_->type(); }
+    // The daemon's own record of a laser it commanded to fire (metrics).
+    bool laser_firing(std::uint8_t index) const { return lasers_.firing(index); }
 
     bool supports(std::string_view cmd) const { return protocol_->supports(cmd); }
     // Runs a gimbal command: validate, refuse (nothing sent) or write its packets.

@@ -43,8 +43,15 @@ bool reaches_gimbal(std::string_view cmd) {
 
 // The rate limit's key: a UDP client's address without its port (one host, one bucket),
 // else the transport's own name for the client.
+// HTTP clients likewise by address: "http:IP:PORT" -> "http:IP" (a new connection per
+// request must not get a new bucket).
 std::string rate_key(const RequestSource& from) {
-    return from.udp ? from.udp->address().to_string() : from.address;
+    if (from.udp) return from.udp->address().to_string();
+    if (from.transport == "http") {
+        const auto colon = from.address.rfind(':');
+        if (colon != std::string::npos && colon > 5) return from.address.substr(0, colon);
+    }
+    return from.address;
 }
 
 }  // namespace

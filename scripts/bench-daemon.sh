@@ -2,7 +2,8 @@
 # Builds gimbald, gimbal-sim and the latency benchmark in release mode and runs the daemon
 # benchmarks (docs/operations.md, "Daemon benchmarks"): command latency (JSON geopoint, and a
 # MAVLink DO_GIMBAL_MANAGER_PITCHYAW through the gimbal manager at 100 commands/s), load (CPU,
-# RSS) and the size of STATE datagrams.
+# RSS), the size of STATE datagrams, and 50 WebSocket clients of /api/stream at 2 Hz for 60 s
+# (every message received? CPU, RSS).
 # Timings, not tests: nothing here fails on a missed target, it only says so.
 #
 # Environment:
@@ -12,6 +13,7 @@
 #   LATENCY_ARGS  extra arguments for bench_daemon_latency, e.g. "--count 20000 --poll busy"
 #   MAVLINK_ARGS  extra arguments for its --mavlink run (default 3000 commands at 100/s)
 #   LOAD_ARGS     extra arguments for load_bench.py, e.g. "--window 60"
+#   WS_ARGS       extra arguments for ws_bench.py, e.g. "--clients 100 --window 30"
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs=${JOBS:-$(nproc 2>/dev/null || echo 2)}
@@ -45,6 +47,11 @@ python3 tests/bench/daemon/load_bench.py --gimbald "$gimbald" --gimbal-sim "$sim
 echo
 echo "== STATE size (full, and subscribe keys=[telemetry])"
 python3 tests/bench/daemon/state_size.py --gimbald "$gimbald" | tee "$out/size"
+echo
+echo "== WebSocket stream (load average $(cut -d' ' -f1-3 /proc/loadavg))"
+# shellcheck disable=SC2086
+python3 tests/bench/http/ws_bench.py --gimbald "$gimbald" --gimbal-sim "$sim" ${WS_ARGS:-} \
+    | tee "$out/ws"
 
 # key=value pairs of a RESULT line
 value() { grep '^RESULT' "$2" | tr ' ' '\n' | sed -n "s/^$1=//p"; }
@@ -61,3 +68,6 @@ printf '  mavlink  p50 %s us, p99 %s us (target < 300), max %s us, lost %s of %s
     "$(( $(value count "$out/mavlink") + $(value lost "$out/mavlink") ))"
 printf '  load     CPU %s %% of a core (target < 1), VmRSS %s kB, VmHWM %s kB (target < 20480)\n' \
     "$(value cpu_pct "$out/load")" "$(value rss_kb "$out/load")" "$(value hwm_kb "$out/load")"
+printf '  ws       %s clients at 2 Hz: every message %s (min %s of %s), CPU %s %% of a core (target < 3), VmHWM %s kB (target < 30720)\n' \
+    "$(value clients "$out/ws")" "$(value complete "$out/ws")" "$(value min_states "$out/ws")" \
+    "$(value expected "$out/ws")" "$(value cpu_pct "$out/ws")" "$(value hwm_kb "$out/ws")"

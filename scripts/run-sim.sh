@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The README's first command: install what is missing, build the release binaries and run
-# gimbald on its embedded simulated gimbal (`gimbald --sim`). Extra arguments go to gimbald,
+# gimbald on its embedded simulated gimbal (`gimbald --sim`), with config/sim.json's `http`
+# section: the operator console at http://127.0.0.1:8761/. Extra arguments go to gimbald,
 # e.g. `scripts/run-sim.sh orion,viewpro` or `scripts/run-sim.sh --log-format text`.
 # In another terminal: build/release/tools/gimbalctl geopoint 45.7 -121.5 300 --stare
 set -euo pipefail
@@ -17,4 +18,6 @@ if [ $# -gt 0 ] && [[ "$1" != -* ]]; then
   shift
 fi
 echo "gimbald --sim ${sim_arg[*]:-} on udp://127.0.0.1:8760 - stop with Ctrl-C" >&2
-exec build/release/daemon/gimbald --sim "${sim_arg[@]}" "$@"
+echo "operator console: http://127.0.0.1:8761/  (metrics: /metrics, health: /healthz)" >&2
+# --sim replaces the file's gimbals; the file brings the http section.
+exec build/release/daemon/gimbald --sim "${sim_arg[@]}" -c config/sim.json "$@"

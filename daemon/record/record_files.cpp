@@ -67,7 +67,7 @@ bool RecordFiles::open_next(std::int64_t unix_seconds) {
     // O_EXCL: a name already taken (a restart within the same second) moves to the next one.
     for (int attempt = 0; attempt < 1000; ++attempt) {
         const auto path = (options_.dir / recording_file_name(unix_seconds, ++sequence_)).string();
-        const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+        const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0640);
         if (fd < 0) {
             if (errno == EEXIST) continue;
             set_error(path, errno);
@@ -84,6 +84,7 @@ bool RecordFiles::open_next(std::int64_t unix_seconds) {
             set_error(path, err);
             return false;
         }
+        opened_.push_back(path);
         enforce_total();
         return true;
     }

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace gimbald::record {
@@ -45,6 +46,8 @@ class RecordFiles {
     std::uint64_t files_deleted() const { return deleted_; }
     // The last error ("<path>: <reason>"), cleared by take_error().
     std::string take_error();
+    // The files opened since the last call, oldest first (for the log).
+    std::vector<std::string> take_opened() { return std::exchange(opened_, {}); }
 
   private:
     bool open_next(std::int64_t unix_seconds);
@@ -61,6 +64,7 @@ class RecordFiles {
     unsigned sequence_ = 0;
     std::uint64_t deleted_ = 0;
     std::string error_;
+    std::vector<std::string> opened_;
 };
 
 }  // namespace gimbald::record

@@ -1,8 +1,8 @@
 #include "record/recorder.hpp"
 
 #include <chrono>
-#include <csignal>
 #include <cmath>
+#include <csignal>
 #include <stdexcept>
 #include <utility>
 
@@ -43,6 +43,7 @@ Recorder::Recorder(boost::asio::io_context& io, RecorderOptions options)
         throw std::runtime_error("record: cannot create a recording file: " + error);
     file_ = files_.current_path();
     reported_file_ = file_;
+    files_.take_opened();  // the first file is logged here
     file_bytes_ = files_.current_bytes();
     buffer_.reserve(options_.buffer_bytes);
     log::info("record_file", "recording to a new file",
@@ -107,6 +108,7 @@ void Recorder::writer_loop() {
             {
                 const std::lock_guard lock(file_mutex_);
                 file_ = files_.current_path();
+                for (auto& path : files_.take_opened()) opened_.push_back(std::move(path));
                 if (auto error = files_.take_error(); !error.empty()) last_error_ = error;
             }
             file_bytes_.store(files_.current_bytes(), std::memory_order_relaxed);
@@ -148,16 +150,17 @@ void Recorder::schedule_report() {
 
 // Logs from the io thread what the writer thread saw (the logger is not shared with it).
 void Recorder::report() {
-    std::string file, error;
+    std::string error;
+    std::vector<std::string> opened;
     {
         const std::lock_guard lock(file_mutex_);
-        file = file_;
         error = std::exchange(last_error_, std::string());
+        opened.swap(opened_);
     }
-    if (file != reported_file_) {
+    for (auto& file : opened) {  // every rotation, also several within one second
         log::info("record_file", "recording to a new file",
                   {{"file", file}, {"previous", reported_file_}});
-        reported_file_ = file;
+        reported_file_ = std::move(file);
     }
     const auto failures = write_failures_.load(std::memory_order_relaxed);
     if (failures > reported_failures_ || !error.empty()) {

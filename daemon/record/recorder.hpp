@@ -85,12 +85,13 @@ class Recorder {
     std::atomic<std::uint64_t> write_failures_{0};  // packets lost to write errors
     std::atomic<std::uint64_t> file_bytes_{0};
     mutable std::mutex file_mutex_;
-    std::string file_;        // guarded by file_mutex_
-    std::string last_error_;  // guarded by file_mutex_
+    std::string file_;                 // guarded by file_mutex_
+    std::string last_error_;           // guarded by file_mutex_
+    std::vector<std::string> opened_;  // guarded by file_mutex_: files started, not logged yet
 
     std::uint64_t buffer_full_ = 0;  // io thread
     std::uint64_t reported_failures_ = 0;
-    std::string reported_file_;
+    std::string reported_file_;  // io thread: the last file logged
     gimbal::log::RateLimitedLog buffer_full_log_;
     gimbal::log::RateLimitedLog write_error_log_;
 };

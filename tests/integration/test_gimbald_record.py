@@ -202,6 +202,7 @@ class Recording(gt.GimbaldTestCase):
 
         files = recordings(self.dir)
         self.assertEqual(files, [record["file"]])
+        self.assertEqual(os.stat(files[0]).st_mode & 0o777 & ~0o640, 0, "readable by others")
         rec = parse(files[0])
         self.assertEqual(rec["whole_bytes"], rec["size"], "SIGTERM left a partial block")
         self.assertTrue(rec["userappl"].startswith("gimbald "))
@@ -279,6 +280,9 @@ class Recording(gt.GimbaldTestCase):
                         "fewer than 6 files opened: %s" % daemon.events("record_file"))
         self.assertEqual(daemon.stop(signal.SIGTERM), 0)
         opened = [e["file"] for e in daemon.events("record_file")]
+        # Every file started is logged once, in order: sequence numbers 1..N.
+        self.assertEqual([int(f.rsplit("-", 1)[1].split(".")[0]) for f in opened],
+                         list(range(1, len(opened) + 1)))
         files = recordings(self.dir)
         self.assertEqual(files, sorted(files))
         self.assertEqual(files, opened[-len(files):], "newest files kept, in name order")
@@ -358,7 +362,12 @@ class Recording(gt.GimbaldTestCase):
         a_file = os.path.join(self.workdir, "a-file")
         with open(a_file, "w") as f:
             f.write("x")
-        for directory, reason in ((missing, "No such file"), (a_file, "not a directory")):
+        cases = [(missing, "No such file"), (a_file, "not a directory")]
+        if os.geteuid() != 0:  # root writes anywhere
+            read_only = os.path.join(self.workdir, "read-only")
+            os.mkdir(read_only, 0o500)
+            cases.append((read_only, "not writable: Permission denied"))
+        for directory, reason in cases:
             config_path = os.path.join(self.workdir, "bad.json")
             with open(config_path, "w") as f:
                 json.dump({"gimbals": [gt.orion_tcp("main", 1)], "record": {"dir": directory}},

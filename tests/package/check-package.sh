@@ -67,6 +67,8 @@ for tool in gimbal-replay gimbal-export; do
   [ -d "$src/tools/$tool" ] && expect -rwxr-xr-x "usr/bin/$tool" \
     && expect -rw-r--r-- "usr/share/man/man1/$tool.1.gz"
 done
+# The operator console (contract section 11), served from here by default.
+[ -f "$src/web/index.html" ] && expect -rw-r--r-- usr/share/gimbald/web/index.html
 [ -f "$src/dissectors/gimbald.lua" ] && expect -rw-r--r-- "usr/lib/.*/wireshark/plugins/gimbald.lua"
 
 # --- run from the unpacked package (only where the package's architecture runs here)

@@ -81,9 +81,12 @@ def main():
         # The error message of an unknown name lists every packet that can be asked for.
         listing = c.request("request", packet="no_such_packet")["error"]["message"]
         names = re.findall(r"\b[a-z][a-z0-9_]+\b", listing.split("e.g.", 1)[1])
-        asked = ["versions"] + names
+        # The message lists examples only: network_diagnostics is asked for by name, and a
+        # staring geopoint makes the gimbal send StareStart (STATE `stare`).
+        asked = ["versions", "network_diagnostics"] + names
         for name in asked:
             c.request("request", packet=name)
+        c.request("geopoint", lat=45.71, lon=-121.47, alt=100, stare=True)
         time.sleep(args.settle)
         state = c.request("state")["state"]
         empty = sorted(k for k, v in state.items() if v is None)

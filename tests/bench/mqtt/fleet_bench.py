@@ -94,8 +94,8 @@ def main():
             t = state.get("telemetry")
             if not t or not t.get("utc"):
                 return
-            station = msg.topic.split("/")[1]
-            offset = offsets.get(station, 0.0)
+            _, station, gimbal, _ = msg.topic.split("/")
+            offset = offsets.get((station, gimbal), 0.0)
             utc = parse_utc(t["utc"])
             with lock:
                 samples.append((now - utc - offset, now - utc - t.get("age_s", 0.0) - offset))
@@ -128,23 +128,29 @@ def main():
 
         time.sleep(args.warmup)
         # The simulated gimbal's clock (telemetry.utc) is not exactly the system clock: per
-        # daemon, measure `now - utc - age_s` of a STATE fetched over the UDP socket (loopback
-        # round trip well under 1 ms) and subtract its median from that daemon's samples.
+        # gimbal (each simulated gimbal has its own clock), measure `time - utc - age_s` of a
+        # STATE fetched over the UDP socket and subtract it from that gimbal's samples.
         offsets = {}
         for d, port_udp in enumerate(udp_ports):
             u = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
             u.settimeout(1)
-            values = []
-            for i in range(21):
-                u.sendto(json.dumps({"cmd": "state", "id": i, "gimbal": "g0",
-                                     "keys": ["telemetry"]}).encode(), ("127.0.0.1", port_udp))
-                reply = json.loads(u.recv(65536))
-                now = time.time()
-                t = reply["state"]["telemetry"]
-                values.append(now - parse_utc(t["utc"]) - t["age_s"])
-                time.sleep(0.013)
+            for g in range(args.gimbals):
+                values = []  # (round trip, offset)
+                for i in range(21):
+                    sent = time.time()
+                    u.sendto(json.dumps({"cmd": "state", "id": i, "gimbal": "g%d" % g,
+                                         "keys": ["telemetry"]}).encode(),
+                             ("127.0.0.1", port_udp))
+                    reply = json.loads(u.recv(65536))
+                    received = time.time()
+                    t = reply["state"]["telemetry"]
+                    # The snapshot was taken between send and receive: as NTP does, trust
+                    # the exchange with the shortest round trip and take its midpoint.
+                    values.append((received - sent, (sent + received) / 2 - parse_utc(t["utc"])
+                                   - t["age_s"]))
+                    time.sleep(0.013)
+                offsets[("st%d" % d, "g%d" % g)] = min(values)[1]
             u.close()
-            offsets["st%d" % d] = statistics.median(values)
         start_ticks = [cpu_ticks(p.pid) for p in daemons]
         t0 = time.monotonic()
         counting.set()
@@ -163,8 +169,8 @@ def main():
         print("fleet: %d gimbald x %d gimbals, STATE %g Hz%s, %.0f s" % (
             args.daemons, args.gimbals, args.rate,
             " (keys %s)" % args.keys if args.keys else " (full STATE)", elapsed))
-        print("sim clock offsets (ms, subtracted): %s" % ", ".join(
-            "%.1f" % (v * 1000) for v in offsets.values()))
+        print("sim clock offsets (ms, subtracted, per gimbal): min %.1f, max %.1f" % (
+            min(offsets.values()) * 1000, max(offsets.values()) * 1000))
         print("messages: %d received of %d expected (%.1f %%)" % (
             len(data), expected, 100.0 * len(data) / expected if expected else 0))
         print("| latency | p50 ms | p99 ms | max ms |")

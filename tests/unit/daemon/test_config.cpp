@@ -133,6 +133,8 @@ TEST_CASE("the example configuration is valid and holds every default", "[config
     minimal["gimbals"].erase(2);
     minimal["vehicle"] = json::object();
     minimal["mqtt"] = {{"station", "ground-1"}};  // the station default is the host name
+    minimal["http"] = json::object();
+    minimal["record"] = {{"dir", "/var/tmp"}};    // the one required key of `record`
     const auto defaults = parse_config(minimal.dump());
     REQUIRE(defaults.ok());
     CHECK(defaults.config == config);
@@ -793,4 +795,31 @@ TEST_CASE("laser fire on a non-loopback socket needs signed commands", "[config]
     config["command"] = with_key(secret_file("fire.key", hex_secret, 0600))["command"];
     config["command"]["bind"] = "0.0.0.0";
     CHECK(parse_config(config.dump()).ok());
+}
+
+TEST_CASE("record: dir must be an existing writable directory, sizes in range", "[config]") {
+    const auto with_record = [](json record) {
+        return problems_after([&](json& c) { c["record"] = record; });
+    };
+    CHECK(with_record({{"dir", "/var/tmp"}}).empty());
+    const auto fractions = parse_config(
+        R"({"gimbals": [], "record": {"dir": "/var/tmp", "max_file_mb": 0.05, "max_total_mb": 0.2}})",
+        GimbalsSection::ignored);
+    REQUIRE(fractions.ok());
+    REQUIRE(fractions.config.record.has_value());
+    CHECK(fractions.config.record->max_file_mb == 0.05);
+    CHECK(fractions.config.record->max_total_mb == 0.2);
+    CHECK(with_record(json::object()) == std::vector<std::string>{"record.dir: required"});
+    CHECK(with_record({{"dir", "/nonexistent/rec"}}) ==
+          std::vector<std::string>{"record.dir: /nonexistent/rec: No such file or directory"});
+    CHECK(with_record({{"dir", "/etc/passwd"}}) ==
+          std::vector<std::string>{"record.dir: /etc/passwd: not a directory"});
+    CHECK(with_record({{"dir", "/var/tmp"}, {"max_file_mb", 0}}) ==
+          std::vector<std::string>{"record.max_file_mb: must be between 0.001 and 1e+06"});
+    CHECK(with_record({{"dir", "/var/tmp"}, {"max_file_mb", 10}, {"max_total_mb", 5}}) ==
+          std::vector<std::string>{"record.max_total_mb: must be at least max_file_mb"});
+    // Off unless present: no key, no recorder.
+    const auto off = parse_config(valid_config().dump());
+    REQUIRE(off.ok());
+    CHECK_FALSE(off.config.record.has_value());
 }

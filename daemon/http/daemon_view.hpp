@@ -1,0 +1,36 @@
+// What the HTTP side reads of the rest of the daemon, handed in by App so daemon/http depends
+// on no other transport: the configuration, the one request path (with the sessions), and a
+// few numbers from the UDP socket, the vehicle feed and MQTT.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <map>
+
+#include "config.hpp"
+#include "request_path.hpp"
+
+namespace gimbald::http {
+
+struct DaemonView {
+    const gimbal::daemon::Config* config = nullptr;
+    RequestPath* path = nullptr;
+    std::function<std::size_t()> udp_subscribers;
+    std::function<std::uint64_t()> udp_dropped_sources;
+    std::function<bool()> vehicle_up;  // false without a vehicle section
+    std::function<bool()> mqtt_up;     // false without an mqtt section
+};
+
+// The HTTP server's own counters (metrics).
+struct HttpStats {
+    std::uint64_t connections_total = 0;    // accepted and served
+    std::uint64_t refused_total = 0;        // source not in command.allow
+    std::uint64_t over_capacity_total = 0;  // closed at once: http.max_connections reached
+    std::size_t open_connections = 0;       // HTTP (WebSocket clients not included)
+    std::size_t websocket_clients = 0;
+    std::uint64_t websocket_dropped_total = 0;          // send queue full
+    std::map<unsigned, std::uint64_t> responses_total;  // by HTTP status
+};
+
+}  // namespace gimbald::http

@@ -1,0 +1,48 @@
+// The HTTP paths of contract section 11 except the WebSocket upgrade: one request in, one
+// response out. No socket here: HttpConnection reads and writes, this decides.
+#pragma once
+
+#include <boost/beast/http/message.hpp>
+#include <boost/beast/http/string_body.hpp>
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "command_metrics.hpp"
+#include "daemon_view.hpp"
+
+namespace gimbald::http {
+
+using Request = boost::beast::http::request<boost::beast::http::string_body>;
+using Response = boost::beast::http::response<boost::beast::http::string_body>;
+
+struct ApiOptions {
+    bool console = true;
+    std::filesystem::path web_root;
+    std::optional<std::string> tiles_url;
+};
+
+class HttpApi {
+  public:
+    HttpApi(DaemonView daemon, ApiOptions options, HttpStats& stats);
+
+    // `source`: "http:IP:PORT", the request path's `src`.
+    Response handle(const Request& request, const std::string& source);
+
+    // A response for an HTTP-level problem (bad request, too large...): a JSON error body.
+    static Response error(boost::beast::http::status status, unsigned version, std::string text);
+
+    const std::filesystem::path& web_root() const { return options_.web_root; }
+
+  private:
+    Response command(const Request& request, const std::string& source);
+    Response static_file(const Request& request);
+    nlohmann::json console_info() const;
+
+    DaemonView daemon_;
+    ApiOptions options_;
+    HttpStats& stats_;
+    CommandMetrics commands_;
+};
+
+}  // namespace gimbald::http

@@ -1,0 +1,78 @@
+// The HTTP server of contract section 11: one acceptor on the daemon's io_context. A
+// connection from outside command.allow is closed at once (counted, logged like a dropped
+// datagram); so is one over http.max_connections. Connections and WebSocket clients are
+// tracked so stop() closes them all and io_context::run() returns.
+#pragma once
+
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/ip/tcp.hpp>
+#include <functional>
+#include <memory>
+#include <set>
+#include <string>
+
+#include "daemon_view.hpp"
+#include "http_api.hpp"
+#include "logging.hpp"
+#include "state/event.hpp"
+#include "stream_hub.hpp"
+
+namespace gimbald::http {
+
+class HttpConnection;
+
+struct HttpServerOptions {
+    std::string bind = "127.0.0.1";
+    std::uint16_t port = 8761;
+    std::size_t max_connections = 64;
+    double idle_timeout_s = 30;
+    std::size_t ws_queue_max = 64;
+    ApiOptions api;
+    std::function<bool(const boost::asio::ip::address&)> allowed;
+};
+
+class HttpServer {
+  public:
+    // Binds and listens; throws boost::system::system_error when it cannot (exit code 2).
+    HttpServer(boost::asio::io_context& io, HttpServerOptions options, DaemonView daemon);
+    ~HttpServer();
+
+    void start();
+    void stop();
+
+    boost::asio::ip::tcp::endpoint local_endpoint() const { return acceptor_.local_endpoint(); }
+    void publish_event(const std::string& gimbal, const gimbal::state::Event& event) {
+        hub_.publish_event(gimbal, event);
+    }
+    std::size_t websocket_clients() const { return hub_.clients(); }
+
+    // For HttpConnection.
+    HttpApi& api() { return api_; }
+    StreamHub& hub() { return hub_; }
+    HttpStats& stats() { return stats_; }
+    double idle_timeout_s() const { return options_.idle_timeout_s; }
+    void add(HttpConnection* c);
+    void remove(HttpConnection* c);
+    void count_response(unsigned status) { ++stats_.responses_total[status]; }
+
+  private:
+    void do_accept();
+    void on_accept(const boost::system::error_code& ec, boost::asio::ip::tcp::socket socket);
+    void update_open();
+
+    boost::asio::io_context& io_;
+    HttpServerOptions options_;
+    HttpStats stats_;
+    HttpApi api_;
+    StreamHub hub_;
+    boost::asio::ip::tcp::acceptor acceptor_;
+    std::set<HttpConnection*> connections_;
+    gimbal::log::RateLimitedLog refused_;
+    gimbal::log::RateLimitedLog over_capacity_;
+    bool stopped_ = false;
+};
+
+// "http:127.0.0.1:5000", "http:[::1]:5000"
+std::string http_source(const boost::asio::ip::tcp::endpoint& endpoint);
+
+}  // namespace gimbald::http

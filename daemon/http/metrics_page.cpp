@@ -1,0 +1,134 @@
+#include "metrics_page.hpp"
+
+#include <limits>
+
+#include "metrics/exposition.hpp"
+
+namespace gimbald::http {
+
+using gimbal::metrics::Exposition;
+using gimbal::metrics::Labels;
+using gimbal::metrics::Type;
+using nlohmann::json;
+
+namespace {
+
+double number_at(const json& object, const char* key) {
+    const auto it = object.find(key);
+    return it != object.end() && it->is_number() ? it->get<double>() : 0.0;
+}
+
+// The age of the gimbal's latest position telemetry: Orion `telemetry`, Viewpro `output`.
+// +Inf until the first one arrives, so an alert on "age > N" fires for a gimbal that never
+// sent any.
+double telemetry_age_s(const json& state) {
+    for (const char* key : {"telemetry", "output"}) {
+        const auto it = state.find(key);
+        if (it != state.end() && it->is_object()) {
+            const auto age = it->find("age_s");
+            if (age != it->end() && age->is_number()) return age->get<double>();
+        }
+    }
+    return std::numeric_limits<double>::infinity();
+}
+
+}  // namespace
+
+std::string render_metrics(const DaemonView& daemon, const CommandMetrics& commands,
+                           const HttpStats& http) {
+    Exposition e;
+    e.family("gimbald_build_info", Type::gauge, "Always 1; the version is a label.");
+    e.sample({{"version", GIMBALD_VERSION}}, 1);
+
+    // One snapshot per gimbal: every link metric comes from the same instant.
+    struct Gimbal {
+        GimbalSession* session;
+        json state;
+    };
+    std::vector<Gimbal> gimbals;
+    for (auto* session : daemon.path->sessions()) gimbals.push_back({session, session->snapshot()});
+    auto per_gimbal = [&](const char* name, Type type, const char* help, auto value) {
+        e.family(name, type, help);
+        for (const auto& g : gimbals) e.sample({{"gimbal", g.session->name()}}, value(g));
+    };
+    auto link_counter = [&](const char* name, const char* key, const char* help) {
+        per_gimbal(name, Type::counter, help,
+                   [key](const Gimbal& g) { return number_at(g.state.at("link"), key); });
+    };
+    per_gimbal("gimbald_link_up", Type::gauge, "1 when the gimbal's link is connected.",
+               [](const Gimbal& g) { return g.session->connected() ? 1.0 : 0.0; });
+    link_counter("gimbald_link_rx_bytes_total", "rx_bytes", "Bytes received from the gimbal.");
+    link_counter("gimbald_link_tx_bytes_total", "tx_bytes", "Bytes written to the gimbal.");
+    link_counter("gimbald_link_rx_packets_total", "rx_packets",
+                 "Valid packets received from the gimbal.");
+    link_counter("gimbald_link_tx_packets_total", "tx_packets", "Packets written to the gimbal.");
+    link_counter("gimbald_link_bad_checksums_total", "bad_checksums",
+                 "Frames from the gimbal dropped for a bad checksum.");
+    link_counter("gimbald_link_dropped_bytes_total", "dropped_bytes",
+                 "Bytes from the gimbal skipped while looking for a frame.");
+    link_counter("gimbald_link_reconnects_total", "reconnects", "Link reconnections.");
+    per_gimbal("gimbald_telemetry_age_seconds", Type::gauge,
+               "Age of the gimbal's latest position telemetry; +Inf before the first.",
+               [](const Gimbal& g) { return telemetry_age_s(g.state); });
+    per_gimbal("gimbald_telemetry_stale", Type::gauge,
+               "1 when no telemetry arrived within telemetry.stale_after_s.",
+               [](const Gimbal& g) { return g.state.value("stale", true) ? 1.0 : 0.0; });
+
+    e.family("gimbald_laser_firing", Type::gauge,
+             "1 while the daemon last commanded this laser to fire (dead-man pending).");
+    for (const auto& g : gimbals) {
+        if (g.session->protocol() != "orion") continue;  // Viewpro has no laser commands
+        for (std::uint8_t index = 0; index < 2; ++index)
+            e.sample({{"gimbal", g.session->name()}, {"index", std::to_string(index)}},
+                     g.session->laser_firing(index) ? 1.0 : 0.0);
+    }
+
+    e.family("gimbald_commands_total", Type::counter,
+             "Requests completed by the request path (every transport), by command and result "
+             "(ok or the error code).");
+    for (const auto& [key, count] : commands.totals())
+        e.sample({{"cmd", key.first}, {"result", key.second}}, static_cast<double>(count));
+    e.family("gimbald_command_duration_seconds", Type::histogram,
+             "Time from a request's arrival to its reply, every transport.");
+    e.histogram({}, commands.durations());
+
+    const auto& counters = daemon.path->counters();
+    e.family("gimbald_requests_rate_limited_total", Type::counter,
+             "Requests refused by command.rate_limit.");
+    e.sample({}, static_cast<double>(counters.rate_limited));
+    e.family("gimbald_dropped_sources_total", Type::counter,
+             "Datagrams and connections from sources outside command.allow.");
+    e.sample({{"transport", "udp"}},
+             static_cast<double>(daemon.udp_dropped_sources ? daemon.udp_dropped_sources() : 0));
+    e.sample({{"transport", "http"}}, static_cast<double>(http.refused_total));
+
+    const double udp = daemon.udp_subscribers ? static_cast<double>(daemon.udp_subscribers()) : 0;
+    e.family("gimbald_subscribers", Type::gauge,
+             "STATE subscribers: UDP subscriptions plus WebSocket clients.");
+    e.sample({}, udp + static_cast<double>(http.websocket_clients));
+    e.family("gimbald_vehicle_up", Type::gauge,
+             "1 while the vehicle's MAVLink feed is fresh; 0 without a vehicle section.");
+    e.sample({}, daemon.vehicle_up && daemon.vehicle_up() ? 1 : 0);
+    e.family("gimbald_mqtt_up", Type::gauge,
+             "1 while connected to the MQTT broker; 0 without an mqtt section.");
+    e.sample({}, daemon.mqtt_up && daemon.mqtt_up() ? 1 : 0);
+
+    e.family("gimbald_http_connections", Type::gauge, "Open HTTP and WebSocket connections.");
+    e.sample({}, static_cast<double>(http.open_connections + http.websocket_clients));
+    e.family("gimbald_http_connections_total", Type::counter, "HTTP connections accepted.");
+    e.sample({}, static_cast<double>(http.connections_total));
+    e.family("gimbald_http_connections_rejected_total", Type::counter,
+             "HTTP connections closed at once because http.max_connections were open.");
+    e.sample({}, static_cast<double>(http.over_capacity_total));
+    e.family("gimbald_http_responses_total", Type::counter, "HTTP responses by status code.");
+    for (const auto& [status, count] : http.responses_total)
+        e.sample({{"code", std::to_string(status)}}, static_cast<double>(count));
+    e.family("gimbald_websocket_clients", Type::gauge, "Open WebSocket streams (/api/stream).");
+    e.sample({}, static_cast<double>(http.websocket_clients));
+    e.family("gimbald_websocket_dropped_total", Type::counter,
+             "WebSocket clients dropped because their send queue was full.");
+    e.sample({}, static_cast<double>(http.websocket_dropped_total));
+    return e.text();
+}
+
+}  // namespace gimbald::http
