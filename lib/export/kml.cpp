@@ -44,8 +44,14 @@ std::string coordinates(const Points& points, Get get, std::string& mode) {
     for (const auto& p : points) {
         const Position& pos = get(p);
         if (!out.empty()) out += ' ';
-        out += number(pos.lon) + "," + number(pos.lat);
-        if (with_alt) out += "," + number(*pos.alt_msl);
+        // Appended piece by piece: GCC 12's -O2 warns falsely (-Wrestrict) on "," + string.
+        out += number(pos.lon);
+        out += ',';
+        out += number(pos.lat);
+        if (with_alt) {
+            out += ',';
+            out += number(*pos.alt_msl);
+        }
     }
     return out;
 }

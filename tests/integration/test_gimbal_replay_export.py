@@ -5,7 +5,8 @@ geopoint and then a path commanded during it. The recording is replayed at --spe
 a second gimbald, and the telemetry both daemons show is compared at matching gimbal system
 times (system_time_ms): lat, lon, alt, pan, tilt and mode must be equal. The same file is
 exported as GeoJSON (checked against RFC 7946's structure), KML (parsed as XML, KML 2.2
-names) and CSV (one row per telemetry packet, counted by an independent pcapng reader here).
+names) and CSV (one row per telemetry packet, counted by an independent pcapng reader here
+and by tshark with dissectors/gimbald.lua).
 
 The flight is recorded by gimbald's own recorder (the "record" configuration). The shorter
 checks (damaged files, pty, Viewpro, bad input) use recordings written here by
@@ -16,6 +17,7 @@ import io
 import json
 import os
 import re
+import shutil
 import socket
 import struct
 import subprocess
@@ -195,10 +197,28 @@ class ReplayExportTest(gt.GimbaldTestCase):
         self.assertTrue({"geopoint", "path"} <= {replayed[t]["mode"] for t in common})
 
         self.assertGreater(len(system_times), 250)
+        self.check_tshark_count(paths, len(system_times))
         self.check_csv(self.export(paths, "csv"), system_times, flight)
         self.check_geojson(json.loads(self.export(paths, "geojson", "--footprint-every", "5")),
                            flight)
         self.check_kml(self.export(paths, "kml"))
+
+    def check_tshark_count(self, paths, telemetry_packets):
+        """tshark with the project's dissector counts the same GeolocateTelemetry packets as
+        the test's own reader (skipped where tshark is not installed)."""
+        tshark = shutil.which("tshark")
+        lua = os.path.join(os.environ.get("GIMBAL_SOURCE_DIR", ""), "dissectors", "gimbald.lua")
+        if not tshark or not os.path.exists(lua):
+            sys.stderr.write("tshark or dissectors/gimbald.lua missing: tshark count not checked\n")
+            return
+        counted = 0
+        for path in paths:
+            result = subprocess.run([tshark, "-X", "lua_script:" + lua, "-r", path, "-Y",
+                                     "orion.id == 212", "-T", "fields", "-e", "orion.id"],
+                                    capture_output=True, text=True, timeout=60)
+            self.assertEqual(result.returncode, 0, result.stderr)
+            counted += len(result.stdout.split())
+        self.assertEqual(counted, telemetry_packets)
 
     def check_csv(self, text, system_times, flight):
         rows = list(csv.reader(io.StringIO(text)))
