@@ -4,6 +4,8 @@
 #include <csignal>
 #include <filesystem>
 
+#include <unistd.h>
+
 #include "http/static_files.hpp"
 #include "link/serial_link.hpp"
 #include "link/sim_link.hpp"
@@ -126,6 +128,11 @@ void App::start_http() {
     options.api.web_root =
         h.web_root ? std::filesystem::path(*h.web_root) : http::default_web_root();
     options.api.tiles_url = h.tiles_url;
+    options.api.site.allowed_hosts = h.allowed_hosts;
+    // This machine's own name is safe to accept: a rebinding attacker cannot serve pages
+    // under it.
+    if (char name[256] = {}; ::gethostname(name, sizeof name - 1) == 0 && name[0] != 0)
+        options.api.site.allowed_hosts.emplace_back(name);
     options.allowed = [this](const boost::asio::ip::address& a) {
         return config_.command.allowed(a);
     };

@@ -863,6 +863,21 @@ HttpConfig read_http(Fields& f) {
     f.integer("max_connections", http.max_connections, {1, 10000});
     f.number("idle_timeout_s", http.idle_timeout_s, {1, 3600});
     f.integer("ws_queue_max", http.ws_queue_max, {2, 100000});
+    if (const json* hosts = f.find("allowed_hosts")) {
+        if (!hosts->is_array()) {
+            f.problem("allowed_hosts", "must be an array of host names");
+        } else {
+            for (std::size_t i = 0; i < hosts->size(); ++i) {
+                const json& h = (*hosts)[i];
+                const std::string name = h.is_string() ? h.get<std::string>() : std::string();
+                if (name.empty() || name.find_first_of(":/ []") != std::string::npos)
+                    f.problems().add(index_path(f.path("allowed_hosts"), i),
+                                     "must be a host name without port, e.g. \"ground-1.lan\"");
+                else
+                    http.allowed_hosts.push_back(name);
+            }
+        }
+    }
     return http;
 }
 
@@ -877,7 +892,8 @@ json http_to_json(const HttpConfig& h) {
             {"web_root", optional(h.web_root)},
             {"max_connections", h.max_connections},
             {"idle_timeout_s", h.idle_timeout_s},
-            {"ws_queue_max", h.ws_queue_max}};
+            {"ws_queue_max", h.ws_queue_max},
+            {"allowed_hosts", h.allowed_hosts}};
 }
 
 // Object sections with no cross-dependencies: read each when present.

@@ -234,6 +234,8 @@ struct HttpConfig {
     unsigned max_connections = 64;         // HTTP and WebSocket connections together
     double idle_timeout_s = 30;            // a request must arrive (and finish) within this
     unsigned ws_queue_max = 64;            // messages queued for one WebSocket client
+    // Host names browsers may use besides addresses and localhost (DNS-rebinding guard).
+    std::vector<std::string> allowed_hosts;
     bool operator==(const HttpConfig&) const = default;
 };
 

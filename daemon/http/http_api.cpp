@@ -70,6 +70,20 @@ Response HttpApi::error(status code, unsigned version, std::string text) {
     return json_response(code, version, {{"error", std::move(text)}});
 }
 
+std::optional<Response> HttpApi::cross_site_refusal(const Request& request) const {
+    const auto text = [&](field f) {
+        const auto value = request[f];
+        return std::string_view(value.data(), value.size());
+    };
+    const auto host = text(field::host);
+    auto problem = host_problem(host, options_.site);
+    const std::string path(target_path(std::string(request.target())));
+    const bool acts = path == "/api/command" || path == "/api/stream";
+    if (!problem && acts) problem = origin_problem(text(field::origin), host);
+    if (!problem) return std::nullopt;
+    return error(status::forbidden, request.version(), *problem);
+}
+
 Response HttpApi::handle(const Request& request, const std::string& source) {
     const std::string target(request.target());
     const std::string path(target_path(target));

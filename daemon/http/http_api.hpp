@@ -10,6 +10,7 @@
 
 #include "command_metrics.hpp"
 #include "daemon_view.hpp"
+#include "site_check.hpp"
 
 namespace gimbald::http {
 
@@ -20,11 +21,17 @@ struct ApiOptions {
     bool console = true;
     std::filesystem::path web_root;
     std::optional<std::string> tiles_url;
+    SiteRules site;  // Host and Origin checks (site_check.hpp)
 };
 
 class HttpApi {
   public:
     HttpApi(DaemonView daemon, ApiOptions options, HttpStats& stats);
+
+    // A 403 for a request a browser was made to send from another site (wrong Host, or an
+    // Origin that is not this server on a request that acts), else nullopt. Checked before
+    // everything else, the WebSocket upgrade included.
+    std::optional<Response> cross_site_refusal(const Request& request) const;
 
     // `source`: "http:IP:PORT", the request path's `src`.
     Response handle(const Request& request, const std::string& source);

@@ -119,6 +119,10 @@ void HttpConnection::on_read(const boost::system::error_code& ec, std::size_t) {
     if (ec) return fail(ec, "read");
 
     auto request = parser_->release();
+    if (auto refusal = server_.api().cross_site_refusal(request)) {
+        server_.count_cross_site(address_, refusal->body());
+        return refuse(std::move(*refusal));
+    }
     const std::string target(request.target());
     if (target_path(target) == "/api/stream" && beast::websocket::is_upgrade(request)) {
         // The stream continues as a WebSocket; this connection object ends here.

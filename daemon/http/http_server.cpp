@@ -10,6 +10,13 @@ namespace asio = boost::asio;
 namespace log = gimbal::log;
 using asio::ip::tcp;
 
+void HttpServer::count_cross_site(const std::string& source, std::string_view why) {
+    ++stats_.cross_site_total;
+    cross_site_.poll();
+    cross_site_.hit("HTTP request refused (another site's page?)",
+                    {{"src", source}, {"reason", std::string(why)}});
+}
+
 std::string http_source(const tcp::endpoint& e) {
     const auto a = e.address();
     return "http:" + (a.is_v6() ? "[" + a.to_string() + "]" : a.to_string()) + ":" +
@@ -25,7 +32,9 @@ HttpServer::HttpServer(asio::io_context& io, HttpServerOptions options, DaemonVi
       refused_(log::Level::warn, "dropped_source",
                "HTTP connections from sources not in command.allow"),
       over_capacity_(log::Level::warn, "http_over_capacity",
-                     "HTTP connections refused at http.max_connections") {
+                     "HTTP connections refused at http.max_connections"),
+      cross_site_(log::Level::warn, "http_cross_site",
+                  "HTTP requests refused by the Host/Origin checks") {
     const tcp::endpoint local(asio::ip::make_address(options_.bind), options_.port);
     acceptor_.open(local.protocol());
     // TCP needs it to rebind at once after a restart (TIME_WAIT); a second daemon still fails.
@@ -77,6 +86,7 @@ void HttpServer::on_accept(const boost::system::error_code& ec, tcp::socket sock
     if (peer_ec) return do_accept();
     refused_.poll();
     over_capacity_.poll();
+    cross_site_.poll();
     if (options_.allowed && !options_.allowed(peer.address())) {
         ++stats_.refused_total;
         refused_.hit("HTTP connection from a source not in command.allow closed",

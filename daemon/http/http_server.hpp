@@ -54,6 +54,8 @@ class HttpServer {
     void add(HttpConnection* c);
     void remove(HttpConnection* c);
     void count_response(unsigned status) { ++stats_.responses_total[status]; }
+    // A request refused by the Host/Origin checks: a warning, rolled up.
+    void count_cross_site(const std::string& source, std::string_view why);
 
   private:
     void do_accept();
@@ -69,6 +71,7 @@ class HttpServer {
     std::set<HttpConnection*> connections_;
     gimbal::log::RateLimitedLog refused_;
     gimbal::log::RateLimitedLog over_capacity_;
+    gimbal::log::RateLimitedLog cross_site_;
     bool stopped_ = false;
 };
 

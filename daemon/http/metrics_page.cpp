@@ -120,6 +120,9 @@ std::string render_metrics(const DaemonView& daemon, const CommandMetrics& comma
     e.family("gimbald_http_connections_rejected_total", Type::counter,
              "HTTP connections closed at once because http.max_connections were open.");
     e.sample({}, static_cast<double>(http.over_capacity_total));
+    e.family("gimbald_http_cross_site_refused_total", Type::counter,
+             "HTTP requests refused (403) because their Host or Origin names another site.");
+    e.sample({}, static_cast<double>(http.cross_site_total));
     e.family("gimbald_http_responses_total", Type::counter, "HTTP responses by status code.");
     for (const auto& [status, count] : http.responses_total)
         e.sample({{"code", std::to_string(status)}}, static_cast<double>(count));

@@ -42,8 +42,7 @@ bool covers(const StreamSubscription& s, const std::string& gimbal) {
 
 StreamHub::StreamHub(boost::asio::io_context& io, RequestPath& path, HttpStats& stats,
                      std::size_t queue_max, double idle_timeout_s)
-    : io_(io),
-      path_(path),
+    : path_(path),
       stats_(stats),
       queue_max_(queue_max),
       idle_timeout_s_(idle_timeout_s),

@@ -54,7 +54,6 @@ class StreamHub {
     void schedule();
     void tick();
 
-    boost::asio::io_context& io_;
     RequestPath& path_;
     HttpStats& stats_;
     std::size_t queue_max_;

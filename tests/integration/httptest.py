@@ -103,7 +103,7 @@ def metric(metrics, name, **labels):
 class WebSocket:
     """A minimal RFC 6455 client."""
 
-    def __init__(self, port, path="/api/stream", rcvbuf=None, timeout=5.0):
+    def __init__(self, port, path="/api/stream", rcvbuf=None, timeout=5.0, origin=None):
         self.sock = socket.socket(socket.AF_INET, socket.SOCK_STREAM)
         if rcvbuf:
             # Before connect(): the window the server sees is then small from the start.
@@ -111,9 +111,11 @@ class WebSocket:
         self.sock.settimeout(timeout)
         self.sock.connect(("127.0.0.1", port))
         key = base64.b64encode(os.urandom(16)).decode()
+        origin_line = "Origin: %s\r\n" % origin if origin else ""
         self.sock.sendall(("GET %s HTTP/1.1\r\nHost: 127.0.0.1:%d\r\nUpgrade: websocket\r\n"
-                           "Connection: Upgrade\r\nSec-WebSocket-Key: %s\r\n"
-                           "Sec-WebSocket-Version: 13\r\n\r\n" % (path, port, key)).encode())
+                           "Connection: Upgrade\r\nSec-WebSocket-Key: %s\r\n%s"
+                           "Sec-WebSocket-Version: 13\r\n\r\n" % (path, port, key,
+                                                                   origin_line)).encode())
         self.buffer = b""
         while b"\r\n\r\n" not in self.buffer:
             chunk = self.sock.recv(4096)

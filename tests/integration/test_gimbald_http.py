@@ -99,6 +99,54 @@ class HttpWithSimulator(gt.GimbaldTestCase):
 
     # --- POST /api/command ---------------------------------------------------------
 
+    def test_other_sites_pages_cannot_command_or_read(self):
+        """A page from another site in the operator's browser (CSRF, cross-site WebSocket,
+        DNS rebinding) is refused with 403 and nothing reaches the gimbal; the console's own
+        origin and clients without an Origin header are served."""
+        geopoint = json.dumps({"cmd": "geopoint", "lat": 45.0, "lon": -121.0,
+                               "alt": 77.0}).encode()
+        start = len(self.sim.rx())
+        # A form or fetch() on another site: text/plain needs no CORS preflight.
+        status, _, body = ht.request(self.port, "POST", "/api/command", body=geopoint,
+                                     headers={"Content-Type": "text/plain",
+                                              "Origin": "https://attacker.example"})
+        self.assertEqual(status, 403)
+        self.assertIn("attacker.example", json.loads(body)["error"])
+        # Another local port is another origin too.
+        status, _, _ = ht.request(self.port, "POST", "/api/command", body=geopoint,
+                                  headers={"Origin": "http://127.0.0.1:1"})
+        self.assertEqual(status, 403)
+        # Cross-site WebSocket: the upgrade is refused before it happens.
+        with self.assertRaises(ConnectionError) as refused:
+            ht.WebSocket(self.port, origin="https://attacker.example")
+        self.assertIn("403", str(refused.exception))
+        # DNS rebinding: the page's own name in Host, even for reading.
+        for path in ("/api/state", "/metrics", "/"):
+            status, _, _ = ht.request(self.port, "GET", path,
+                                      headers={"Host": "attacker.example:%d" % self.port})
+            self.assertEqual(status, 403, path)
+        time.sleep(0.5)
+        self.assertIsNone(self.sim.wait_rx(gt.by_name("geopoint_cmd"), start=start,
+                                           timeout=0.5),
+                          "a cross-site request reached the gimbal")
+        log = self.daemon.wait_log(lambda e: e.get("event") == "http_cross_site")
+        self.assertEqual(log["level"], "warn")
+        _, metrics = self.metrics()
+        self.assertGreaterEqual(ht.metric(metrics, "gimbald_http_cross_site_refused_total"), 6)
+        # The console's own page (same origin) and plain clients still work.
+        origin = "http://127.0.0.1:%d" % self.port
+        status, _, body = ht.request(self.port, "POST", "/api/command", body=geopoint,
+                                     headers={"Content-Type": "application/json",
+                                              "Origin": origin})
+        self.assertEqual(status, 200)
+        self.assertTrue(json.loads(body)["ok"], body)
+        self.assertIsNotNone(self.sim.wait_rx(gt.by_name("geopoint_cmd"), start=start))
+        ws = ht.WebSocket(self.port, origin=origin)
+        ws.close()
+        status, _, _ = ht.request(self.port, "GET", "/api/state",
+                                  headers={"Host": "localhost:%d" % self.port})
+        self.assertEqual(status, 200)
+
     def test_command_reaches_the_simulator_and_the_metrics(self):
         _, before = self.metrics()
         count_before = ht.metric(before, "gimbald_command_duration_seconds_count") or 0
@@ -209,7 +257,7 @@ class HttpWithSimulator(gt.GimbaldTestCase):
         for path in ("/../outside.txt", "/js/../../outside.txt", "/%2e%2e/outside.txt",
                      "/js/%2E%2E/%2e%2e/outside.txt", "/.hidden", "/escape.txt",
                      "/nothing-here.html", "/%00", "/%zz", "/js/..%5c..%5coutside.txt"):
-            raw = ht.raw_exchange(self.port, ("GET %s HTTP/1.1\r\nHost: x\r\nConnection: close"
+            raw = ht.raw_exchange(self.port, ("GET %s HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close"
                                               "\r\n\r\n" % path).encode())
             self.assertIn(ht.status_of(raw), (400, 404), path)
             self.assertNotIn(b"outside the web root", raw, path)
@@ -241,13 +289,13 @@ class HttpWithSimulator(gt.GimbaldTestCase):
     def test_malformed_http(self):
         for raw in (b"THIS IS NOT HTTP\r\n\r\n", b"GET / HTTP/9.9\r\n\r\n",
                     b"GET / HTTP/1.1\r\nBad Header Line\r\n\r\n",
-                    b"POST /api/command HTTP/1.1\r\nHost: x\r\nContent-Length: abc\r\n\r\n",
+                    b"POST /api/command HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Length: abc\r\n\r\n",
                     b"\x16\x03\x01\x02\x00\x01\x00\x01\xfc\x03\x03" + os.urandom(64)):
             self.assertEqual(ht.status_of(ht.raw_exchange(self.port, raw)), 400, raw[:40])
             self.assertServing()
 
     def test_oversized_header_and_body(self):
-        big_header = (b"GET /healthz HTTP/1.1\r\nHost: x\r\nX-Filler: " + b"a" * 9000 +
+        big_header = (b"GET /healthz HTTP/1.1\r\nHost: 127.0.0.1\r\nX-Filler: " + b"a" * 9000 +
                       b"\r\n\r\n")
         self.assertEqual(ht.status_of(ht.raw_exchange(self.port, big_header)), 431)
         self.assertServing()
@@ -255,7 +303,7 @@ class HttpWithSimulator(gt.GimbaldTestCase):
         status, _, _ = ht.request(self.port, "POST", "/api/command", body=body)
         self.assertEqual(status, 413)
         self.assertServing()
-        chunked = (b"POST /api/command HTTP/1.1\r\nHost: x\r\nTransfer-Encoding: chunked\r\n\r\n" +
+        chunked = (b"POST /api/command HTTP/1.1\r\nHost: 127.0.0.1\r\nTransfer-Encoding: chunked\r\n\r\n" +
                    b"".join(b"1000\r\n" + b"x" * 4096 + b"\r\n" for _ in range(3)) + b"0\r\n\r\n")
         self.assertEqual(ht.status_of(ht.raw_exchange(self.port, chunked)), 413)
         self.assertServing()
@@ -289,7 +337,7 @@ class HttpWithSimulator(gt.GimbaldTestCase):
         s = socket.create_connection(("127.0.0.1", self.port))
         self.addCleanup(s.close)
         s.settimeout(2)
-        s.sendall(b"POST /api/command HTTP/1.1\r\nHost: x\r\nExpect: 100-continue\r\n"
+        s.sendall(b"POST /api/command HTTP/1.1\r\nHost: 127.0.0.1\r\nExpect: 100-continue\r\n"
                   b"Content-Length: %d\r\n\r\n" % len(body))
         self.assertEqual(s.recv(25), b"HTTP/1.1 100 Continue\r\n\r\n")
         s.sendall(body)
@@ -465,11 +513,11 @@ class HttpConfigured(gt.GimbaldTestCase):
             {"gimbals": [{"name": "s", "protocol": "orion", "link": {"type": "sim"}}],
              "command": {"allow": ["127.0.0.2/32"]}}))
         port = http_port(daemon)
-        raw = ht.raw_exchange(port, b"GET /healthz HTTP/1.1\r\nHost: x\r\n\r\n",
+        raw = ht.raw_exchange(port, b"GET /healthz HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n",
                               source="127.0.0.1")
         self.assertEqual(raw, b"")  # closed without a response
         self.assertTrue(daemon.wait_log(lambda e: e.get("event") == "dropped_source"))
-        raw = ht.raw_exchange(port, b"GET /api/console HTTP/1.1\r\nHost: x\r\n"
+        raw = ht.raw_exchange(port, b"GET /api/console HTTP/1.1\r\nHost: 127.0.0.1\r\n"
                               b"Connection: close\r\n\r\n", source="127.0.0.2")
         self.assertEqual(ht.status_of(raw), 200)
         self.assertIn(b'"laser_allow_fire"', raw)
@@ -523,7 +571,7 @@ class HttpConfigured(gt.GimbaldTestCase):
         s = socket.create_connection(("127.0.0.1", port))
         s.settimeout(5)
         t0 = time.monotonic()
-        s.sendall(b"GET /healthz HTTP/1.1\r\nHost: x\r\n")  # never finished
+        s.sendall(b"GET /healthz HTTP/1.1\r\nHost: 127.0.0.1\r\n")  # never finished
         self.assertEqual(s.recv(100), b"")
         self.assertLess(time.monotonic() - t0, 4)
         s.close()
@@ -550,11 +598,11 @@ class HttpConfigured(gt.GimbaldTestCase):
         self.addCleanup(streaming.close)
         self.assertEqual(streaming.recv_json()["type"], "state")
         idle = socket.create_connection(("127.0.0.1", port))  # keep-alive, between requests
-        idle.sendall(b"GET /api/console HTTP/1.1\r\nHost: x\r\n\r\n")
+        idle.sendall(b"GET /api/console HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n")
         idle.settimeout(5)
         self.assertEqual(ht.status_of(idle.recv(65536)), 200)
         partial = socket.create_connection(("127.0.0.1", port))  # half a request
-        partial.sendall(b"POST /api/command HTTP/1.1\r\nHost: x\r\nContent-Length: 100\r\n\r\n{")
+        partial.sendall(b"POST /api/command HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Length: 100\r\n\r\n{")
         for s in (idle, partial):
             self.addCleanup(s.close)
         time.sleep(0.2)
