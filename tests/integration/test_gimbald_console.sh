@@ -8,29 +8,14 @@ set -u
 here="$(cd "$(dirname "$0")" && pwd)"
 dir="$here/console"
 
-if ! command -v node >/dev/null || ! command -v npm >/dev/null; then
-    # Debian's nodejs and npm (scripts/install-deps.sh installs them on a CI machine).
-    if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null; then
-        apt-get install -y --no-install-recommends nodejs npm >/dev/null 2>&1
-    elif command -v sudo >/dev/null && sudo -n true 2>/dev/null; then
-        sudo -n apt-get install -y --no-install-recommends nodejs npm >/dev/null 2>&1
-    fi
-fi
-if ! command -v node >/dev/null || ! command -v npm >/dev/null; then
-    echo "skip: node and npm not installed (apt-get install nodejs npm)"
-    exit 77
-fi
+# shellcheck source=npm_package.sh
+. "$here/npm_package.sh"
 CHROMIUM="${CHROMIUM:-$(command -v chromium || command -v chromium-browser || true)}"
 if [ -z "$CHROMIUM" ]; then
     echo "skip: chromium not installed (apt-get install chromium)"
     exit 77
 fi
 export CHROMIUM
-if [ ! -d "$dir/node_modules/puppeteer-core" ]; then
-    if ! (cd "$dir" && npm ci --no-audit --no-fund >/dev/null 2>&1); then
-        echo "skip: npm ci failed (no registry access?)"
-        exit 77
-    fi
-fi
+need_npm_package "$dir" puppeteer-core
 : "${GIMBALD:?GIMBALD not set}" "${GIMBAL_SIM:?GIMBAL_SIM not set}"
 exec timeout 150 node "$dir/console_test.js"
