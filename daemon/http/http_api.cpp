@@ -70,7 +70,7 @@ Response HttpApi::error(status code, unsigned version, std::string text) {
     return json_response(code, version, {{"error", std::move(text)}});
 }
 
-std::optional<Response> HttpApi::cross_site_refusal(const Request& request) const {
+std::optional<std::string> HttpApi::cross_site_problem(const Request& request) const {
     const auto text = [&](field f) {
         const auto value = request[f];
         return std::string_view(value.data(), value.size());
@@ -80,8 +80,7 @@ std::optional<Response> HttpApi::cross_site_refusal(const Request& request) cons
     const std::string path(target_path(std::string(request.target())));
     const bool acts = path == "/api/command" || path == "/api/stream";
     if (!problem && acts) problem = origin_problem(text(field::origin), host);
-    if (!problem) return std::nullopt;
-    return error(status::forbidden, request.version(), *problem);
+    return problem;
 }
 
 Response HttpApi::handle(const Request& request, const std::string& source) {

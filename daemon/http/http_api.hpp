@@ -28,10 +28,10 @@ class HttpApi {
   public:
     HttpApi(DaemonView daemon, ApiOptions options, HttpStats& stats);
 
-    // A 403 for a request a browser was made to send from another site (wrong Host, or an
-    // Origin that is not this server on a request that acts), else nullopt. Checked before
-    // everything else, the WebSocket upgrade included.
-    std::optional<Response> cross_site_refusal(const Request& request) const;
+    // Why a browser was made to send this request from another site (wrong Host, or an
+    // Origin that is not this server on a request that acts), else nullopt: answered 403
+    // before anything else is looked at, the WebSocket upgrade included.
+    std::optional<std::string> cross_site_problem(const Request& request) const;
 
     // `source`: "http:IP:PORT", the request path's `src`.
     Response handle(const Request& request, const std::string& source);

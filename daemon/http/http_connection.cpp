@@ -119,9 +119,9 @@ void HttpConnection::on_read(const boost::system::error_code& ec, std::size_t) {
     if (ec) return fail(ec, "read");
 
     auto request = parser_->release();
-    if (auto refusal = server_.api().cross_site_refusal(request)) {
-        server_.count_cross_site(address_, refusal->body());
-        return refuse(std::move(*refusal));
+    if (auto problem = server_.api().cross_site_problem(request)) {
+        server_.count_cross_site(address_, *problem);
+        return refuse(HttpApi::error(status::forbidden, version, *problem));
     }
     const std::string target(request.target());
     if (target_path(target) == "/api/stream" && beast::websocket::is_upgrade(request)) {

@@ -131,6 +131,8 @@ class HttpWithSimulator(gt.GimbaldTestCase):
                           "a cross-site request reached the gimbal")
         log = self.daemon.wait_log(lambda e: e.get("event") == "http_cross_site")
         self.assertEqual(log["level"], "warn")
+        self.assertIn("attacker.example", log["reason"])  # the reason as text, not a body
+        self.assertFalse(log["reason"].startswith("{"), log)
         _, metrics = self.metrics()
         self.assertGreaterEqual(ht.metric(metrics, "gimbald_http_cross_site_refused_total"), 6)
         # The console's own page (same origin) and plain clients still work.
