@@ -54,11 +54,21 @@ bool SimLink::send(std::vector<std::uint8_t> packet) {
     return true;
 }
 
-void SimLink::send_now(std::span<const std::uint8_t> packet) {
-    if (!connected_ || packet.empty()) return;
+bool SimLink::send_safety(std::vector<std::uint8_t> packet, WrittenHandler on_written) {
+    if (!connected_) return false;
+    send_now(packet);
+    if (on_written)
+        boost::asio::post(io_, lifetime_.wrap([h = std::move(on_written)] { h(true); }));
+    return true;
+}
+
+bool SimLink::send_now(std::span<const std::uint8_t> packet) {
+    if (!connected_) return false;
+    if (packet.empty()) return true;
     device_->receive(packet, now_s());
     stats_.tx_bytes += packet.size();
     ++stats_.tx_packets;
+    return true;
 }
 
 double SimLink::now_s() const {

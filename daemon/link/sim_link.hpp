@@ -1,6 +1,6 @@
 // In-process simulated gimbal: a gimbal::sim::Device driven by a 10 ms steady_timer. What the
-// device produces arrives through the DataHandler like bytes from a real link; send() hands
-// bytes straight to the device. Always connected after start().
+// device produces arrives through the DataHandler like bytes from a real link; every send
+// hands its bytes straight to the device (there is no queue). Always connected after start().
 #pragma once
 
 #include <chrono>
@@ -32,7 +32,11 @@ class SimLink final : public Link {
     void stop() override;
     bool connected() const override { return connected_; }
     bool send(std::vector<std::uint8_t> packet) override;
-    void send_now(std::span<const std::uint8_t> packet) override;
+    bool send_kept(std::vector<std::uint8_t> packet) override { return send(std::move(packet)); }
+    // No queue to jump: the device takes the packet at once; `on_written` follows from the
+    // io_context like on the other links.
+    bool send_safety(std::vector<std::uint8_t> packet, WrittenHandler on_written) override;
+    bool send_now(std::span<const std::uint8_t> packet) override;
     const LinkStats& stats() const override { return stats_; }
     std::string type() const override { return "sim"; }
     std::string endpoint() const override { return "sim"; }

@@ -4,7 +4,8 @@
 //
 // Writes are done here with non-blocking write_some() plus async_wait(wait_write) rather than
 // async_write(): we then always know exactly how many bytes of the front packet went out, so
-// send_now() can finish a half-written packet before the cease-fire instead of interleaving.
+// a cease-fire (send_safety(), send_now()) can follow a half-written packet instead of
+// interleaving with it. The queue and its two lanes: link/send_queue.hpp.
 #pragma once
 
 #include <poll.h>
@@ -14,7 +15,7 @@
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
-#include <deque>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -32,6 +33,7 @@
 #include "link/lifetime.hpp"
 #include "link/link.hpp"
 #include "link/seconds.hpp"
+#include "link/send_queue.hpp"
 
 namespace gimbald {
 
@@ -54,7 +56,7 @@ class StreamLink : public Link {
     }
 
     void stop() override {
-        tear_down();
+        tear_down();  // no handler is called after stop(): the discarded ones included
         on_data_ = nullptr;
         on_state_ = nullptr;
         on_error_ = nullptr;
@@ -63,44 +65,43 @@ class StreamLink : public Link {
     bool connected() const override { return connected_; }
 
     bool send(std::vector<std::uint8_t> packet) override {
-        if (!connected_ || queue_.size() >= options_.queue.max_packets ||
-            queued_bytes_ + packet.size() > options_.queue.max_bytes) {
-            ++stats_.tx_dropped;
-            return false;
-        }
-        if (packet.empty()) return true;
-        queued_bytes_ += packet.size();
-        queue_.push_back(std::move(packet));
-        if (!writing_) {
-            writing_ = true;
-            // Deferred so a write error never calls the state handler from inside send().
-            boost::asio::post(io_, guarded([this] { flush(); }));
-        }
+        return enqueue(std::move(packet), SendQueue::Kind::normal);
+    }
+
+    bool send_kept(std::vector<std::uint8_t> packet) override {
+        return enqueue(std::move(packet), SendQueue::Kind::kept);
+    }
+
+    bool send_safety(std::vector<std::uint8_t> packet, WrittenHandler on_written) override {
+        if (!connected_) return false;
+        const std::size_t displaced = queue_.push_safety(std::move(packet), std::move(on_written));
+        stats_.tx_displaced += displaced;
+        stats_.tx_dropped += displaced;
+        start_writing();
         return true;
     }
 
-    void send_now(std::span<const std::uint8_t> packet) override {
+    bool send_now(std::span<const std::uint8_t> packet) override {
         if (!connected_ || !stream_) {
             report_error("send_now",
                          "not connected: " + std::to_string(packet.size()) + " bytes not sent");
-            return;
+            return false;
         }
-        if (!packet.empty()) {
-            queue_.emplace_back(packet.begin(), packet.end());
-            queued_bytes_ += packet.size();
-        }
+        if (!packet.empty()) queue_.push_safety({packet.begin(), packet.end()}, nullptr);
+        // Ours is the last safety-lane packet: it is written once every one before it was.
+        std::size_t safety_left = packet.empty() ? 0 : queue_.safety_packets();
         const auto deadline =
             std::chrono::steady_clock::now() + seconds_to_duration(options_.send_now_timeout_s);
         while (!queue_.empty()) {
             boost::system::error_code ec;
-            const std::size_t n = write_front(ec);
+            const std::size_t n = write_next(ec);
             if (would_block(ec)) {
                 const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
                     deadline - std::chrono::steady_clock::now());
                 if (left.count() <= 0) {
-                    report_error("send_now", "timed out with " + std::to_string(queued_bytes_) +
+                    report_error("send_now", "timed out with " + std::to_string(queue_.bytes()) +
                                                  " bytes unsent");
-                    return;
+                    return safety_left == 0;
                 }
                 pollfd writable{stream_->native_handle(), POLLOUT, 0};
                 ::poll(&writable, 1, static_cast<int>(left.count()) + 1);
@@ -108,10 +109,15 @@ class StreamLink : public Link {
             }
             if (ec) {
                 report_error("send_now", ec.message());
-                return;
+                return safety_left == 0;
             }
-            account_written(n);
+            auto done = account_written(n);
+            if (done.safety && safety_left > 0) --safety_left;
+            // Other owners hear from the io_context, as always (not at all if stopped first).
+            if (done.handler)
+                boost::asio::post(io_, guarded([h = std::move(done.handler)] { h(true); }));
         }
+        return safety_left == 0;
     }
 
     const LinkStats& stats() const override { return stats_; }
@@ -122,7 +128,8 @@ class StreamLink : public Link {
           options_(options),
           backoff_(std::move(backoff)),
           retry_timer_(io),
-          silence_timer_(io) {}
+          silence_timer_(io),
+          queue_(options_.queue) {}
 
     // Begins one connection attempt; it ends in established() or attempt_failed().
     virtual void open() = 0;
@@ -163,7 +170,7 @@ class StreamLink : public Link {
     // schedule the next attempt, then tell the owner (who may call stop() from the handlers).
     void fail(std::string_view what, std::string_view detail) {
         const bool was_connected = connected_;
-        tear_down();
+        std::vector<WrittenHandler> discarded = tear_down();
         const double delay_s = backoff_.next();
         retry_timer_.expires_after(seconds_to_duration(delay_s));
         retry_timer_.async_wait(guarded([this](const boost::system::error_code& ec) {
@@ -173,9 +180,15 @@ class StreamLink : public Link {
         report_error(what, std::string(detail) + "; retrying in " + describe_seconds(delay_s));
         if (generation != lifetime_.generation()) return;
         if (was_connected && on_state_) on_state_(false);
+        // Safety packets that never went out: their owners send them again on reconnect.
+        for (auto& handler : discarded) {
+            if (generation != lifetime_.generation()) return;
+            handler(false);
+        }
     }
 
-    void tear_down() {
+    // Closes everything; returns the handlers of the safety packets discarded with the queue.
+    std::vector<WrittenHandler> tear_down() {
         lifetime_.reset();
         close_attempt();
         if (stream_) {
@@ -186,11 +199,11 @@ class StreamLink : public Link {
         retry_timer_.cancel();
         silence_timer_.cancel();
         connected_ = false;
-        stats_.tx_dropped += queue_.size();
-        queue_.clear();
-        queued_bytes_ = 0;
-        front_offset_ = 0;
+        const std::uint64_t before = queue_.dropped();
+        std::vector<WrittenHandler> discarded = queue_.clear();
+        stats_.tx_dropped += queue_.dropped() - before;
         writing_ = false;
+        return discarded;
     }
 
     void do_read() {
@@ -228,28 +241,44 @@ class StreamLink : public Link {
         return ec == boost::asio::error::would_block || ec == boost::asio::error::try_again;
     }
 
-    std::size_t write_front(boost::system::error_code& ec) {
-        const std::vector<std::uint8_t>& front = queue_.front();
-        return stream_->write_some(
-            boost::asio::buffer(front.data() + front_offset_, front.size() - front_offset_), ec);
+    bool enqueue(std::vector<std::uint8_t> packet, SendQueue::Kind kind) {
+        if (!connected_ || !queue_.push(std::move(packet), kind)) {
+            ++stats_.tx_dropped;
+            return false;
+        }
+        start_writing();
+        return true;
     }
 
-    void account_written(std::size_t n) {
+    void start_writing() {
+        if (writing_ || queue_.empty()) return;
+        writing_ = true;
+        // Deferred so a write error never calls the state handler from inside a send.
+        boost::asio::post(io_, guarded([this] { flush(); }));
+    }
+
+    std::size_t write_next(boost::system::error_code& ec) {
+        const auto bytes = queue_.next();
+        return stream_->write_some(boost::asio::buffer(bytes.data(), bytes.size()), ec);
+    }
+
+    struct Finished {
+        bool safety = false;     // a safety packet was finished
+        WrittenHandler handler;  // its owner's handler
+    };
+    // Counts `n` written bytes and says whether they finished a safety packet.
+    Finished account_written(std::size_t n) {
         stats_.tx_bytes += n;
-        front_offset_ += n;
-        if (front_offset_ == queue_.front().size()) {
-            queued_bytes_ -= queue_.front().size();
-            queue_.pop_front();
-            front_offset_ = 0;
-            ++stats_.tx_packets;
-        }
+        auto done = queue_.written(n);
+        if (done.packet_done) ++stats_.tx_packets;
+        return {done.safety, std::move(done.safety_done)};
     }
 
     // Writes queued packets until the queue is empty or the stream would block.
     void flush() {
         while (stream_ && !queue_.empty()) {
             boost::system::error_code ec;
-            const std::size_t n = write_front(ec);
+            const std::size_t n = write_next(ec);
             if (would_block(ec)) {
                 stream_->async_wait(Stream::wait_write,
                                     guarded([this](const boost::system::error_code& wait_ec) {
@@ -259,7 +288,12 @@ class StreamLink : public Link {
                 return;
             }
             if (ec) return fail("write", ec.message());
-            account_written(n);
+            if (auto done = account_written(n); done.handler) {
+                // The owner's code may stop or restart the link: go on only if it did not.
+                const std::uint64_t generation = lifetime_.generation();
+                done.handler(true);
+                if (generation != lifetime_.generation()) return;
+            }
         }
         writing_ = false;
     }
@@ -282,10 +316,8 @@ class StreamLink : public Link {
     std::chrono::steady_clock::time_point last_activity_{};
     std::array<std::uint8_t, 4096> read_buffer_{};
 
-    std::deque<std::vector<std::uint8_t>> queue_;
-    std::size_t queued_bytes_ = 0;
-    std::size_t front_offset_ = 0;  // bytes of queue_.front() already written
-    bool writing_ = false;          // a flush is posted or waiting for the stream to drain
+    SendQueue queue_;
+    bool writing_ = false;  // a flush is posted or waiting for the stream to drain
 };
 
 }  // namespace gimbald

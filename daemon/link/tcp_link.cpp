@@ -89,6 +89,9 @@ void TcpLink::on_connected(const boost::system::error_code& ec) {
     boost::system::error_code ignored;
     stream()->set_option(tcp::no_delay(true), ignored);
     stream()->set_option(asio::socket_base::keep_alive(true), ignored);
+    if (options_.kernel_send_buffer > 0)
+        stream()->set_option(asio::socket_base::send_buffer_size(options_.kernel_send_buffer),
+                             ignored);
     established();
 }
 

@@ -30,6 +30,10 @@ struct TcpLinkOptions {
     DiscoveryOptions discovery;  // used when host == "discover"
     SendQueueLimits queue;
     double send_now_timeout_s = 0.25;
+    // SO_SNDBUF of the connection. The kernel would otherwise grow it to megabytes while the
+    // gimbal does not read, and a cease-fire that goes ahead of our queue would still wait
+    // behind all of that (contract section 14). Commands are a few KB/s: this is plenty.
+    int kernel_send_buffer = 16 * 1024;
 };
 
 class TcpLink final : public StreamLink<boost::asio::ip::tcp::socket> {

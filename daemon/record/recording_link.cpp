@@ -1,5 +1,7 @@
 #include "record/recording_link.hpp"
 
+#include <memory>
+
 #include "orion/framer.hpp"
 #include "viewpro/output_framer.hpp"
 
@@ -123,9 +125,25 @@ bool RecordingLink::send(std::vector<std::uint8_t> packet) {
     return true;
 }
 
-void RecordingLink::send_now(std::span<const std::uint8_t> packet) {
+bool RecordingLink::send_kept(std::vector<std::uint8_t> packet) {
+    outgoing_.assign(packet.begin(), packet.end());
+    if (!inner_->send_kept(std::move(packet))) return false;
+    recorder_.record(interface_id_, Direction::outbound, protocol_, outgoing_);
+    return true;
+}
+
+bool RecordingLink::send_safety(std::vector<std::uint8_t> packet, WrittenHandler on_written) {
+    auto copy = std::make_shared<std::vector<std::uint8_t>>(packet);
+    return inner_->send_safety(
+        std::move(packet), [this, copy, on_written = std::move(on_written)](bool written) {
+            if (written) recorder_.record(interface_id_, Direction::outbound, protocol_, *copy);
+            if (on_written) on_written(written);
+        });
+}
+
+bool RecordingLink::send_now(std::span<const std::uint8_t> packet) {
     recorder_.record(interface_id_, Direction::outbound, protocol_, packet);
-    inner_->send_now(packet);
+    return inner_->send_now(packet);
 }
 
 }  // namespace gimbald::record

@@ -37,7 +37,10 @@ class RecordingLink : public Link {
     void stop() override;
     bool connected() const override { return inner_->connected(); }
     bool send(std::vector<std::uint8_t> packet) override;
-    void send_now(std::span<const std::uint8_t> packet) override;
+    bool send_kept(std::vector<std::uint8_t> packet) override;
+    // Recorded when written, so the recording shows it where it went on the wire.
+    bool send_safety(std::vector<std::uint8_t> packet, WrittenHandler on_written) override;
+    bool send_now(std::span<const std::uint8_t> packet) override;
     const LinkStats& stats() const override { return inner_->stats(); }
     std::string type() const override { return inner_->type(); }
     std::string endpoint() const override { return inner_->endpoint(); }

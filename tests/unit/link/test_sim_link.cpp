@@ -104,3 +104,24 @@ TEST_CASE("sim link stays silent after stop", "[sim]") {
     events.start(link);
     REQUIRE(run_until(io, [&] { return events.received == Bytes{1, 2}; }));
 }
+
+TEST_CASE("sim link hands a cease-fire to the device at once and reports it written", "[sim]") {
+    boost::asio::io_context io;
+    auto log = std::make_shared<EchoLog>();
+    gimbald::SimLink link(io, std::make_unique<EchoDevice>(log));
+    CHECK_FALSE(link.send_safety({1, 2, 3}, [](bool) { FAIL("called while stopped"); }));
+    LinkEvents events;
+    events.start(link);
+    REQUIRE(run_until(io, [&] { return events.ups == 1; }));
+    std::vector<bool> outcomes;
+    REQUIRE(link.send_safety({9, 8, 7}, [&](bool ok) { outcomes.push_back(ok); }));
+    CHECK(outcomes.empty());  // never from inside the call
+    CHECK(log->received == Bytes{9, 8, 7});
+    REQUIRE(run_until(io, [&] { return outcomes.size() == 1; }));
+    CHECK(outcomes[0]);
+    CHECK(link.send_kept({4}));
+    CHECK(link.send_now(std::vector<std::uint8_t>{5}));
+    link.stop();
+    CHECK_FALSE(link.send_now(std::vector<std::uint8_t>{6}));
+    CHECK(log->received == Bytes{9, 8, 7, 4, 5});
+}

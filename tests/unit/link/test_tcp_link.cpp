@@ -245,7 +245,8 @@ TEST_CASE("tcp packets are written whole and in order under backpressure", "[tcp
     CHECK(link.stats().tx_bytes == expected.size());
 }
 
-TEST_CASE("tcp send_now writes the queue and then the packet at once", "[tcp]") {
+TEST_CASE("tcp send_now writes the cease-fire ahead of the queue, then the queue, at once",
+          "[tcp]") {
     boost::asio::io_context io;
     TcpPeer peer(io);
     peer.accept();
@@ -259,15 +260,131 @@ TEST_CASE("tcp send_now writes the queue and then the packet at once", "[tcp]") 
     const Bytes cease_fire = numbered_packet(3, 20);
     REQUIRE(link.send(a));
     REQUIRE(link.send(b));
-    link.send_now(cease_fire);  // no io_context run in between: written synchronously
+    // No io_context run in between: written synchronously, and first (contract section 14).
+    CHECK(link.send_now(cease_fire));
     CHECK(link.stats().tx_packets == 3);
     CHECK(link.stats().tx_bytes == a.size() + b.size() + cease_fire.size());
 
-    Bytes expected = a;
+    Bytes expected = cease_fire;
+    expected.insert(expected.end(), a.begin(), a.end());
     expected.insert(expected.end(), b.begin(), b.end());
-    expected.insert(expected.end(), cease_fire.begin(), cease_fire.end());
     REQUIRE(run_until(io, [&] { return peer.received.size() >= expected.size(); }));
     CHECK(peer.received == expected);
+}
+
+TEST_CASE("tcp send_now is false when not connected", "[tcp]") {
+    boost::asio::io_context io;
+    TcpLink link(io, loopback(unused_tcp_port(io)));
+    LinkEvents events;
+    events.start(link);
+    CHECK_FALSE(link.send_now(numbered_packet(3, 20)));
+    CHECK_FALSE(link.send_safety(numbered_packet(3, 20), [](bool) { FAIL("called"); }));
+    run_for(io, 50ms);
+}
+
+namespace {
+
+// Fills the link until its queue refuses even after the writer had time to push what the
+// kernel would take: the peer does not read, so the socket buffers are full too. Returns the
+// packets accepted, in order.
+std::vector<Bytes> fill(boost::asio::io_context& io, TcpLink& link) {
+    std::vector<Bytes> sent;
+    std::size_t index = 0;
+    const auto next = [&] { return numbered_packet(index, 200 + (index * 37) % 900); };
+    for (int round = 0; round < 10000; ++round) {
+        for (Bytes packet = next(); link.send(packet); packet = next()) {
+            sent.push_back(std::move(packet));
+            ++index;
+        }
+        run_for(io, 20ms);
+        Bytes probe = next();
+        if (!link.send(probe)) break;  // still full: the kernel took nothing more
+        sent.push_back(std::move(probe));
+        ++index;
+    }
+    return sent;
+}
+
+}  // namespace
+
+TEST_CASE(
+    "tcp cease-fire on a full queue: ahead of the queue, after the half-written packet, "
+    "reported when written",
+    "[tcp][safety]") {
+    boost::asio::io_context io;
+    TcpPeer peer(io, 0, 16, 4096);
+    peer.set_reading(false);  // the gimbal stops reading
+    peer.accept();
+    TcpLinkOptions options = loopback(peer.port());
+    options.queue = {.max_packets = 8, .max_bytes = 64 * 1024};
+    TcpLink link(io, options);
+    LinkEvents events;
+    events.start(link);
+    REQUIRE(run_until(io, [&] { return link.connected() && peer.has_client(); }));
+
+    const std::vector<Bytes> sent = fill(io, link);
+    REQUIRE(sent.size() > 8);
+    const std::uint64_t on_wire = link.stats().tx_bytes;
+    const Bytes cease_fire(24, 0xEE);
+    int calls = 0;
+    bool written = false;
+    REQUIRE(link.send_safety(cease_fire, [&](bool ok) {
+        ++calls;
+        written = ok;
+    }));
+    CHECK(link.stats().tx_displaced == 1);  // the queue was full: one packet made room
+    run_for(io, 200ms);
+    CHECK(calls == 0);  // not written while the gimbal does not read: not reported as sent
+    CHECK(link.stats().tx_bytes == on_wire);
+
+    peer.set_reading(true);
+    REQUIRE(run_until(io, [&] { return calls == 1; }));
+    CHECK(written);
+
+    // Expected on the wire: every packet the kernel had taken (the one cut by the kernel
+    // finished), the cease-fire, then the rest minus the oldest one not started (displaced).
+    std::size_t at = 0, first_unstarted = 0;
+    while (first_unstarted < sent.size() && at < on_wire) at += sent[first_unstarted++].size();
+    Bytes expected;
+    for (std::size_t i = 0; i < first_unstarted; ++i)
+        expected.insert(expected.end(), sent[i].begin(), sent[i].end());
+    expected.insert(expected.end(), cease_fire.begin(), cease_fire.end());
+    for (std::size_t i = first_unstarted + 1; i < sent.size(); ++i)
+        expected.insert(expected.end(), sent[i].begin(), sent[i].end());
+    REQUIRE(run_until(
+        io, [&] { return peer.received.size() >= expected.size(); }, 20000ms));
+    CHECK(peer.received.size() == expected.size());
+    CHECK(peer.received == expected);
+    CHECK(events.downs == 0);
+}
+
+TEST_CASE("tcp cease-fire never displaces kept packets, and a disconnect reports it unsent",
+          "[tcp][safety]") {
+    boost::asio::io_context io;
+    TcpPeer peer(io, 0, 16, 4096);
+    peer.set_reading(false);
+    peer.accept();
+    TcpLinkOptions options = loopback(peer.port());
+    options.queue = {.max_packets = 4, .max_bytes = 64 * 1024};
+    TcpLink link(io, options);
+    LinkEvents events;
+    events.start(link);
+    REQUIRE(run_until(io, [&] { return link.connected() && peer.has_client(); }));
+    // Kept packets only (laser commands), until the socket buffers and the queue are full.
+    for (int round = 0; round < 10000; ++round) {
+        std::size_t kept = 0;
+        while (link.send_kept(numbered_packet(kept, 500))) ++kept;
+        run_for(io, 20ms);
+        if (!link.send_kept(numbered_packet(0, 500))) break;
+    }
+    std::vector<bool> outcomes;
+    REQUIRE(link.send_safety(Bytes(24, 0xEE), [&](bool ok) { outcomes.push_back(ok); }));
+    CHECK(link.stats().tx_displaced == 0);
+
+    peer.close_client();  // the gimbal goes away before reading
+    REQUIRE(run_until(io, [&] { return events.downs == 1; }));
+    REQUIRE(run_until(io, [&] { return outcomes.size() == 1; }));
+    CHECK(outcomes == std::vector<bool>{false});
 }
 
 TEST_CASE("tcp link stays silent after stop and may be destroyed with work pending", "[tcp]") {
