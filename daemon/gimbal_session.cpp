@@ -12,7 +12,9 @@ using gimbal::state::Event;
 
 namespace {
 constexpr auto tick_period = std::chrono::milliseconds(100);
-}
+// A queued cease-fire not written after this long is logged (laser_cease_pending).
+constexpr double cease_overdue_s = 0.5;
+}  // namespace
 
 GimbalSession::GimbalSession(boost::asio::io_context& io, std::string name,
                              std::unique_ptr<gimbal::session::Protocol> protocol,
@@ -48,12 +50,16 @@ void GimbalSession::start() {
 void GimbalSession::stop() {
     if (stopped_) return;
     stopped_ = true;
-    // Rule 5: cease fire on shutdown, written synchronously before the link closes.
+    // Rule 5: cease fire on shutdown, written synchronously (ahead of everything queued)
+    // before the link closes.
     for (const auto& cease : lasers_.cease_all()) {
-        if (link_->connected()) link_->send_now(cease.frame);
+        const bool written = link_->connected() && link_->send_now(cease.frame);
         lasers_.ceased(cease.index);
-        log::warn("laser_cease", "laser cease-fire sent on shutdown",
-                  {{"gimbal", name_}, {"index", cease.index}});
+        log::warn("laser_cease",
+                  written ? "laser cease-fire sent on shutdown"
+                          : "laser cease-fire on shutdown could not be written (link down or "
+                            "not taking bytes)",
+                  {{"gimbal", name_}, {"index", cease.index}, {"sent", written}});
     }
     tick_timer_.cancel();
     deadman_timer_.cancel();
@@ -87,13 +93,7 @@ void GimbalSession::on_link_state(bool up) {
         log::info("link_up", "link connected",
                   {{"gimbal", name_}, {"type", link_->type()}, {"endpoint", link_->endpoint()}});
         // Rule 5: a reconnect ends any fire the gimbal might still hold from before.
-        for (const auto& cease : lasers_.cease_all()) {
-            if (link_->send(cease.frame)) {
-                lasers_.ceased(cease.index);
-                log::warn("laser_cease", "laser cease-fire sent on reconnect",
-                          {{"gimbal", name_}, {"index", cease.index}});
-            }
-        }
+        for (const auto& cease : lasers_.cease_all()) queue_cease(cease, CeaseCause::reconnect);
         for (auto& request : protocol_->on_connect()) link_->send(std::move(request));
     } else {
         log::warn("link_down", "link lost",
@@ -144,6 +144,7 @@ void GimbalSession::schedule_tick() {
         if (ec || stopped_) return;
         std::vector<Event> events;
         protocol_->tick(now_s(), events);
+        report_waiting_ceases();
         bad_checksums_.poll();
         decode_errors_.poll();
         emit(events);
@@ -168,7 +169,10 @@ GimbalSession::Outcome GimbalSession::execute(std::string_view cmd, const nlohma
     }
     nlohmann::json sent = nlohmann::json::array();
     for (auto& packet : plan.packets) {
-        if (!link_->send(packet.frame)) {
+        // Laser commands are never displaced by a cease-fire for the other laser: the guard's
+        // record of what the gimbal was told must stay true.
+        const bool queued = plan.laser ? link_->send_kept(packet.frame) : link_->send(packet.frame);
+        if (!queued) {
             // Only the first packet can meet a full queue before anything went out for
             // single-packet commands; report what was written.
             out.error = gimbal::command::Error{
@@ -206,18 +210,64 @@ void GimbalSession::arm_deadman() {
 
 void GimbalSession::on_deadman() {
     std::vector<Event> events;
-    for (auto& cease : lasers_.expired(now_s())) {
-        const bool written = link_->send(cease.frame);
-        if (written) lasers_.ceased(cease.index);
+    for (const auto& cease : lasers_.expired(now_s())) {
+        if (queue_cease(cease, CeaseCause::deadman)) continue;  // logged once written
         log::warn("laser_deadman",
-                  written ? "no laser command within laser.fire_timeout_s: cease-fire sent"
-                          : "no laser command within laser.fire_timeout_s: link down, "
-                            "cease-fire will be sent on reconnect",
-                  {{"gimbal", name_}, {"index", cease.index}, {"sent", written}});
-        events.push_back(Event{"laser_deadman", {{"index", cease.index}}});
+                  "no laser command within laser.fire_timeout_s: link down, cease-fire will be "
+                  "sent on reconnect",
+                  {{"gimbal", name_}, {"index", cease.index}, {"sent", false}});
+        events.push_back(Event{"laser_deadman", {{"index", cease.index}, {"sent", false}}});
     }
     emit(events);
     arm_deadman();
+}
+
+bool GimbalSession::queue_cease(const gimbal::session::LaserGuard::Cease& cease, CeaseCause cause) {
+    const bool queued = link_->send_safety(cease.frame, [this, cease, cause](bool written) {
+        on_cease_written(cease, cause, written);
+    });
+    if (queued) lasers_.cease_queued(cease, now_s());
+    return queued;
+}
+
+void GimbalSession::on_cease_written(const gimbal::session::LaserGuard::Cease& cease,
+                                     CeaseCause cause, bool written) {
+    if (stopped_) return;
+    const bool deadman = cause == CeaseCause::deadman;
+    if (!written) {
+        lasers_.cease_discarded(cease);
+        log::warn(deadman ? "laser_deadman" : "laser_cease",
+                  "the link went down before the cease-fire was written: it is sent again on "
+                  "reconnect",
+                  {{"gimbal", name_}, {"index", cease.index}, {"sent", false}});
+        if (deadman) {
+            std::vector<Event> events{
+                Event{"laser_deadman", {{"index", cease.index}, {"sent", false}}}};
+            emit(events);
+        }
+        return;
+    }
+    lasers_.ceased(cease);  // unless a newer laser command for the index followed it
+    if (!deadman) {
+        log::warn("laser_cease", "laser cease-fire sent on reconnect",
+                  {{"gimbal", name_}, {"index", cease.index}, {"sent", true}});
+        return;
+    }
+    log::warn("laser_deadman", "no laser command within laser.fire_timeout_s: cease-fire sent",
+              {{"gimbal", name_}, {"index", cease.index}, {"sent", true}});
+    std::vector<Event> events{Event{"laser_deadman", {{"index", cease.index}, {"sent", true}}}};
+    emit(events);
+}
+
+void GimbalSession::report_waiting_ceases() {
+    for (const std::uint8_t index : lasers_.overdue(now_s(), cease_overdue_s))
+        log::warn("laser_cease_pending",
+                  "the cease-fire waits ahead of all other traffic but the gimbal link takes no "
+                  "bytes; still trying",
+                  {{"gimbal", name_},
+                   {"index", index},
+                   {"sent", false},
+                   {"displaced", link_->stats().tx_displaced}});
 }
 
 nlohmann::json GimbalSession::snapshot() const {
@@ -247,6 +297,12 @@ nlohmann::json GimbalSession::snapshot() const {
                             {"stale", protocol_->stale(now)}};
     nlohmann::json keys = protocol_->snapshot(now);  // named: items() of a temporary dangles
     for (auto& [key, value] : keys.items()) state[key] = std::move(value);
+    // Contract section 14: lasers[i].firing is the daemon's own record (as the metric
+    // gimbald_laser_firing): true from a fire command until its cease-fire was written.
+    if (auto it = state.find("lasers"); it != state.end() && it->is_array())
+        for (std::size_t i = 0; i < it->size(); ++i)
+            if ((*it)[i].is_object())
+                (*it)[i]["firing"] = lasers_.firing(static_cast<std::uint8_t>(i));
     state["vehicle"] = vehicle_snapshot_ ? vehicle_snapshot_() : nlohmann::json(nullptr);
     for (const auto& [key, fill] : state_keys_) state[key] = fill();
     return state;

@@ -31,7 +31,8 @@ class GimbalSession {
     ~GimbalSession();
 
     void start();
-    // Sends cease-fire for any laser still firing (synchronously), then closes the link.
+    // Sends cease-fire for any laser still firing (synchronously, ahead of everything queued),
+    // then closes the link.
     void stop();
 
     const std::string& name() const { return name_; }
@@ -83,6 +84,12 @@ class GimbalSession {
     void schedule_tick();
     void arm_deadman();
     void on_deadman();
+    // Cease-fires go on the link's safety lane and count as sent when written.
+    enum class CeaseCause { deadman, reconnect };
+    bool queue_cease(const gimbal::session::LaserGuard::Cease& cease, CeaseCause cause);
+    void on_cease_written(const gimbal::session::LaserGuard::Cease& cease, CeaseCause cause,
+                          bool written);
+    void report_waiting_ceases();
     void report_counters();
 
     std::string name_;

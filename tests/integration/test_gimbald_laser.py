@@ -94,7 +94,7 @@ class FireEnabled(LaserTestCase):
         self.assertEqual((entry["level"], entry["index"], entry["gimbal"]), ("warn", 0, "main"))
         event = self.c.wait_message(gt.is_event("laser_deadman"), 2.0)
         self.assertEqual(event, {"type": "event", "gimbal": "main", "event": "laser_deadman",
-                                 "index": 0})
+                                 "index": 0, "sent": True})
         # Nothing more: one cease-fire.
         time.sleep(1.2)
         self.assertEqual(len(laser_commands(self.sim, start)), 2)

@@ -56,3 +56,37 @@ TEST_CASE("cease_all lists every index last commanded to fire", "[laser]") {
     guard.commanded(intent(5, true), 0.0);  // out of range indexes are ignored
     CHECK(guard.cease_all().empty());
 }
+
+TEST_CASE("a cease-fire counts only once written, and never for a newer command", "[laser]") {
+    LaserGuard guard(1.0);
+    guard.commanded(intent(0, true), 0.0);
+    auto ceases = guard.expired(1.0);
+    REQUIRE(ceases.size() == 1);
+    const auto cease = ceases[0];
+    guard.cease_queued(cease, 1.0);
+    CHECK(guard.firing(0));  // queued is not written
+    CHECK(guard.overdue(1.4, 0.5).empty());
+    CHECK(guard.overdue(1.6, 0.5) == std::vector<std::uint8_t>{0});
+    CHECK(guard.overdue(2.0, 0.5).empty());  // reported once
+    CHECK(guard.ceased(cease));
+    CHECK_FALSE(guard.firing(0));
+
+    // A new fire command queued behind a pending cease-fire: the cease must not end it.
+    guard.commanded(intent(1, true), 0.0);
+    const auto old = guard.expired(1.0).at(0);
+    guard.cease_queued(old, 1.0);
+    guard.commanded(intent(1, true), 1.2);
+    CHECK_FALSE(guard.ceased(old));
+    CHECK(guard.firing(1));
+    CHECK(guard.next_deadline() == Approx(2.2));
+    CHECK(guard.overdue(5.0, 0.5).empty());  // the old cease no longer waits
+
+    // Discarded by a disconnect: still firing, for the reconnect's cease_all().
+    const auto again = guard.expired(2.2).at(0);
+    guard.cease_queued(again, 2.2);
+    guard.cease_discarded(again);
+    CHECK(guard.firing(1));
+    CHECK(guard.overdue(9.0, 0.5).empty());
+    REQUIRE(guard.cease_all().size() == 1);
+    CHECK(guard.cease_all()[0].serial == again.serial);
+}
