@@ -72,6 +72,13 @@ FAULT INJECTION
        --stall-after S --stall-for D: S seconds after a TCP client connects (or
        after start, for the pty) the gimbal goes silent for D seconds; it still
        hears commands meanwhile.
+       --stall-reading-after S --stall-reading-for D: S seconds after a TCP client
+       connects (or the pty is opened) the gimbal stops reading for D seconds; it
+       still talks. Its input buffers fill and the controller's writes block.
+       --read-baud B: read no faster than a serial line at B baud drains (10 bits
+       a byte), on TCP and the pty alike.
+       With either read fault the TCP receive buffer is 4 KiB, so backpressure
+       reaches the controller at once.
 
 EXIT STATUS
        0 stopped by SIGINT or SIGTERM (or --help); 1 bad command line; 2 runtime
@@ -152,6 +159,14 @@ ParsedOptions parse_options(int argc, char** argv) {
         ->check(CLI::NonNegativeNumber);
     app.add_option("--stall-for", o.stall_for_s, "How long the silence lasts, seconds")
         ->check(CLI::NonNegativeNumber);
+    app.add_option("--stall-reading-after", o.stall_reading_after_s,
+                   "Stop reading S seconds after a client connects")
+        ->check(CLI::NonNegativeNumber);
+    app.add_option("--stall-reading-for", o.stall_reading_for_s,
+                   "How long the gimbal does not read, seconds")
+        ->check(CLI::NonNegativeNumber);
+    app.add_option("--read-baud", o.read_baud, "Read no faster than a serial line at B baud")
+        ->check(CLI::Range(300u, 4000000u));
     app.add_option("--seed", m.seed, "Seed of sensor noise and faults")->capture_default_str();
     app.add_option("--rx-log", o.rx_log, "Write every packet received as a JSON line to FILE");
 
@@ -251,6 +266,10 @@ ParsedOptions parse_options(int argc, char** argv) {
     }
     if (o.stall_after_s > 0 && o.stall_for_s <= 0) {
         std::cerr << "gimbal-sim: --stall-after needs --stall-for\n";
+        return {std::nullopt, 1};
+    }
+    if (o.stall_reading_after_s > 0 && o.stall_reading_for_s <= 0) {
+        std::cerr << "gimbal-sim: --stall-reading-after needs --stall-reading-for\n";
         return {std::nullopt, 1};
     }
     if (m.laser_password.size() > 15) {

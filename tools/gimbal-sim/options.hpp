@@ -29,8 +29,11 @@ struct ToolOptions {
     double drop_after_s = 0;  // close each TCP client this long after it connected; 0 = never
     double corrupt_fraction = 0;
     unsigned junk_every = 0;
-    double stall_after_s = 0;  // go silent this long after a client connects ...
-    double stall_for_s = 0;    // ... for this long; 0 = never
+    double stall_after_s = 0;          // go silent this long after a client connects ...
+    double stall_for_s = 0;            // ... for this long; 0 = never
+    double stall_reading_after_s = 0;  // stop reading this long after a client connects ...
+    double stall_reading_for_s = 0;    // ... for this long; 0 = never
+    unsigned read_baud = 0;            // read no faster than a serial line at this rate
 
     std::string rx_log;  // JSON lines of every valid packet received
     double tick_s = 0.01;

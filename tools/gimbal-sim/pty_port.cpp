@@ -5,6 +5,7 @@
 #include <termios.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cstring>
@@ -83,32 +84,49 @@ void PtyPort::set_peer_open(bool open) {
     if (on_state_) on_state_(open);
 }
 
-bool PtyPort::read_available() {
+PtyPort::ReadResult PtyPort::read_available() {
     while (true) {
-        const ssize_t n = ::read(master_.native_handle(), buffer_.data(), buffer_.size());
+        std::size_t limit = buffer_.size();
+        if (read_policy_) {
+            const ReadBudget budget = read_policy_();
+            if (budget.bytes == 0) {  // not now: the pty's buffer fills meanwhile
+                retry_after_s_ = budget.retry_after_s;
+                return ReadResult::throttled;
+            }
+            limit = std::min(limit, budget.bytes);
+        }
+        const ssize_t n = ::read(master_.native_handle(), buffer_.data(), limit);
         if (n > 0) {
             set_peer_open(true);
             if (on_bytes_) on_bytes_({buffer_.data(), static_cast<std::size_t>(n)});
-            if (stopped_) return false;
+            if (stopped_) return ReadResult::closed;
             continue;
         }
         if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)) {
             set_peer_open(true);
-            return true;
+            return ReadResult::drained;
         }
         if (n < 0 && errno == EINTR) continue;
         set_peer_open(false);  // EIO: nobody has the device open
-        return false;
+        return ReadResult::closed;
     }
 }
 
 void PtyPort::poll() {
     if (stopped_) return;
-    if (read_available()) {
-        wait_read();
-        return;
+    std::chrono::nanoseconds wait = std::chrono::milliseconds(100);
+    switch (read_available()) {
+        case ReadResult::drained:
+            wait_read();
+            return;
+        case ReadResult::throttled:
+            wait = std::chrono::duration_cast<std::chrono::nanoseconds>(
+                std::chrono::duration<double>(retry_after_s_));
+            break;
+        case ReadResult::closed:
+            break;
     }
-    poll_timer_.expires_after(std::chrono::milliseconds(100));
+    poll_timer_.expires_after(wait);
     poll_timer_.async_wait([this](const boost::system::error_code& ec) {
         if (!ec) poll();
     });

@@ -34,6 +34,8 @@ class PtyPort {
     void stop();
 
     bool peer_open() const { return peer_open_; }
+    // Reads only what the policy allows (fault injection); without one, as fast as it comes.
+    void set_read_policy(ReadPolicy policy) { read_policy_ = std::move(policy); }
     // Writes what the pty takes now; the rest (and everything while nobody has the device
     // open) is dropped, as on a serial line nobody listens to.
     void write(std::span<const std::uint8_t> bytes);
@@ -42,8 +44,9 @@ class PtyPort {
   private:
     void poll();       // while nobody has the device open: look again every 100 ms
     void wait_read();  // while someone has: wait for bytes
-    // Reads what is there. Returns false when nobody has the device open.
-    bool read_available();
+    // Reads what is there (and the read policy allows).
+    enum class ReadResult { drained, throttled, closed };
+    ReadResult read_available();
     void set_peer_open(bool open);
 
     boost::asio::posix::stream_descriptor master_;
@@ -52,6 +55,8 @@ class PtyPort {
     std::string link_;
     BytesHandler on_bytes_;
     StateHandler on_state_;
+    ReadPolicy read_policy_;
+    double retry_after_s_ = 0;  // with ReadResult::throttled
     std::vector<std::uint8_t> buffer_ = std::vector<std::uint8_t>(4096);
     bool peer_open_ = false;
     bool stopped_ = false;

@@ -20,6 +20,15 @@ gimbal::sim::FaultOptions fault_options(const ToolOptions& o) {
     return f;
 }
 
+gimbal::sim::ReadFaultOptions read_fault_options(const ToolOptions& o) {
+    return {.stall_after_s = o.stall_reading_after_s,
+            .stall_for_s = o.stall_reading_for_s,
+            .baud = o.read_baud};
+}
+
+// A small receive buffer makes a gimbal that reads slowly push back on the sender at once.
+constexpr int slow_reader_receive_buffer = 4096;
+
 bool is_viewpro(const ToolOptions& o) {
     return o.protocol == "viewpro";
 }
@@ -42,7 +51,8 @@ SimApp::SimApp(asio::io_context& io, const ToolOptions& options)
       tick_timer_(io),
       device_(make_device(options)),
       faults_(fault_options(options)),
-      viewpro_faults_(fault_options(options), gimbal::sim::viewpro_output_frames()) {
+      viewpro_faults_(fault_options(options), gimbal::sim::viewpro_output_frames()),
+      read_gate_(read_fault_options(options)) {
     if (!options_.rx_log.empty()) rx_log_.emplace(options_.rx_log, options_.protocol);
 
     if (options_.tcp) {
@@ -53,11 +63,14 @@ SimApp::SimApp(asio::io_context& io, const ToolOptions& options)
                 if (connected) {
                     session_start_s_ = now_s();
                     stall_reported_ = false;
+                    session_started();
                 } else if (rx_log_) {
                     rx_log_->reset("tcp");
                 }
                 note(std::string(connected ? "client connected: " : "client gone: ") + peer);
-            });
+            },
+            read_gate_.active() ? std::optional<int>(slow_reader_receive_buffer) : std::nullopt);
+        if (read_gate_.active()) tcp_->set_read_policy([this] { return read_budget(); });
         const auto endpoint = tcp_->local_endpoint();
         std::cout << "tcp: " << endpoint.address().to_string() << ":" << endpoint.port()
                   << std::endl;
@@ -66,9 +79,11 @@ SimApp::SimApp(asio::io_context& io, const ToolOptions& options)
         pty_.emplace(
             io, options_.pty_link, [this](std::span<const std::uint8_t> b) { on_input("pty", b); },
             [this](bool open) {
+                if (open) session_started();
                 if (!open && rx_log_) rx_log_->reset("pty");
                 note(open ? "pty opened" : "pty closed");
             });
+        if (read_gate_.active()) pty_->set_read_policy([this] { return read_budget(); });
         std::cout << "pty: " << pty_->device() << std::endl;
     }
     if (options_.discovery && !is_viewpro(options_)) {
@@ -116,6 +131,16 @@ void SimApp::arm_tick() {
     });
 }
 
+void SimApp::session_started() {
+    read_gate_.session_start(now_s());
+    read_stall_reported_ = false;
+}
+
+ReadBudget SimApp::read_budget() {
+    const auto budget = read_gate_.budget(now_s());
+    return {budget.bytes, budget.retry_after_s};
+}
+
 bool SimApp::stalled(double now) const {
     if (options_.stall_for_s <= 0) return false;
     const double since = now - session_start_s_;
@@ -133,6 +158,10 @@ void SimApp::on_tick() {
     if (stalled(now) && !stall_reported_) {
         note("stalling (--stall-after)");
         stall_reported_ = true;
+    }
+    if (read_gate_.stalled(now) != read_stall_reported_) {
+        read_stall_reported_ = !read_stall_reported_;
+        note(read_stall_reported_ ? "not reading (--stall-reading-after)" : "reading again");
     }
     deliver(now);
     arm_tick();
@@ -156,6 +185,7 @@ void SimApp::deliver(double now) {
 
 void SimApp::on_input(const std::string& src, std::span<const std::uint8_t> bytes) {
     const double now = now_s();
+    read_gate_.consumed(bytes.size(), now);
     if (rx_log_) rx_log_->received(src, bytes, now);
     device_->receive(bytes, now);
     deliver(now);  // answers (the OrionCmd echo, requested packets) go out now, not next tick

@@ -16,6 +16,7 @@
 #include "rx_log.hpp"
 #include "sim/device.hpp"
 #include "sim/fault_injector.hpp"
+#include "sim/read_faults.hpp"
 #include "tcp_server.hpp"
 
 namespace gimbal_sim {
@@ -36,6 +37,8 @@ class SimApp {
     void deliver(double now);
     void on_input(const std::string& src, std::span<const std::uint8_t> bytes);
     bool stalled(double now) const;
+    ReadBudget read_budget();
+    void session_started();
 
     boost::asio::io_context& io_;
     ToolOptions options_;
@@ -45,12 +48,14 @@ class SimApp {
     std::unique_ptr<gimbal::sim::Device> device_;
     gimbal::sim::FaultInjector faults_;          // Orion frames
     gimbal::sim::FaultInjector viewpro_faults_;  // Viewpro frames
+    gimbal::sim::ReadGate read_gate_;            // how fast the gimbal reads
     std::optional<RxLog> rx_log_;
     std::optional<TcpServer> tcp_;
     std::optional<PtyPort> pty_;
     std::optional<DiscoveryResponder> discovery_;
     double session_start_s_ = 0;  // the latest TCP connect, or the start: faults count from it
     bool stall_reported_ = false;
+    bool read_stall_reported_ = false;
     bool stopped_ = false;
 };
 

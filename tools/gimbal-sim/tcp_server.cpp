@@ -1,7 +1,9 @@
 #include "tcp_server.hpp"
 
+#include <algorithm>
 #include <boost/asio/buffer.hpp>
 #include <boost/asio/write.hpp>
+#include <chrono>
 
 namespace gimbal_sim {
 
@@ -17,11 +19,18 @@ std::string describe(const tcp::endpoint& e) {
 }  // namespace
 
 TcpServer::TcpServer(asio::io_context& io, const std::string& address, std::uint16_t port,
-                     BytesHandler on_bytes, ClientHandler on_client)
-    : acceptor_(io), on_bytes_(std::move(on_bytes)), on_client_(std::move(on_client)) {
+                     BytesHandler on_bytes, ClientHandler on_client,
+                     std::optional<int> receive_buffer)
+    : acceptor_(io),
+      read_timer_(io),
+      on_bytes_(std::move(on_bytes)),
+      on_client_(std::move(on_client)) {
     const tcp::endpoint endpoint(asio::ip::make_address(address), port);
     acceptor_.open(endpoint.protocol());
     acceptor_.set_option(asio::socket_base::reuse_address(true));
+    // Set before listen(): accepted sockets inherit it, and the window is sized from it.
+    if (receive_buffer)
+        acceptor_.set_option(asio::socket_base::receive_buffer_size(*receive_buffer));
     acceptor_.bind(endpoint);
     acceptor_.listen();
 }
@@ -36,6 +45,7 @@ void TcpServer::start() {
 
 void TcpServer::stop() {
     stopped_ = true;
+    read_timer_.cancel();
     boost::system::error_code ignored;
     acceptor_.close(ignored);
     if (client_) close(client_);
@@ -60,8 +70,21 @@ void TcpServer::do_accept() {
 }
 
 void TcpServer::do_read(const std::shared_ptr<Client>& client) {
+    std::size_t limit = client->read_buffer.size();
+    if (read_policy_) {
+        const ReadBudget budget = read_policy_();
+        if (budget.bytes == 0) {  // not now: the kernel's buffers fill meanwhile
+            read_timer_.expires_after(std::chrono::duration_cast<std::chrono::nanoseconds>(
+                std::chrono::duration<double>(budget.retry_after_s)));
+            read_timer_.async_wait([this, client](const boost::system::error_code& ec) {
+                if (!ec && client == client_) do_read(client);
+            });
+            return;
+        }
+        limit = std::min(limit, budget.bytes);
+    }
     client->socket.async_read_some(
-        asio::buffer(client->read_buffer),
+        asio::buffer(client->read_buffer.data(), limit),
         [this, client](const boost::system::error_code& ec, std::size_t n) {
             if (client != client_) return;  // replaced or closed meanwhile
             if (ec) {

@@ -3,10 +3,12 @@
 
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/ip/tcp.hpp>
+#include <boost/asio/steady_timer.hpp>
 #include <cstdint>
 #include <deque>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -20,13 +22,17 @@ class TcpServer {
     // Called with true when a client connects and false when it goes away.
     using ClientHandler = std::function<void(bool connected, const std::string& peer)>;
 
-    // Binds and listens at once; throws on failure (startup error).
+    // Binds and listens at once; throws on failure (startup error). `receive_buffer`: the
+    // clients' SO_RCVBUF (small, so a client that is not read from backs up at once).
     TcpServer(boost::asio::io_context& io, const std::string& address, std::uint16_t port,
-              BytesHandler on_bytes, ClientHandler on_client);
+              BytesHandler on_bytes, ClientHandler on_client,
+              std::optional<int> receive_buffer = std::nullopt);
 
     boost::asio::ip::tcp::endpoint local_endpoint() const;
     void start();
     void stop();
+    // Reads only what the policy allows (fault injection); without one, as fast as it comes.
+    void set_read_policy(ReadPolicy policy) { read_policy_ = std::move(policy); }
 
     bool has_client() const { return client_ != nullptr; }
     // Queues bytes for the client; dropped when there is none or it lags by over 1 MB.
@@ -54,6 +60,8 @@ class TcpServer {
     void close(std::shared_ptr<Client> client);  // by value: it may reset client_
 
     boost::asio::ip::tcp::acceptor acceptor_;
+    boost::asio::steady_timer read_timer_;
+    ReadPolicy read_policy_;
     BytesHandler on_bytes_;
     ClientHandler on_client_;
     std::shared_ptr<Client> client_;
