@@ -72,16 +72,16 @@ void VehicleSource::stop() {
 }
 
 void VehicleSource::do_receive() {
-    socket_->async_receive_from(boost::asio::buffer(buffer_), sender_,
-                                [this](const boost::system::error_code& ec, std::size_t n) {
-                                    if (stopped_ || ec == boost::asio::error::operation_aborted)
-                                        return;
-                                    if (!ec) {
-                                        remember_peer();
-                                        on_bytes(std::span<const std::uint8_t>(buffer_.data(), n));
-                                    }
-                                    do_receive();
-                                });
+    socket_->async_receive_from(
+        boost::asio::buffer(buffer_), sender_,
+        [this](const boost::system::error_code& ec, std::size_t n) {
+            if (stopped_ || ec == boost::asio::error::operation_aborted) return;
+            if (!ec) {
+                remember_peer();
+                on_datagram(std::span<const std::uint8_t>(buffer_.data(), n));
+            }
+            do_receive();
+        });
 }
 
 namespace {
@@ -142,6 +142,12 @@ std::vector<std::string> VehicleSource::peers() const {
 void VehicleSource::on_bytes(std::span<const std::uint8_t> bytes) {
     if (tap_) tap_(false, bytes);
     framer_.push(bytes, [this](const gimbal::mavlink::Message& m) { on_message_(m); });
+}
+
+void VehicleSource::on_datagram(std::span<const std::uint8_t> bytes) {
+    if (tap_) tap_(false, bytes);
+    // Each datagram on its own: garbage in one cannot hold the next one's frames.
+    framer_.push_datagram(bytes, [this](const gimbal::mavlink::Message& m) { on_message_(m); });
 }
 
 }  // namespace gimbald

@@ -1,8 +1,8 @@
 // Where the aircraft's MAVLink comes from (config `vehicle.source`): a UDP port the daemon
-// listens on like a GCS, or a serial device. Bytes go through a mavlink::Framer; every decoded
-// message is handed on. No state here: VehicleFeed owns it. With the MAVLink gimbal manager
-// the endpoint is two-way: send() writes to every UDP peer heard (and the configured targets),
-// or to the serial port.
+// listens on like a GCS, or a serial device. Bytes go through a mavlink::Framer (UDP: each
+// datagram parsed on its own; serial: a stream); every decoded message is handed on. No state here:
+// VehicleFeed owns it. With the MAVLink gimbal manager the endpoint is two-way: send() writes to
+// every UDP peer heard (and the configured targets), or to the serial port.
 #pragma once
 
 #include <array>
@@ -53,7 +53,8 @@ class VehicleSource {
 
   private:
     void do_receive();
-    void on_bytes(std::span<const std::uint8_t> bytes);
+    void on_bytes(std::span<const std::uint8_t> bytes);     // serial: one byte stream
+    void on_datagram(std::span<const std::uint8_t> bytes);  // UDP: whole frames per datagram
     bool send_frame(std::span<const std::uint8_t> frame);
     void remember_peer();
 

@@ -5,7 +5,9 @@
 
 namespace gimbal::mavlink {
 
-Framer::Step Framer::examine(const std::uint8_t* frame, std::size_t available) {
+Framer::Step Framer::examine(const std::uint8_t* frame, std::size_t available, bool last) {
+    // Past the end of a datagram nothing more will come: what does not fit is no frame.
+    const Step need_more{last ? Outcome::false_start : Outcome::need_more};
     const bool v2 = frame[0] == magic_v2;
     // An unknown incompat flag may change the frame layout: nothing after it can be trusted.
     if (v2 && available >= 3 && (frame[2] & ~incompat_signed) != 0) {
@@ -13,7 +15,7 @@ Framer::Step Framer::examine(const std::uint8_t* frame, std::size_t available) {
         return {Outcome::false_start};
     }
     const std::size_t header = v2 ? header_size_v2 : header_size_v1;
-    if (available < header) return {Outcome::need_more};
+    if (available < header) return need_more;
 
     const std::size_t length = frame[1];
     const bool is_signed = v2 && (frame[2] & incompat_signed) != 0;
@@ -29,14 +31,16 @@ Framer::Step Framer::examine(const std::uint8_t* frame, std::size_t available) {
         header + length + checksum_size + (is_signed ? signature_size : std::size_t{0});
 
     if (!info) {
-        // No CRC_EXTRA, no CRC check: trust the length only if the next frame starts after it.
-        if (available < total + 1) return {Outcome::need_more};
-        if (!is_magic(frame[total])) return {Outcome::false_start};
+        // No CRC_EXTRA, no CRC check: trust the length only if the next frame starts after it
+        // (or, in a datagram, the datagram ends right after it).
+        const bool ends_here = last && available == total;
+        if (available < total + 1 && !ends_here) return need_more;
+        if (!ends_here && !is_magic(frame[total])) return {Outcome::false_start};
         ++stats_.unknown_ids;
         return {Outcome::skipped, total};
     }
 
-    if (available < total) return {Outcome::need_more};
+    if (available < total) return need_more;
     const std::uint16_t crc = frame_crc({frame + 1, header - 1 + length}, info->crc_extra);
     const std::size_t at = header + length;
     if (frame[at] != (crc & 0xFF) || frame[at + 1] != (crc >> 8)) {

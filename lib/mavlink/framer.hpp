@@ -8,6 +8,10 @@
 // frame starts there); otherwise it is a false start. So an unknown frame is skipped once the
 // first byte of the next frame has arrived.
 //
+// A datagram transport (UDP) carries whole frames: push_datagram() parses one datagram on its
+// own - a false start at its end (a plausible header, a length reaching past it) is dropped
+// with the datagram instead of waiting for, and swallowing, the next one.
+//
 // Signed frames (incompat flag 0x01): with accept_signed they are delivered with their
 // Message::signature (verified against signing_key when one is given; the replay check is the
 // caller's, see SigningStreams), without it they are dropped and counted.
@@ -63,6 +67,20 @@ class Framer {
         return messages;
     }
 
+    // One whole datagram: every frame in it, nothing held for the next one.
+    template <class F>
+    void push_datagram(std::span<const std::uint8_t> bytes, F&& on_message) {
+        stats_.bytes += bytes.size();
+        stats_.dropped_bytes += pending_.clear();  // never any after a datagram
+        scan(bytes, on_message, true);
+    }
+
+    std::vector<Message> push_datagram(std::span<const std::uint8_t> bytes) {
+        std::vector<Message> messages;
+        push_datagram(bytes, [&](const Message& m) { messages.push_back(m); });
+        return messages;
+    }
+
     // Forget a partial frame (after a reconnect the old bytes belong to nothing).
     void reset() { stats_.dropped_bytes += pending_.clear(); }
 
@@ -78,14 +96,16 @@ class Framer {
 
     // Judges the candidate frame at `frame` (first byte is a magic byte) with `available`
     // bytes in hand. Counts what it finds, except for need_more; fills message_ on delivered.
-    Step examine(const std::uint8_t* frame, std::size_t available);
+    // `last` says no more bytes follow (the end of a datagram): a candidate reaching past it
+    // is a false start, and an unknown frame ending exactly there is whole.
+    Step examine(const std::uint8_t* frame, std::size_t available, bool last);
 
     static bool is_magic(std::uint8_t b) { return b == magic_v1 || b == magic_v2; }
 
     // Returns how many leading bytes of `data` are finished with; the rest is an unfinished
     // frame that needs more bytes.
     template <class F>
-    std::size_t scan(std::span<const std::uint8_t> data, F& on_message) {
+    std::size_t scan(std::span<const std::uint8_t> data, F& on_message, bool last = false) {
         const std::size_t n = data.size();
         const std::uint8_t* base = data.data();
         std::size_t i = 0;
@@ -96,7 +116,7 @@ class Framer {
                 stats_.dropped_bytes += i - from;
                 if (i == n) return n;
             }
-            const Step step = examine(base + i, n - i);
+            const Step step = examine(base + i, n - i, last);
             switch (step.outcome) {
                 case Outcome::need_more:
                     return i;

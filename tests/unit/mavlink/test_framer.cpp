@@ -541,3 +541,60 @@ TEST_CASE("the vector form of push() returns the same messages", "[mavlink][fram
     CHECK(framer.stats().frames == samples.size());
     CHECK(framer.stats().bytes == stream.size());
 }
+
+TEST_CASE("datagrams are parsed one by one: garbage of any shape cannot hold the next one",
+          "[mavlink][framer][datagram]") {
+    const std::vector<Sample> samples = sample_frames(14);
+    const Sample& good = samples[7];
+    const Sample& other = samples[2];
+    // A plausible header of an unknown id claiming the longest frame MAVLink has (280 bytes
+    // with a signature), a v1 one, and one of a known id whose length reaches past the end.
+    const Bytes long_unknown_v2 = {0xFD, 0xFF, 0x01, 0x00, 0x07, 0x01, 0x01, 0x39, 0x30, 0x00};
+    const Bytes long_unknown_v1 = {0xFE, 0xFF, 0x07, 0x01, 0x01, 0xC8, 0x11, 0x22};
+    const Bytes known_truncated = {0xFD, 0x21, 0x00, 0x00, 0x07, 0xFF, 0xBE, 0x4C, 0x00, 0x00};
+    Bytes bad_crc = good.wire;
+    bad_crc.back() ^= 0xFF;
+    Bytes random_junk(300);
+    std::mt19937 rng(99);
+    for (auto& b : random_junk) b = static_cast<std::uint8_t>(rng());
+    random_junk[17] = 0xFD;  // with plausible headers inside
+    random_junk[18] = 0x80;
+    random_junk[19] = 0x01;
+    const std::vector<std::pair<const char*, Bytes>> garbage = {
+        {"truncated header", {0xFD, 0x20, 0x00}},
+        {"lone magic", {0xFE}},
+        {"unknown id, length 255, signed flag", long_unknown_v2},
+        {"unknown id, v1, length 255", long_unknown_v1},
+        {"known id, length past the end", known_truncated},
+        {"signed-flag garbage", {0xFD, 0x40, 0x01, 0x00, 0x00, 0x01, 0x01, 0x77, 0x77, 0x07, 0x01}},
+        {"valid frame + junk", concat({other.wire, long_unknown_v2})},
+        {"junk + valid frame", concat({Bytes{0x01, 0xFD, 0x05}, other.wire})},
+        {"bad CRC", bad_crc},
+        {"random bytes", random_junk},
+    };
+    for (const auto& [what, bytes] : garbage) {
+        CAPTURE(what);
+        Harness h;
+        h.framer.push_datagram(bytes, [&](const Message& m) { h.got.push_back(m); });
+        CHECK(h.framer.pending_bytes() == 0);
+        const std::size_t before = h.got.size();
+        h.framer.push_datagram(good.wire, [&](const Message& m) { h.got.push_back(m); });
+        REQUIRE(h.got.size() == before + 1);  // the next datagram's frame, at once
+        CHECK(h.got.back() == good.message);
+        CHECK(h.counters_consistent());
+    }
+    SECTION("the same garbage as a stream holds the next frame back (serial stays a stream)") {
+        Harness h;
+        h.push(long_unknown_v2);
+        h.push(good.wire);
+        CHECK(h.got.empty());
+    }
+    SECTION("frames inside a datagram: all delivered; an unknown frame ending it is skipped") {
+        Harness h;
+        const Bytes datagram = concat({other.wire, good.wire, unknown_v2()});
+        CHECK(h.framer.push_datagram(datagram) ==
+              std::vector<Message>{other.message, good.message});
+        CHECK(h.framer.stats().unknown_ids == 1);
+        CHECK(h.framer.stats().dropped_bytes == 0);
+    }
+}
