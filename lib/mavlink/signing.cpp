@@ -71,3 +71,33 @@ bool SigningStreams::accept(std::uint8_t sysid, std::uint8_t compid, std::uint8_
 }
 
 }  // namespace gimbal::mavlink
+
+namespace gimbal::mavlink {
+
+std::vector<SigningStreams::Stream> SigningStreams::streams() const {
+    std::vector<Stream> out;
+    out.reserve(last_.size());
+    for (const auto& [key, timestamp] : last_)
+        out.push_back(Stream{std::get<0>(key), std::get<1>(key), std::get<2>(key), timestamp});
+    return out;
+}
+
+void SigningStreams::restore(const std::vector<Stream>& saved) {
+    for (const Stream& s : saved) {
+        const auto key = std::make_tuple(s.sysid, s.compid, s.link_id);
+        const auto it = last_.find(key);
+        if (it != last_.end()) {
+            it->second = std::max(it->second, s.timestamp);
+        } else if (last_.size() < max_streams) {
+            last_.emplace(key, s.timestamp);
+        }
+    }
+}
+
+std::uint64_t SigningStreams::latest() const {
+    std::uint64_t out = 0;
+    for (const auto& [key, timestamp] : last_) out = std::max(out, timestamp);
+    return out;
+}
+
+}  // namespace gimbal::mavlink

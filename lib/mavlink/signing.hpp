@@ -35,6 +35,10 @@ bool verify_signature(const SigningKey& key, std::span<const std::uint8_t> frame
 // The replay check: per (sysid, compid, link id) stream a signed frame must carry a timestamp
 // later than the stream's last accepted one; a stream not seen before must not be more than
 // one minute (6,000,000 units) behind the local timestamp.
+//
+// The streams survive a restart when the caller saves streams() and restore()s them (the
+// daemon keeps them in its state directory): a frame captured before the restart then stays
+// a replay after it.
 class SigningStreams {
   public:
     static constexpr std::uint64_t new_stream_window = 6'000'000;
@@ -44,6 +48,18 @@ class SigningStreams {
     bool accept(std::uint8_t sysid, std::uint8_t compid, std::uint8_t link_id,
                 std::uint64_t timestamp, std::uint64_t local_timestamp);
     std::size_t size() const { return last_.size(); }
+
+    struct Stream {
+        std::uint8_t sysid = 0, compid = 0, link_id = 0;
+        std::uint64_t timestamp = 0;  // the last one accepted
+        bool operator==(const Stream&) const = default;
+    };
+    std::vector<Stream> streams() const;
+    // Adds saved streams (a stream already known keeps the later timestamp), at most
+    // max_streams in all.
+    void restore(const std::vector<Stream>& saved);
+    // The latest timestamp accepted on any stream (0: none).
+    std::uint64_t latest() const;
 
   private:
     std::map<std::tuple<std::uint8_t, std::uint8_t, std::uint8_t>, std::uint64_t> last_;
@@ -57,6 +73,12 @@ class SigningClock {
         last_ = local_timestamp > last_ ? local_timestamp : last_ + 1;
         return last_;
     }
+    // Never below `floor` again (the timestamp saved before a restart: the spec's rule that
+    // timestamps do not go backwards, also when the system clock does).
+    void raise_to(std::uint64_t floor) {
+        if (floor > last_) last_ = floor;
+    }
+    std::uint64_t last() const { return last_; }
 
   private:
     std::uint64_t last_ = 0;

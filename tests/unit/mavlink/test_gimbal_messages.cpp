@@ -217,6 +217,27 @@ TEST_CASE("MAVLink 2 signing: golden frame, verify, tamper, replay") {
         CHECK_FALSE(streams.accept(250, 1, 0, local - 6'000'001, local));
         CHECK(streams.accept(250, 1, 0, local - 6'000'000, local));
     }
+    SECTION("streams saved and restored: a frame from before a restart is still a replay") {
+        SigningStreams before;
+        const std::uint64_t local = 2'000'000'000;
+        REQUIRE(before.accept(255, 190, 0, local - 50, local));
+        REQUIRE(before.accept(254, 1, 3, local - 70, local));
+        const auto saved = before.streams();
+        CHECK(saved.size() == 2);
+        CHECK(before.latest() == local - 50);
+        SigningStreams after;  // the restarted daemon
+        after.restore(saved);
+        CHECK(after.streams() == saved);
+        CHECK_FALSE(after.accept(255, 190, 0, local - 50, local + 10));  // the captured frame
+        CHECK_FALSE(after.accept(254, 1, 3, local - 80, local + 10));
+        CHECK(after.accept(255, 190, 0, local - 49, local + 10));
+        // Restoring never lowers what is known.
+        after.restore({{255, 190, 0, 5}});
+        CHECK_FALSE(after.accept(255, 190, 0, local - 49, local + 10));
+        SigningClock clock;
+        clock.raise_to(local);
+        CHECK(clock.next(local - 1000) == local + 1);  // the system clock went back
+    }
     SECTION("timestamps") {
         CHECK(signing_timestamp(signing_epoch_unix_s) == 0);
         CHECK(signing_timestamp(signing_epoch_unix_s + 1.5) == 150000);
