@@ -99,10 +99,7 @@ bool RecordFiles::write_all(std::span<const std::uint8_t> bytes) {
         if (n < 0) {
             if (errno == EINTR) continue;
             const int err = errno;
-            // Cut a partly written block off: the file ends with whole blocks.
-            if (::ftruncate(fd_, static_cast<off_t>(before)) == 0)
-                ::lseek(fd_, static_cast<off_t>(before), SEEK_SET);
-            size_ = before;
+            cut_back(before);
             errno = err;
             return false;
         }
@@ -111,6 +108,48 @@ bool RecordFiles::write_all(std::span<const std::uint8_t> bytes) {
     }
     dirty_ = true;
     return true;
+}
+
+void RecordFiles::cut_back(std::uint64_t size) {
+    if (::ftruncate(fd_, static_cast<off_t>(size)) == 0)
+        ::lseek(fd_, static_cast<off_t>(size), SEEK_SET);
+    size_ = size;
+}
+
+RecordFiles::Kept RecordFiles::write_whole_blocks(std::span<const std::uint8_t> blocks) {
+    const std::uint64_t before = size_;
+    std::size_t written = 0;
+    while (written < blocks.size()) {
+        const ssize_t n = ::write(fd_, blocks.data() + written, blocks.size() - written);
+        if (n < 0 && errno == EINTR) continue;
+        if (n < 0) break;
+        written += static_cast<std::size_t>(n);
+        size_ += static_cast<std::uint64_t>(n);
+    }
+    if (written > 0) dirty_ = true;
+    if (written == blocks.size()) return {written, 0};
+    const int err = errno;
+    // A nearly full disk (or a file-size limit) took part of it: keep every whole block that
+    // made it, cut the one it stopped inside off, so the file ends with whole blocks.
+    std::size_t kept = 0;
+    while (kept < blocks.size()) {
+        const std::uint32_t len = gimbal::record::block_length(blocks.subspan(kept));
+        if (len < 12 || kept + len > written) break;
+        kept += len;
+    }
+    if (kept != written) cut_back(before + kept);
+    return {kept, kept == blocks.size() ? 0 : err};
+}
+
+std::uint64_t RecordFiles::count_blocks(std::span<const std::uint8_t> blocks) {
+    std::uint64_t n = 0;
+    for (std::size_t at = 0; at < blocks.size();) {
+        const std::uint32_t len = gimbal::record::block_length(blocks.subspan(at));
+        if (len < 12) break;
+        at += len;
+        ++n;
+    }
+    return n;
 }
 
 std::uint64_t RecordFiles::write(std::span<const std::uint8_t> blocks, std::int64_t unix_seconds) {
@@ -134,21 +173,15 @@ std::uint64_t RecordFiles::write(std::span<const std::uint8_t> blocks, std::int6
         if (fd_ < 0 || (run == 0 && has_packets_)) {
             if (!open_next(unix_seconds)) {
                 // No file to write to: count every packet of this chunk as lost.
-                for (std::size_t at = 0; at < blocks.size();) {
-                    const std::uint32_t len = gimbal::record::block_length(blocks.subspan(at));
-                    if (len < 12) break;
-                    at += len;
-                    ++failed;
-                }
-                return failed;
+                return failed + count_blocks(blocks);
             }
             continue;
         }
-        if (write_all(blocks.first(run))) {
-            has_packets_ = true;
-        } else {
-            set_error(path_, errno);
-            failed += packets;
+        const Kept kept = write_whole_blocks(blocks.first(run));
+        if (kept.bytes > 0) has_packets_ = true;
+        if (kept.bytes < run) {
+            set_error(path_, kept.error);
+            failed += packets - count_blocks(blocks.first(kept.bytes));
         }
         blocks = blocks.subspan(run);
     }

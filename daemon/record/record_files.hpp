@@ -1,8 +1,9 @@
 // The recording's files on disk (docs/recording.md), used by the recorder's writer thread
 // only: names sortable by time, rotation at max_file_bytes (every file starts with the SHB
 // and all IDBs), the oldest files deleted past max_total_bytes, fdatasync on request.
-// A chunk is written whole blocks at a time; a failed write (disk full) is cut back to the
-// last whole block so the file stays readable, and its packets are counted as dropped.
+// A chunk is written whole blocks at a time; on a nearly full disk what fits is kept - every
+// whole block that was written - and the block the write stopped inside is cut off, so the
+// file stays readable (contract section 14); the packets that did not fit count as dropped.
 #pragma once
 
 #include <cstdint>
@@ -52,6 +53,14 @@ class RecordFiles {
   private:
     bool open_next(std::int64_t unix_seconds);
     bool write_all(std::span<const std::uint8_t> bytes);
+    // Writes whole blocks; on an error keeps those that made it. `bytes` kept, `error` errno.
+    struct Kept {
+        std::size_t bytes;
+        int error;
+    };
+    Kept write_whole_blocks(std::span<const std::uint8_t> blocks);
+    void cut_back(std::uint64_t size);  // truncate to `size` and write from there
+    static std::uint64_t count_blocks(std::span<const std::uint8_t> blocks);
     void enforce_total();
     void set_error(const std::string& path, int err);
 

@@ -357,6 +357,30 @@ class Recording(gt.GimbaldTestCase):
         self.assertEqual(code, 0, err)
         self.assertEqual(len(rows), len(rec["packets"]))
 
+    def test_a_nearly_full_disk_keeps_what_fits(self):
+        # Contract section 14: one chunk larger than the room left is written as far as whole
+        # blocks fit, not dropped whole (a 512 KiB filesystem stayed at 6,268 bytes).
+        sim = self.start_sim()
+        LimitedDaemon.limit = 16000
+        daemon = LimitedDaemon(self.workdir, self.record_config(sim.port))
+        self.addCleanup(gt.finish_daemon, daemon)
+        c = self.client(daemon)
+        self.wait_connected(c)
+        before = c.request("state")["state"]["record"]["bytes"]
+        self.assertLess(before, 8000)
+        # One burst of requests, recorded with their replies: ~30 KB in one writer chunk.
+        for i in range(15):
+            c.send({"cmd": "ping", "id": i, "pad": "x" * 1000})
+        self.assertTrue(daemon.wait_log(lambda e: e.get("event") == "record_write_error", 5.0))
+        record = c.request("state")["state"]["record"]
+        # Within one block (the largest here is a ~1.1 KB request) of the limit at once.
+        self.assertGreater(record["bytes"], 16000 - 1500, record)
+        self.assertLessEqual(record["bytes"], 16000)
+        self.assertEqual(daemon.stop(signal.SIGTERM), 0)
+        rec = parse(record["file"])
+        self.assertEqual(rec["whole_bytes"], rec["size"], "a block was cut")
+        self.assertGreater(rec["size"], 16000 - 1500)
+
     def test_configuration_errors_name_the_path(self):
         missing = os.path.join(self.workdir, "no-such-dir")
         a_file = os.path.join(self.workdir, "a-file")

@@ -1,8 +1,12 @@
 // The daemon's recorder: the inbound splitter (frames + junk, every byte once, whatever the
 // chunking), the file rotation and the size cap. Files are read back with a small pcapng
 // walker written here.
+#include <sys/resource.h>
+#include <sys/wait.h>
 #include <unistd.h>
 #include <boost/asio/io_context.hpp>
+
+#include <csignal>
 
 #include <algorithm>
 #include <catch2/catch.hpp>
@@ -233,6 +237,44 @@ TEST_CASE("files rotate at max_file_bytes and the oldest go past max_total_bytes
     CHECK(all.back().filename().string().starts_with("gimbald-20251125T120000Z-"));
     CHECK(packets < 100);
     CHECK(all.size() >= 2);
+}
+
+TEST_CASE("a nearly full disk keeps every whole block that fits, and cuts none") {
+    // The limit (ulimit -f, a full disk's stand-in) falls inside the sixth block of one chunk
+    // of ten: the five before it are kept, the sixth is cut off, five are counted as lost.
+    TempDir dir;
+    gimbal::record::Interface iface{"gimbal:main", "orion test"};
+    gimbald::record::RecordFilesOptions options;
+    options.dir = dir.path;
+    options.header = gimbal::record::file_header("gimbald test", std::span(&iface, 1));
+    Bytes blocks;
+    const Bytes pdu(200, 0x5A);
+    const std::size_t block = gimbal::record::packet_block_size("orion", pdu.size());
+    for (int i = 0; i < 10; ++i)
+        gimbal::record::append_packet(blocks, {0, static_cast<std::uint64_t>(i),
+                                               gimbal::record::Direction::inbound, "orion", pdu});
+    const std::size_t limit = options.header.size() + 5 * block + block / 2;
+    // The limit applies to a child process only, so the test runner keeps writing freely.
+    const pid_t child = ::fork();
+    REQUIRE(child >= 0);
+    if (child == 0) {
+        std::signal(SIGXFSZ, SIG_IGN);
+        const rlimit rl{limit, limit};
+        ::setrlimit(RLIMIT_FSIZE, &rl);
+        gimbald::record::RecordFiles files(options);
+        if (!files.open_first(1764072000).empty()) ::_exit(99);
+        const auto lost = files.write(blocks, 1764072000);
+        files.close();
+        ::_exit(static_cast<int>(std::min<std::uint64_t>(lost, 98)));
+    }
+    int status = 0;
+    REQUIRE(::waitpid(child, &status, 0) == child);
+    REQUIRE(WIFEXITED(status));
+    CHECK(WEXITSTATUS(status) == 5);
+    const auto files = recordings(dir.path);
+    REQUIRE(files.size() == 1);
+    CHECK(fs::file_size(files[0]) == options.header.size() + 5 * block);
+    CHECK(read_records(files[0]).size() == 5);
 }
 
 TEST_CASE("recording file names sort by time and are recognised") {
