@@ -60,11 +60,17 @@ std::optional<PitchYaw> pitch_yaw_of(const std::array<float, 4>& q) {
 
 }  // namespace
 
-std::vector<ExposedGimbal> expose(const std::vector<std::pair<std::string, std::string>>& gimbals) {
+std::vector<ExposedGimbal> expose(const std::vector<std::pair<std::string, std::string>>& gimbals,
+                                  std::uint8_t first_component) {
+    std::vector<std::uint8_t> components{first_component};
+    for (int c = first_extra_component; c <= last_extra_component; ++c)
+        if (c != first_component) components.push_back(static_cast<std::uint8_t>(c));
+    if (components.size() < 6) components.push_back(154);  // first_component was 171..175
     std::vector<ExposedGimbal> out;
     for (const auto& [name, protocol] : gimbals) {
         if (out.size() == 6) break;
-        out.push_back({name, protocol, static_cast<std::uint8_t>(out.size() + 1)});
+        out.push_back(
+            {name, protocol, static_cast<std::uint8_t>(out.size() + 1), components[out.size()]});
     }
     return out;
 }
@@ -105,19 +111,41 @@ GimbalManager::GimbalManager(std::vector<ExposedGimbal> gimbals) : gimbals_(std:
     for (const auto& g : gimbals_) controls_[g.device_id];
 }
 
-std::vector<const ExposedGimbal*> GimbalManager::select(std::uint8_t device_id) const {
-    std::vector<const ExposedGimbal*> out;
-    for (const auto& g : gimbals_)
-        if (device_id == 0 || g.device_id == device_id) out.push_back(&g);
+bool GimbalManager::owns(std::uint8_t component) const {
+    return std::any_of(gimbals_.begin(), gimbals_.end(),
+                       [component](const auto& g) { return g.component_id == component; });
+}
+
+std::vector<std::uint8_t> GimbalManager::components() const {
+    std::vector<std::uint8_t> out;
+    for (const auto& g : gimbals_) out.push_back(g.component_id);
     return out;
 }
 
-std::vector<const ExposedGimbal*> GimbalManager::select(float device_id_param) const {
-    if (std::isnan(device_id_param)) return select(std::uint8_t{0});
+GimbalManager::Selection GimbalManager::select(std::uint8_t device_id,
+                                               std::uint8_t component) const {
+    Selection out;
+    for (const auto& g : gimbals_) {
+        const bool in_scope = component == 0 || g.component_id == component;
+        if (in_scope && (device_id == 0 || g.device_id == device_id)) out.gimbals.push_back(&g);
+    }
+    if (!out.gimbals.empty()) return out;
+    out.refusal = "no such gimbal device id";
+    for (const auto& g : gimbals_)
+        if (g.device_id == device_id)  // ours, but another component manages it
+            out.refusal = "gimbal device " + std::to_string(device_id) + " (" + g.name +
+                          ") is managed by component " + std::to_string(g.component_id) + ", not " +
+                          std::to_string(component);
+    return out;
+}
+
+GimbalManager::Selection GimbalManager::select(float device_id_param,
+                                               std::uint8_t component) const {
+    if (std::isnan(device_id_param)) return select(std::uint8_t{0}, component);
     if (!std::isfinite(device_id_param) || device_id_param < 0 || device_id_param > 255 ||
         device_id_param != std::trunc(device_id_param))
-        return {};
-    return select(static_cast<std::uint8_t>(device_id_param));
+        return Selection{{}, "no such gimbal device id"};
+    return select(static_cast<std::uint8_t>(device_id_param), component);
 }
 
 std::optional<Mapped> GimbalManager::check_control(const std::vector<const ExposedGimbal*>& targets,
@@ -139,8 +167,9 @@ Mapped GimbalManager::command(const CommandView& cmd, const MavId& sender,
         case mav::mav_cmd::do_set_roi_none:
             return roi_none(cmd, sender);
         case mav::mav_cmd::do_gimbal_manager_pitchyaw: {
-            const auto targets = select(cmd.z);
-            if (targets.empty()) return answer(MavResult::denied, "no such gimbal device id");
+            const auto selected = select(cmd.z, cmd.target_component);
+            const auto& targets = selected.gimbals;
+            if (targets.empty()) return answer(MavResult::denied, selected.refusal);
             const auto flags =
                 cmd.x_unset || !std::isfinite(cmd.x) || cmd.x < 0 || cmd.x > 4294967295.0
                     ? std::uint32_t{0}
@@ -162,16 +191,17 @@ Mapped GimbalManager::command(const CommandView& cmd, const MavId& sender,
 Mapped GimbalManager::message(const mav::Payload& payload, const MavId& sender,
                               const VehicleView& vehicle, const StateLookup& state) {
     if (const auto* py = std::get_if<mav::GimbalManagerSetPitchyaw>(&payload)) {
-        const auto targets = select(py->gimbal_device_id);
-        if (targets.empty()) return answer(MavResult::denied, "no such gimbal device id");
+        const auto selected = select(py->gimbal_device_id, py->target_component);
+        const auto& targets = selected.gimbals;
+        if (targets.empty()) return answer(MavResult::denied, selected.refusal);
         return pitchyaw(targets, sender, py->pitch * rad_to_deg, py->yaw * rad_to_deg,
                         py->pitch_rate * rad_to_deg, py->yaw_rate * rad_to_deg, py->flags, vehicle,
                         state);
     }
-    const auto from_attitude = [&](const std::vector<const ExposedGimbal*>& targets,
-                                   const std::array<float, 4>& q, float rate_pitch, float rate_yaw,
-                                   std::uint32_t flags) {
-        if (targets.empty()) return answer(MavResult::denied, "no such gimbal device id");
+    const auto from_attitude = [&](const Selection& selected, const std::array<float, 4>& q,
+                                   float rate_pitch, float rate_yaw, std::uint32_t flags) {
+        const auto& targets = selected.gimbals;
+        if (targets.empty()) return answer(MavResult::denied, selected.refusal);
         const auto angles = pitch_yaw_of(q);
         const double nan = std::numeric_limits<double>::quiet_NaN();
         return pitchyaw(targets, sender, angles ? angles->pitch_deg : nan,
@@ -179,11 +209,12 @@ Mapped GimbalManager::message(const mav::Payload& payload, const MavId& sender,
                         rate_yaw * rad_to_deg, flags, vehicle, state);
     };
     if (const auto* sa = std::get_if<mav::GimbalManagerSetAttitude>(&payload))
-        return from_attitude(select(sa->gimbal_device_id), sa->q, sa->angular_velocity_y,
-                             sa->angular_velocity_z, sa->flags);
+        return from_attitude(select(sa->gimbal_device_id, sa->target_component), sa->q,
+                             sa->angular_velocity_y, sa->angular_velocity_z, sa->flags);
+    // A gimbal device has no device id field: its component says which one (0: every one).
     if (const auto* da = std::get_if<mav::GimbalDeviceSetAttitude>(&payload))
-        return from_attitude(select(std::uint8_t{0}), da->q, da->angular_velocity_y,
-                             da->angular_velocity_z, da->flags);
+        return from_attitude(select(std::uint8_t{0}, da->target_component), da->q,
+                             da->angular_velocity_y, da->angular_velocity_z, da->flags);
     return answer(MavResult::unsupported, "message not handled");
 }
 
@@ -269,8 +300,9 @@ Mapped GimbalManager::pitchyaw(const std::vector<const ExposedGimbal*>& targets,
 
 Mapped GimbalManager::roi_location(const CommandView& cmd, const MavId& sender,
                                    const VehicleView& vehicle) {
-    const auto targets = select(cmd.param[0]);
-    if (targets.empty()) return answer(MavResult::denied, "no such gimbal device id");
+    const auto selected = select(cmd.param[0], cmd.target_component);
+    const auto& targets = selected.gimbals;
+    if (targets.empty()) return answer(MavResult::denied, selected.refusal);
     if (std::none_of(targets.begin(), targets.end(),
                      [](const auto* g) { return g->protocol == "orion"; }))
         return answer(MavResult::unsupported, "Viewpro has no geopoint");
@@ -311,8 +343,9 @@ Mapped GimbalManager::roi_location(const CommandView& cmd, const MavId& sender,
 }
 
 Mapped GimbalManager::roi_none(const CommandView& cmd, const MavId& sender) {
-    const auto targets = select(cmd.param[0]);
-    if (targets.empty()) return answer(MavResult::denied, "no such gimbal device id");
+    const auto selected = select(cmd.param[0], cmd.target_component);
+    const auto& targets = selected.gimbals;
+    if (targets.empty()) return answer(MavResult::denied, selected.refusal);
     if (auto refused = check_control(targets, sender)) return *refused;
     Mapped out;
     for (const auto* g : targets)
@@ -328,8 +361,9 @@ Mapped GimbalManager::roi_none(const CommandView& cmd, const MavId& sender) {
 }
 
 Mapped GimbalManager::configure(const CommandView& cmd, const MavId& sender) {
-    const auto targets = select(cmd.z);
-    if (targets.empty()) return answer(MavResult::denied, "no such gimbal device id");
+    const auto selected = select(cmd.z, cmd.target_component);
+    const auto& targets = selected.gimbals;
+    if (targets.empty()) return answer(MavResult::denied, selected.refusal);
     // Check every target first so a bad parameter changes nothing anywhere.
     std::map<std::uint8_t, Control> next;
     for (const auto* g : targets) {
@@ -350,8 +384,10 @@ Mapped GimbalManager::zoom(const CommandView& cmd, const StateLookup& state) {
         return answer(MavResult::denied, "zoom type and value must be numbers");
     // Target camera id: 0 all, 1..6 gimbal n's camera (cameras attached to us have no
     // MAVLink component of their own).
-    const auto targets = select(std::isnan(cmd.param[2]) ? 0.0f : cmd.param[2]);
-    if (targets.empty()) return answer(MavResult::denied, "no such camera");
+    const auto selected =
+        select(std::isnan(cmd.param[2]) ? 0.0f : cmd.param[2], cmd.target_component);
+    const auto& targets = selected.gimbals;
+    if (targets.empty()) return answer(MavResult::denied, "no such camera: " + selected.refusal);
     Mapped out;
     for (const auto* g : targets) {
         if (g->protocol != "orion") continue;
@@ -401,31 +437,36 @@ Mapped GimbalManager::request_message(const CommandView& cmd, const StateLookup&
     if (!std::isfinite(id) || id < 0 || id != std::trunc(id))
         return answer(MavResult::denied, "message id must be a whole number");
     // param2 may name one gimbal device (0 or unset: all).
-    const auto targets = select(std::isnan(cmd.param[1]) ? 0.0f : cmd.param[1]);
-    if (targets.empty()) return answer(MavResult::denied, "no such gimbal device id");
+    const auto selected =
+        select(std::isnan(cmd.param[1]) ? 0.0f : cmd.param[1], cmd.target_component);
+    const auto& targets = selected.gimbals;
+    if (targets.empty()) return answer(MavResult::denied, selected.refusal);
     Mapped out;
     const auto msgid = static_cast<std::uint32_t>(id);
     for (const auto* g : targets) {
         const nlohmann::json s = state(g->name);
+        // Each gimbal's messages come from its own manager component.
+        const auto reply = [&](mavlink::Payload p) {
+            out.replies.push_back(Reply{g->component_id, std::move(p)});
+        };
         switch (msgid) {
             case mav::GimbalManagerInformation::id:
-                out.replies.emplace_back(manager_information(*g, s, time_boot_ms));
+                reply(manager_information(*g, s, time_boot_ms));
                 break;
             case mav::GimbalDeviceInformation::id:
-                out.replies.emplace_back(device_information(*g, s, time_boot_ms));
+                reply(device_information(*g, s, time_boot_ms));
                 break;
             case mav::CameraInformation::id:
-                out.replies.emplace_back(camera_information(*g, s, time_boot_ms));
+                reply(camera_information(*g, s, time_boot_ms));
                 break;
             case mav::GimbalManagerStatus::id:
-                out.replies.emplace_back(
-                    manager_status(*g, controls_.at(g->device_id), time_boot_ms));
+                reply(manager_status(*g, controls_.at(g->device_id), time_boot_ms));
                 break;
             case mav::GimbalDeviceAttitudeStatus::id:
-                out.replies.emplace_back(attitude_status(*g, s, time_boot_ms));
+                reply(attitude_status(*g, s, time_boot_ms));
                 break;
             case mav::CameraFovStatus::id:
-                out.replies.emplace_back(fov_status(*g, s, time_boot_ms));
+                reply(fov_status(*g, s, time_boot_ms));
                 break;
             default:
                 return answer(MavResult::unsupported, "message not provided");
@@ -441,6 +482,22 @@ MavResult result_for_error(const std::string& code) {
     if (code == "out_of_range" || code == "bad_request" || code == "forbidden")
         return MavResult::denied;
     return MavResult::failed;
+}
+
+std::string_view to_string(MavResult result) {
+    switch (result) {
+        case MavResult::accepted:
+            return "MAV_RESULT_ACCEPTED";
+        case MavResult::temporarily_rejected:
+            return "MAV_RESULT_TEMPORARILY_REJECTED";
+        case MavResult::denied:
+            return "MAV_RESULT_DENIED";
+        case MavResult::unsupported:
+            return "MAV_RESULT_UNSUPPORTED";
+        case MavResult::failed:
+            return "MAV_RESULT_FAILED";
+    }
+    return "MAV_RESULT_UNKNOWN";
 }
 
 MavResult combine(const std::vector<MavResult>& results) {

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "gimbal_protocol/control.hpp"
@@ -17,15 +18,25 @@
 
 namespace gimbal::gimbal_protocol {
 
-// A gimbal as MAVLink sees it: gimbal_device_id 1..6 in configuration order.
+// A gimbal as MAVLink sees it: gimbal_device_id 1..6 in configuration order, and its own
+// gimbal manager component (contract section 14: MAVSDK and QGroundControl keep one gimbal
+// per manager component).
 struct ExposedGimbal {
     std::string name;
     std::string protocol;  // "orion" or "viewpro"
     std::uint8_t device_id = 0;
+    std::uint8_t component_id = 154;
 };
 
-// At most six gimbals are exposed (gimbal_device_id 1..6 means "non-MAVLink gimbal n").
-std::vector<ExposedGimbal> expose(const std::vector<std::pair<std::string, std::string>>& gimbals);
+// MAV_COMP_ID_GIMBAL2..6: the components of the second and later gimbals.
+inline constexpr std::uint8_t first_extra_component = 171;
+inline constexpr std::uint8_t last_extra_component = 175;
+
+// At most six gimbals are exposed (gimbal_device_id 1..6 means "non-MAVLink gimbal n"). The
+// first answers as `first_component`, the next ones as 171..175 (skipping `first_component`;
+// 154 takes the place it leaves when it is one of them).
+std::vector<ExposedGimbal> expose(const std::vector<std::pair<std::string, std::string>>& gimbals,
+                                  std::uint8_t first_component = 154);
 
 // What the vehicle feed knows: heading from ATTITUDE/GLOBAL_POSITION_INT, home MSL from
 // GLOBAL_POSITION_INT (alt - relative_alt).
@@ -54,13 +65,19 @@ struct GimbalRequest {
     nlohmann::json request;  // a gimbald request object for RequestPath::execute
 };
 
+// A message to send, and the component (the gimbal's manager) it comes from.
+struct Reply {
+    std::uint8_t component_id = 0;
+    mavlink::Payload payload;
+};
+
 // The outcome of one command or message. When `requests` is empty, `result` is the answer;
 // else the answer comes from executing them (see combine()). `replies`: messages to send
 // after the COMMAND_ACK (REQUEST_MESSAGE).
 struct Mapped {
     mavlink::MavResult result = mavlink::MavResult::accepted;
     std::vector<GimbalRequest> requests;
-    std::vector<mavlink::Payload> replies;
+    std::vector<Reply> replies;
     std::string reason;  // why, for a result other than accepted
 };
 
@@ -71,21 +88,33 @@ class GimbalManager {
   public:
     explicit GimbalManager(std::vector<ExposedGimbal> gimbals);
 
-    // COMMAND_LONG / COMMAND_INT addressed to us.
+    // COMMAND_LONG / COMMAND_INT addressed to us. Its target component sets the scope: one
+    // gimbal's manager component (its gimbal only), or 0 (every gimbal); a gimbal device id in
+    // the parameters selects within that scope (0: all of it).
     Mapped command(const CommandView& cmd, const MavId& sender, const VehicleView& vehicle,
                    const StateLookup& state, std::uint32_t time_boot_ms);
-    // GIMBAL_MANAGER_SET_PITCHYAW, GIMBAL_MANAGER_SET_ATTITUDE, GIMBAL_DEVICE_SET_ATTITUDE.
+    // GIMBAL_MANAGER_SET_PITCHYAW, GIMBAL_MANAGER_SET_ATTITUDE, GIMBAL_DEVICE_SET_ATTITUDE,
+    // scoped by their target component the same way.
     Mapped message(const mavlink::Payload& payload, const MavId& sender, const VehicleView& vehicle,
                    const StateLookup& state);
 
     const std::vector<ExposedGimbal>& gimbals() const { return gimbals_; }
+    // Is `component` one of our gimbal manager components?
+    bool owns(std::uint8_t component) const;
+    // The components, in configuration order.
+    std::vector<std::uint8_t> components() const;
     const Control& control(std::uint8_t device_id) const { return controls_.at(device_id); }
     std::uint64_t denied() const { return denied_; }
 
   private:
-    // The gimbals a device id selects (0: all); empty for an id we do not have.
-    std::vector<const ExposedGimbal*> select(float device_id_param) const;
-    std::vector<const ExposedGimbal*> select(std::uint8_t device_id) const;
+    // The gimbals a device id selects among those `component` manages (0: every gimbal);
+    // device id 0 selects all of them. Empty for an id outside that scope, with the reason.
+    struct Selection {
+        std::vector<const ExposedGimbal*> gimbals;
+        std::string refusal;  // why it is empty
+    };
+    Selection select(float device_id_param, std::uint8_t component) const;
+    Selection select(std::uint8_t device_id, std::uint8_t component) const;
     Mapped pitchyaw(const std::vector<const ExposedGimbal*>& targets, const MavId& sender,
                     double pitch_deg, double yaw_deg, double pitch_rate, double yaw_rate,
                     std::uint32_t flags, const VehicleView& vehicle, const StateLookup& state);
@@ -109,5 +138,7 @@ class GimbalManager {
 mavlink::MavResult result_for_error(const std::string& code);
 // The answer for several gimbals (device id 0): ACCEPTED when any accepted, else the first.
 mavlink::MavResult combine(const std::vector<mavlink::MavResult>& results);
+// "MAV_RESULT_DENIED" etc. (common.xml's names), for logs.
+std::string_view to_string(mavlink::MavResult result);
 
 }  // namespace gimbal::gimbal_protocol

@@ -75,17 +75,20 @@ inline VehicleView vehicle(std::optional<double> heading = 90.0,
     return {heading, home};
 }
 
-inline CommandView long_cmd(std::uint16_t command, std::array<float, 7> p) {
+// Commands go to component 0 (every gimbal manager) unless the test names one.
+inline CommandView long_cmd(std::uint16_t command, std::array<float, 7> p,
+                            std::uint8_t component = 0) {
     mav::CommandLong c;
     c.command = command;
     c.param = p;
     c.target_system = 1;
-    c.target_component = 154;
+    c.target_component = component;
     return view(c);
 }
 
 inline CommandView int_cmd(std::uint16_t command, std::array<float, 4> p, std::int32_t x,
-                           std::int32_t y, float z, std::uint8_t frame) {
+                           std::int32_t y, float z, std::uint8_t frame,
+                           std::uint8_t component = 0) {
     mav::CommandInt c;
     c.command = command;
     c.param1 = p[0];
@@ -97,7 +100,7 @@ inline CommandView int_cmd(std::uint16_t command, std::array<float, 4> p, std::i
     c.z = z;
     c.frame = frame;
     c.target_system = 1;
-    c.target_component = 154;
+    c.target_component = component;
     return view(c);
 }
 

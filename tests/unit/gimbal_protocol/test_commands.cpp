@@ -23,6 +23,84 @@ TEST_CASE("gimbal device ids: configuration order, at most six") {
     CHECK(g[5].name == "f");
 }
 
+TEST_CASE("one gimbal manager component per gimbal: 154, then 171..175") {
+    const std::vector<std::pair<std::string, std::string>> seven = {
+        {"a", "orion"}, {"b", "viewpro"}, {"c", "orion"}, {"d", "orion"},
+        {"e", "orion"}, {"f", "orion"},   {"g", "orion"}};
+    auto g = expose(seven);
+    REQUIRE(g.size() == 6);
+    const std::vector<std::uint8_t> want{154, 171, 172, 173, 174, 175};
+    for (std::size_t i = 0; i < g.size(); ++i) {
+        CHECK(g[i].component_id == want[i]);
+        CHECK(g[i].device_id == i + 1);  // as before
+    }
+    // mavlink.component_id other than 154: the first takes it; 171..175 are skipped over it.
+    g = expose(seven, 172);
+    const std::vector<std::uint8_t> moved{172, 171, 173, 174, 175, 154};
+    for (std::size_t i = 0; i < g.size(); ++i) CHECK(g[i].component_id == moved[i]);
+    GimbalManager m(expose(seven, 100));
+    CHECK(m.owns(100));
+    CHECK(m.owns(175));
+    CHECK_FALSE(m.owns(154));
+    CHECK_FALSE(m.owns(0));
+    CHECK(m.components() == std::vector<std::uint8_t>{100, 171, 172, 173, 174, 175});
+}
+
+TEST_CASE("a command addressed to one manager component reaches only its gimbal") {
+    GimbalManager m(two_gimbals());  // main: 154, device 1; nose: 171, device 2
+    const auto pitchyaw = [&](float device, std::uint8_t component) {
+        return m.command(
+            long_cmd(cmd::do_gimbal_manager_pitchyaw, {-10, 20, NaN, NaN, 0, 0, device}, component),
+            gcs, vehicle(), states(), 0);
+    };
+    Mapped r = pitchyaw(0, 154);  // device 0 = every gimbal of that manager: just its own
+    REQUIRE(r.requests.size() == 1);
+    CHECK(r.requests[0].gimbal == "main");
+    r = pitchyaw(0, 171);
+    REQUIRE(r.requests.size() == 1);
+    CHECK(r.requests[0].gimbal == "nose");
+    r = pitchyaw(2, 171);
+    REQUIRE(r.requests.size() == 1);
+    CHECK(r.requests[0].gimbal == "nose");
+    r = pitchyaw(0, 0);  // component 0: every gimbal, as before
+    CHECK(r.requests.size() == 2);
+    // Another manager's device: DENIED, saying who manages it.
+    r = pitchyaw(2, 154);
+    CHECK(r.result == MavResult::denied);
+    CHECK(r.requests.empty());
+    CHECK(r.reason.find("component 171") != std::string::npos);
+
+    // Set-point messages and control are scoped the same way.
+    mav::GimbalManagerSetPitchyaw py;
+    py.pitch = 0;
+    py.yaw = 0;
+    py.gimbal_device_id = 0;
+    py.target_component = 171;
+    r = m.message(py, gcs, vehicle(), states());
+    REQUIRE(r.requests.size() == 1);
+    CHECK(r.requests[0].gimbal == "nose");
+    mav::GimbalDeviceSetAttitude da;
+    da.q = {1, 0, 0, 0};
+    da.target_component = 154;
+    r = m.message(da, gcs, vehicle(), states());
+    REQUIRE(r.requests.size() == 1);
+    CHECK(r.requests[0].gimbal == "main");
+    CHECK(m.command(long_cmd(cmd::do_gimbal_manager_configure, {-2, -2, -1, -1, 0, 0, 0}, 171), gcs,
+                    vehicle(), states(), 0)
+              .result == MavResult::accepted);
+    CHECK(m.control(2).primary() == MavId{255, 190});
+    CHECK_FALSE(m.control(1).primary());
+
+    // REQUEST_MESSAGE to one component: only its gimbal's information, from it.
+    r = m.command(long_cmd(cmd::request_message, {280, 0, 0, 0, 0, 0, 0}, 171), gcs, vehicle(),
+                  states(), 0);
+    REQUIRE(r.replies.size() == 1);
+    CHECK(r.replies[0].component_id == 171);
+    CHECK(std::get<mav::GimbalManagerInformation>(r.replies[0].payload).gimbal_device_id == 2);
+    CHECK(to_string(MavResult::denied) == "MAV_RESULT_DENIED");
+    CHECK(to_string(MavResult::temporarily_rejected) == "MAV_RESULT_TEMPORARILY_REJECTED");
+}
+
 TEST_CASE("DO_SET_ROI_LOCATION: Orion geopoint in every altitude frame") {
     GimbalManager m(two_gimbals());
     SECTION("COMMAND_INT GLOBAL_INT: altitude is MSL") {
@@ -375,24 +453,27 @@ TEST_CASE("REQUEST_MESSAGE: information messages per gimbal") {
     Mapped r = request(280);
     CHECK(r.result == MavResult::accepted);
     REQUIRE(r.replies.size() == 2);
-    const auto& info = std::get<mav::GimbalManagerInformation>(r.replies[0]);
+    const auto& info = std::get<mav::GimbalManagerInformation>(r.replies[0].payload);
     CHECK(info.gimbal_device_id == 1);
     CHECK(info.time_boot_ms == 1234);
     CHECK(info.pitch_min == Approx(-120 * M_PI / 180));
     CHECK(info.pitch_max == Approx(30 * M_PI / 180));
     CHECK(info.yaw_max == Approx(M_PI));
     CHECK((info.cap_flags & mav::gimbal_cap::can_point_location_global) != 0);
-    CHECK(std::get<mav::GimbalManagerInformation>(r.replies[1]).gimbal_device_id == 2);
+    CHECK(std::get<mav::GimbalManagerInformation>(r.replies[1].payload).gimbal_device_id == 2);
+    // Each from its gimbal's own manager component.
+    CHECK(r.replies[0].component_id == 154);
+    CHECK(r.replies[1].component_id == 171);
 
     r = request(283, 2);
     REQUIRE(r.replies.size() == 1);
-    const auto& dev = std::get<mav::GimbalDeviceInformation>(r.replies[0]);
+    const auto& dev = std::get<mav::GimbalDeviceInformation>(r.replies[0].payload);
     CHECK(dev.gimbal_device_id == 2);
     CHECK(std::string(reinterpret_cast<const char*>(dev.custom_name.data())) == "nose");
 
     r = request(259, 1);
     REQUIRE(r.replies.size() == 1);
-    const auto& cam = std::get<mav::CameraInformation>(r.replies[0]);
+    const auto& cam = std::get<mav::CameraInformation>(r.replies[0].payload);
     CHECK(cam.resolution_h == 1920);
     CHECK((cam.flags & mav::camera_cap_has_basic_zoom) != 0);
 
