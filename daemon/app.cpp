@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <csignal>
+#include <cstdlib>
 #include <filesystem>
 
 #include <unistd.h>
@@ -15,6 +16,7 @@
 #include "record/recording_link.hpp"
 #include "session/orion_protocol.hpp"
 #include "session/viewpro_protocol.hpp"
+#include "signing_state.hpp"
 #include "sim/orion_sim.hpp"
 #include "sim/viewpro_sim.hpp"
 
@@ -104,6 +106,9 @@ App::App(const cfg::Config& config)
         // Contract section 8: our system id defaults to vehicle.system_id when that is set.
         cfg::MavlinkConfig mavlink = config_.mavlink;
         if (!mavlink.system_id && config_.vehicle) mavlink.system_id = config_.vehicle->system_id;
+        // The signing streams live in systemd's state directory unless configured elsewhere.
+        mavlink.signing_state_file =
+            signing_state_path(mavlink.signing_state_file, std::getenv("STATE_DIRECTORY"));
         mavlink_ = std::make_unique<MavlinkEndpoint>(io_, mavlink, mavlink_key, *vehicle_,
                                                      *request_path_, request_path_->sessions());
         for (auto& session : sessions_)

@@ -683,11 +683,19 @@ void read_mavlink(Fields& f, MavlinkConfig& m) {
             }
         }
     }
-    if (const json* key = f.find("signing_key_file"); key != nullptr && !key->is_null()) {
-        if (!key->is_string() || key->get_ref<const std::string&>().empty())
-            f.problem("signing_key_file", "must be null or a file path");
-        else
-            m.signing_key_file = key->get<std::string>();
+    for (const auto& [key, target] : {std::pair{"signing_key_file", &m.signing_key_file},
+                                      std::pair{"signing_state_file", &m.signing_state_file}}) {
+        if (const json* v = f.find(key); v != nullptr && !v->is_null()) {
+            if (!v->is_string() || v->get_ref<const std::string&>().empty())
+                f.problem(key, "must be null or a file path");
+            else
+                *target = v->get<std::string>();
+        }
+    }
+    f.boolean("commands", m.commands);
+    if (const json* alt = f.find("home_alt_msl"); alt != nullptr && !alt->is_null()) {
+        double home = 0;
+        if (f.number("home_alt_msl", home, {-1000, 10000})) m.home_alt_msl = home;
     }
 }
 
@@ -1099,6 +1107,13 @@ ConfigResult parse_config(std::string_view text, GimbalsSection gimbals) {
     if (config.mavlink.gimbal_manager && !config.vehicle)
         problems.add("mavlink.gimbal_manager",
                      "needs a vehicle section: the gimbal manager talks on vehicle.source");
+    // Contract section 14: signed requests everywhere means signed MAVLink commands too.
+    if (config.command.auth == AuthMode::signed_requests && config.mavlink.gimbal_manager &&
+        config.mavlink.commands && !config.mavlink.signing_key_file)
+        problems.add("mavlink.signing_key_file",
+                     "command.auth is \"signed\" but MAVLink commands would be obeyed unsigned: "
+                     "set mavlink.signing_key_file, or mavlink.commands to false (the gimbal "
+                     "manager then only reports)");
     check_serial_devices_unique(config, problems);
     if (config.laser.allow_fire && !config.command.bind.is_loopback() &&
         config.command.auth == AuthMode::none)
@@ -1254,7 +1269,10 @@ json to_json(const Config& config, bool show_token) {
         {"system_id", m.system_id ? json(*m.system_id) : json(nullptr)},
         {"component_id", m.component_id},
         {"targets", m.targets},
-        {"signing_key_file", m.signing_key_file ? json(*m.signing_key_file) : json(nullptr)}};
+        {"signing_key_file", m.signing_key_file ? json(*m.signing_key_file) : json(nullptr)},
+        {"commands", m.commands},
+        {"home_alt_msl", m.home_alt_msl ? json(*m.home_alt_msl) : json(nullptr)},
+        {"signing_state_file", m.signing_state_file ? json(*m.signing_state_file) : json(nullptr)}};
     if (config.mqtt) out["mqtt"] = mqtt_to_json(*config.mqtt);
     if (config.http) out["http"] = http_to_json(*config.http);
     if (config.record)

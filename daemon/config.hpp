@@ -197,6 +197,13 @@ struct MavlinkConfig {
     std::uint8_t component_id = 154;        // MAV_COMP_ID_GIMBAL
     std::vector<std::string> targets;       // "host:port", UDP
     std::optional<std::string> signing_key_file;
+    // false: the endpoint only reports; every command is DENIED (contract section 14).
+    bool commands = true;
+    // Home altitude MSL (m) for relative-altitude ROIs when no autopilot reports one.
+    std::optional<double> home_alt_msl;
+    // Where the signing streams' last timestamps survive a restart; null: in
+    // $STATE_DIRECTORY (systemd), else nowhere.
+    std::optional<std::string> signing_state_file;
     bool operator==(const MavlinkConfig&) const = default;
 };
 

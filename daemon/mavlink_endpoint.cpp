@@ -1,6 +1,8 @@
 #include "mavlink_endpoint.hpp"
 
+#include <algorithm>
 #include <boost/asio/ip/udp.hpp>
+#include <boost/asio/post.hpp>
 #include <cmath>
 #include <stdexcept>
 
@@ -8,6 +10,7 @@
 #include "logging.hpp"
 #include "mavlink/framing.hpp"
 #include "secret_file.hpp"
+#include "signing_state.hpp"
 
 namespace gimbald {
 
@@ -20,11 +23,19 @@ namespace {
 // One tick every 100 ms: attitude 10 Hz, manager status 5 Hz, FOV 2 Hz, heartbeat 1 Hz.
 constexpr auto tick_period = std::chrono::milliseconds(100);
 
-std::vector<gp::ExposedGimbal> exposed(const std::vector<GimbalSession*>& sessions) {
+std::vector<gp::ExposedGimbal> exposed(const std::vector<GimbalSession*>& sessions,
+                                       std::uint8_t first_component) {
     std::vector<std::pair<std::string, std::string>> list;
     for (const auto* s : sessions) list.emplace_back(s->name(), std::string(s->protocol()));
-    return gp::expose(list);
+    return gp::expose(list, first_component);
 }
+
+// The commands that only ask for reports: answered even with mavlink.commands false.
+bool reports_only(std::uint16_t command) {
+    return command == gimbal::mavlink::mav_cmd::request_message;
+}
+
+constexpr const char* commands_off = "mavlink.commands is false: this gimbal manager only reports";
 
 std::string source_address(const gp::MavId& id) {
     return "mavlink:" + std::to_string(id.sysid) + "/" + std::to_string(id.compid);
@@ -63,7 +74,7 @@ MavlinkEndpoint::MavlinkEndpoint(boost::asio::io_context& io,
       feed_(feed),
       path_(path),
       sessions_(sessions),
-      manager_(exposed(sessions)),
+      manager_(exposed(sessions, config.component_id)),
       timer_(io),
       epoch_(std::chrono::steady_clock::now()) {
     if (!feed_.source()) throw std::runtime_error("mavlink.gimbal_manager needs vehicle.source");
@@ -79,6 +90,41 @@ MavlinkEndpoint::MavlinkEndpoint(boost::asio::io_context& io,
     }
     feed_.source()->set_targets(std::move(targets));
     feed_.add_listener([this](const mav::Message& m) { on_message(m); });
+    if (key_) restore_signing_state();
+}
+
+void MavlinkEndpoint::restore_signing_state() {
+    if (!config_.signing_state_file) {
+        log::warn("mavlink_signing_state",
+                  "the signing streams are not kept across restarts (no "
+                  "mavlink.signing_state_file, no $STATE_DIRECTORY): a signed frame captured "
+                  "before a restart is accepted once after it",
+                  {});
+        return;
+    }
+    try {
+        const SigningState state = load_signing_state(*config_.signing_state_file);
+        streams_.restore(state.streams);
+        clock_.raise_to(std::max(state.local_timestamp, streams_.latest()));
+        log::info("mavlink_signing_state", "signing streams restored",
+                  {{"file", *config_.signing_state_file},
+                   {"streams", state.streams.size()},
+                   {"local_timestamp", clock_.last()}});
+    } catch (const std::exception& e) {
+        log::error("mavlink_signing_state",
+                   std::string(e.what()) + "; starting with no saved signing streams",
+                   {{"file", *config_.signing_state_file}});
+    }
+}
+
+void MavlinkEndpoint::save_signing_state_now() {
+    if (!key_ || !config_.signing_state_file || !signing_dirty_) return;
+    signing_dirty_ = false;
+    const std::string error = save_signing_state(*config_.signing_state_file,
+                                                 SigningState{streams_.streams(), clock_.last()});
+    if (!error.empty())
+        save_errors_.hit("cannot save the MAVLink signing streams",
+                         {{"file", *config_.signing_state_file}, {"error", error}});
 }
 
 MavlinkEndpoint::~MavlinkEndpoint() {
@@ -91,7 +137,9 @@ void MavlinkEndpoint::start() {
     schedule_tick();
     log::info("mavlink_start", "MAVLink gimbal manager on the vehicle endpoint",
               {{"component_id", config_.component_id},
+               {"components", manager_.components()},
                {"gimbals", manager_.gimbals().size()},
+               {"commands", config_.commands},
                {"signing", key_.has_value()}});
 }
 
@@ -99,6 +147,7 @@ void MavlinkEndpoint::stop() {
     if (stopped_) return;
     stopped_ = true;
     timer_.cancel();
+    save_signing_state_now();
 }
 
 std::optional<std::uint8_t> MavlinkEndpoint::system_id() const {
@@ -113,8 +162,11 @@ std::uint32_t MavlinkEndpoint::time_boot_ms() const {
 }
 
 std::uint64_t MavlinkEndpoint::signing_now() const {
-    return mav::signing_timestamp(
+    const std::uint64_t clock = mav::signing_timestamp(
         std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count());
+    // Never behind what was sent or accepted before, also across a restart (message signing
+    // spec: the local timestamp is the later of the clock and the saved one).
+    return std::max(clock, clock_.last());
 }
 
 gp::VehicleView MavlinkEndpoint::vehicle_view() const {
@@ -130,6 +182,8 @@ gp::VehicleView MavlinkEndpoint::vehicle_view() const {
     if (state.position()) {
         const auto& p = state.position()->message;
         v.home_msl_m = (static_cast<double>(p.alt) - static_cast<double>(p.relative_alt)) / 1000.0;
+    } else {
+        v.home_msl_m = config_.home_alt_msl;  // no autopilot says: the configured home
     }
     return v;
 }
@@ -148,6 +202,8 @@ bool MavlinkEndpoint::signature_ok(const mav::Message& m) {
         ++counters_.unsigned_ignored;
         return false;
     }
+    clock_.raise_to(m.signature->timestamp);
+    signing_dirty_ = true;  // saved within a second (on_tick) and on stop()
     return true;
 }
 
@@ -156,9 +212,10 @@ void MavlinkEndpoint::on_message(const mav::Message& m) {
     const auto sysid = system_id();
     if (!sysid) return;  // nothing is answered before our system id is known
     const gp::MavId from{m.sysid, m.compid};
+    // Ours: our system, and one of our gimbal manager components or every component (0).
     const auto addressed = [&](std::uint8_t target_system, std::uint8_t target_component) {
         return target_system == *sysid &&
-               (target_component == config_.component_id || target_component == 0);
+               (target_component == 0 || manager_.owns(target_component));
     };
     std::optional<gp::CommandView> command;
     if (const auto* c = std::get_if<mav::CommandLong>(&m.payload)) {
@@ -170,63 +227,107 @@ void MavlinkEndpoint::on_message(const mav::Message& m) {
     if (command) {
         if (!signature_ok(m)) return;
         ++counters_.commands;
+        // The ACK comes from the component addressed (for 0: the first gimbal's manager).
+        const std::uint8_t answering =
+            command->target_component != 0 ? command->target_component : first_component();
+        if (!config_.commands && !reports_only(command->command)) {
+            run(refused(mav::MavResult::denied, commands_off), from, command->command, answering);
+            return;
+        }
         run(manager_.command(*command, from, vehicle_view(), lookup, time_boot_ms()), from,
-            command->command);
+            command->command, answering);
         return;
     }
-    bool setpoint = false;
-    if (const auto* p = std::get_if<mav::GimbalManagerSetPitchyaw>(&m.payload))
-        setpoint = addressed(p->target_system, p->target_component);
-    else if (const auto* a = std::get_if<mav::GimbalManagerSetAttitude>(&m.payload))
-        setpoint = addressed(a->target_system, a->target_component);
-    else if (const auto* d = std::get_if<mav::GimbalDeviceSetAttitude>(&m.payload))
-        setpoint = addressed(d->target_system, d->target_component);
-    if (!setpoint || !signature_ok(m)) return;
+    std::optional<std::uint8_t> setpoint_component;
+    if (const auto* p = std::get_if<mav::GimbalManagerSetPitchyaw>(&m.payload)) {
+        if (addressed(p->target_system, p->target_component))
+            setpoint_component = p->target_component;
+    } else if (const auto* a = std::get_if<mav::GimbalManagerSetAttitude>(&m.payload)) {
+        if (addressed(a->target_system, a->target_component))
+            setpoint_component = a->target_component;
+    } else if (const auto* d = std::get_if<mav::GimbalDeviceSetAttitude>(&m.payload)) {
+        if (addressed(d->target_system, d->target_component))
+            setpoint_component = d->target_component;
+    }
+    if (!setpoint_component || !signature_ok(m)) return;
     ++counters_.commands;
-    run(manager_.message(m.payload, from, vehicle_view(), lookup), from, std::nullopt);
+    const std::uint8_t answering =
+        *setpoint_component != 0 ? *setpoint_component : first_component();
+    if (!config_.commands) {
+        run(refused(mav::MavResult::denied, commands_off), from, std::nullopt, answering, m.msgid);
+        return;
+    }
+    run(manager_.message(m.payload, from, vehicle_view(), lookup), from, std::nullopt, answering,
+        m.msgid);
+}
+
+std::uint8_t MavlinkEndpoint::first_component() const {
+    return manager_.gimbals().empty() ? config_.component_id
+                                      : manager_.gimbals().front().component_id;
+}
+
+gp::Mapped MavlinkEndpoint::refused(mav::MavResult result, std::string reason) {
+    gp::Mapped m;
+    m.result = result;
+    m.reason = std::move(reason);
+    return m;
 }
 
 void MavlinkEndpoint::run(gp::Mapped mapped, const gp::MavId& from,
-                          std::optional<std::uint16_t> ack_command) {
+                          std::optional<std::uint16_t> ack_command, std::uint8_t component,
+                          std::uint32_t msgid) {
     mav::MavResult result = mapped.result;
+    std::string reason = mapped.reason;
     if (!mapped.requests.empty()) {
         const RequestSource source{"mavlink", source_address(from), std::nullopt};
         std::vector<mav::MavResult> results;
         for (const auto& r : mapped.requests) {
-            const nlohmann::json reply = path_.execute(r.request, source);
-            if (reply.value("ok", false)) {
+            const RequestPath::Executed outcome = path_.execute_request(r.request, source);
+            if (!outcome.error) {
                 results.push_back(mav::MavResult::accepted);
             } else {
-                const auto* error = reply.contains("error") ? &reply["error"] : nullptr;
-                const std::string code =
-                    error && error->is_object() ? error->value("code", "internal") : "internal";
-                results.push_back(gp::result_for_error(code));
+                results.push_back(gp::result_for_error(outcome.error->code));
+                if (reason.empty())
+                    reason = r.gimbal + ": " + outcome.error->code + ": " + outcome.error->message;
             }
         }
         result = gp::combine(results);
-    } else if (result != mav::MavResult::accepted) {
-        log::debug("mavlink_refused", mapped.reason,
-                   {{"src", source_address(from)},
-                    {"command", ack_command ? nlohmann::json(*ack_command) : nlohmann::json()},
-                    {"result", static_cast<int>(result)}});
+    }
+    if (result != mav::MavResult::accepted) {
+        // MAVSDK folds every refusal into one error: the reason is only here (contract 14).
+        log::info("mavlink_refused", reason.empty() ? std::string("refused") : reason,
+                  {{"src", source_address(from)},
+                   {"command", ack_command ? nlohmann::json(*ack_command) : nlohmann::json()},
+                   {"msgid", ack_command ? nlohmann::json() : nlohmann::json(msgid)},
+                   {"component", component},
+                   {"result", std::string(gp::to_string(result))}});
     }
     if (result == mav::MavResult::denied) ++counters_.denied;
+    std::vector<gp::Reply> out;
     if (ack_command) {
         mav::CommandAck ack;
         ack.command = *ack_command;
         ack.result = static_cast<std::uint8_t>(result);
         ack.target_system = from.sysid;
         ack.target_component = from.compid;
-        send(ack);
+        out.push_back({component, ack});
     }
-    for (const auto& reply : mapped.replies) send(reply);
+    for (auto& reply : mapped.replies) out.push_back(std::move(reply));
+    if (out.empty()) return;
+    // Sent from the io_context after the gimbal link's write of what the command queued (the
+    // link posts its writes too), as the JSON socket sends its replies: the ACK is not part of
+    // the command's latency - its sendto() wakes the ground station before the gimbal's
+    // packet went out otherwise - and ACCEPTED then follows the write.
+    boost::asio::post(timer_.get_executor(), [this, out = std::move(out)] {
+        for (const auto& reply : out) send(reply.payload, reply.component_id);
+    });
 }
 
-void MavlinkEndpoint::send(const mav::Payload& payload) {
+void MavlinkEndpoint::send(const mav::Payload& payload, std::uint8_t component) {
     const auto sysid = system_id();
     if (!sysid) return;
     std::vector<std::uint8_t> frame =
-        mav::encode_v2(payload, *sysid, config_.component_id, seq_++, key_.has_value());
+        mav::encode_v2(payload, *sysid, component, seq_[component]++, key_.has_value());
     if (key_) mav::append_signature(frame, *key_, 0, clock_.next(signing_now()));
     if (feed_.source()->send(frame)) ++counters_.sent;
 }
@@ -243,30 +344,37 @@ void MavlinkEndpoint::schedule_tick() {
 
 void MavlinkEndpoint::on_tick() {
     ++ticks_;
+    if (ticks_ % 10 == 0) {
+        save_signing_state_now();
+        save_errors_.poll();
+    }
     if (!system_id()) return;
     const std::uint32_t t = time_boot_ms();
-    if (ticks_ % 10 == 1) send(gp::heartbeat());
+    // Every gimbal's manager is a component of its own, with its own heartbeat and streams.
     for (const auto& g : manager_.gimbals()) {
+        if (ticks_ % 10 == 1) send(gp::heartbeat(), g.component_id);
         const bool status = ticks_ % 2 == 0;
         const bool fov = ticks_ % 5 == 0;
         const nlohmann::json state = state_of(g.name);
-        send(gp::attitude_status(g, state, t));
-        if (status) send(gp::manager_status(g, manager_.control(g.device_id), t));
-        if (fov) send(gp::fov_status(g, state, t));
+        send(gp::attitude_status(g, state, t), g.component_id);
+        if (status) send(gp::manager_status(g, manager_.control(g.device_id), t), g.component_id);
+        if (fov) send(gp::fov_status(g, state, t), g.component_id);
     }
 }
 
 nlohmann::json MavlinkEndpoint::snapshot(const std::string& gimbal) const {
     nlohmann::json primary = nullptr;
+    std::uint8_t component = config_.component_id;
     for (const auto& g : manager_.gimbals()) {
         if (g.name != gimbal) continue;
+        component = g.component_id;
         if (const auto& p = manager_.control(g.device_id).primary())
             primary = {{"sysid", p->sysid}, {"compid", p->compid}};
     }
     const auto sysid = system_id();
     return {{"peers", feed_.source()->peers()},
             {"system_id", sysid ? nlohmann::json(*sysid) : nlohmann::json(nullptr)},
-            {"component_id", config_.component_id},
+            {"component_id", component},
             {"primary_control", primary},
             {"commands", counters_.commands},
             {"denied", counters_.denied},

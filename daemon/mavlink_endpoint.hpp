@@ -1,14 +1,16 @@
-// The MAVLink gimbal manager (contract section 8): on the vehicle's MAVLink endpoint, gimbald
-// answers COMMAND_LONG/COMMAND_INT and the gimbal set-point messages addressed to it and
-// streams HEARTBEAT, GIMBAL_MANAGER_STATUS, GIMBAL_DEVICE_ATTITUDE_STATUS and
-// CAMERA_FOV_STATUS. What a message means is decided by lib/gimbal_protocol (pure); every
-// gimbal request goes through RequestPath::execute (validation, laser rules, `command` log
-// line with src "mavlink:SYS/COMP"). MAVLink 2 signing when a key is configured.
+// The MAVLink gimbal manager (contract sections 8 and 14): on the vehicle's MAVLink endpoint,
+// every gimbal is a gimbal manager component of its own (154, then 171..175) that answers
+// COMMAND_LONG/COMMAND_INT and the gimbal set-point messages addressed to it and streams
+// HEARTBEAT, GIMBAL_MANAGER_STATUS, GIMBAL_DEVICE_ATTITUDE_STATUS and CAMERA_FOV_STATUS. What a
+// message means is decided by lib/gimbal_protocol (pure); every gimbal request goes through
+// RequestPath::execute (validation, laser rules, `command` log line with src "mavlink:SYS/COMP").
+// MAVLink 2 signing when a key is configured.
 #pragma once
 
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/steady_timer.hpp>
 #include <chrono>
+#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -18,6 +20,7 @@
 #include "config.hpp"
 #include "gimbal_protocol/commands.hpp"
 #include "gimbal_session.hpp"
+#include "logging.hpp"
 #include "mavlink/messages.hpp"
 #include "mavlink/signing.hpp"
 #include "request_path.hpp"
@@ -51,15 +54,24 @@ class MavlinkEndpoint {
   private:
     void on_message(const gimbal::mavlink::Message& m);
     bool signature_ok(const gimbal::mavlink::Message& m);
+    // Executes or answers one command (ack_command set) or set-point message (msgid), as
+    // `component`; a refusal is logged (mavlink_refused).
     void run(gimbal::gimbal_protocol::Mapped mapped, const gimbal::gimbal_protocol::MavId& from,
-             std::optional<std::uint16_t> ack_command);
-    void send(const gimbal::mavlink::Payload& payload);
+             std::optional<std::uint16_t> ack_command, std::uint8_t component,
+             std::uint32_t msgid = 0);
+    static gimbal::gimbal_protocol::Mapped refused(gimbal::mavlink::MavResult result,
+                                                   std::string reason);
+    std::uint8_t first_component() const;
+    void send(const gimbal::mavlink::Payload& payload, std::uint8_t component);
     void schedule_tick();
     void on_tick();
     std::optional<std::uint8_t> system_id() const;
     gimbal::gimbal_protocol::VehicleView vehicle_view() const;
     std::uint32_t time_boot_ms() const;
+    // The local signing timestamp: the system clock, never behind clock_.
     std::uint64_t signing_now() const;
+    void restore_signing_state();
+    void save_signing_state_now();
     nlohmann::json state_of(const std::string& gimbal) const;
 
     gimbal::daemon::MavlinkConfig config_;
@@ -74,8 +86,11 @@ class MavlinkEndpoint {
     std::chrono::steady_clock::time_point epoch_;
     std::chrono::steady_clock::time_point next_tick_;
     std::uint64_t ticks_ = 0;
-    std::uint8_t seq_ = 0;
+    std::map<std::uint8_t, std::uint8_t> seq_;  // per component: each is a sender of its own
     MavlinkCounters counters_;
+    bool signing_dirty_ = false;  // a stream advanced since the last save
+    gimbal::log::RateLimitedLog save_errors_{gimbal::log::Level::error, "mavlink_signing_state",
+                                             "failed saves"};
     bool stopped_ = true;
 };
 

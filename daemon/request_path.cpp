@@ -210,6 +210,22 @@ json RequestPath::execute(const json& request, const RequestSource& from) {
     return json::parse(reply, nullptr, false);
 }
 
+RequestPath::Executed RequestPath::execute_request(const json& request, const RequestSource& from) {
+    ++counters_.requests;
+    Outcome o;
+    const std::string text = request.dump(-1, ' ', false, json::error_handler_t::replace);
+    if (auto bad = cmdns::parse_envelope(text, known_command, o.env)) {
+        o.error = bad->error;
+        o.cmd = bad->cmd;
+        o.env.id = bad->id;
+    } else {
+        o.cmd = o.env.cmd;
+        run(o, from);
+    }
+    finish(o, from, text);
+    return {o.error};
+}
+
 void RequestPath::run(Outcome& o, const RequestSource& from) {
     try {
         o.results = dispatch(o, from);

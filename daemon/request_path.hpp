@@ -74,6 +74,12 @@ class RequestPath {
     // signing): no token or signature check; the same validation, laser rules, logging and
     // audit. Returns the reply object.
     nlohmann::json execute(const nlohmann::json& request, const RequestSource& from);
+    // The same for an adapter that needs only the outcome (MAVLink answers with a MAV_RESULT):
+    // the reply is not parsed back into an object.
+    struct Executed {
+        std::optional<gimbal::command::Error> error;
+    };
+    Executed execute_request(const nlohmann::json& request, const RequestSource& from);
 
     void add_observer(Observer observer) { observers_.push_back(std::move(observer)); }
     void add_tap(Tap tap) { taps_.push_back(std::move(tap)); }

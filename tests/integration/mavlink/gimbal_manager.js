@@ -266,7 +266,8 @@ async function mainSequence(dir) {
   check(d.logs.some((l) => l.event === 'command' && l.cmd === 'camera_zoom' && l.ok === true), 'camera_zoom reached the gimbal');
 
   check(await gcs2.command(CMD.PITCHYAW, [-10, 0, NaN, NaN, 0, 0, 1]) === MAV_RESULT.DENIED, 'a second GCS is DENIED while the first holds control');
-  check(await gcs.command(CMD.PITCHYAW, [-10, 0, NaN, NaN, 0, 0, 2]) === MAV_RESULT.TEMPORARILY_REJECTED, 'gimbal 2 (link down): TEMPORARILY_REJECTED');
+  // Gimbal 2 is its own manager component, 171 (contract section 14).
+  check(await gcs.command(CMD.PITCHYAW, [-10, 0, NaN, NaN, 0, 0, 2], { targetComponent: 171 }) === MAV_RESULT.TEMPORARILY_REJECTED, 'gimbal 2 (link down) at component 171: TEMPORARILY_REJECTED');
   check(await gcs.command(CMD.PITCHYAW, [-10, 0, NaN, NaN, 0, 0, 1], { targetSystem: 7 }) === null, 'a command for another system gets no answer');
   check(await gcs.command(2000, [0, 0, 0, 0, 0, 0, 0]) === MAV_RESULT.UNSUPPORTED, 'an unknown command: UNSUPPORTED');
   check(await gcs.command(CMD.PITCHYAW, [Infinity, 0, NaN, NaN, 0, 0, 1]) === MAV_RESULT.DENIED, 'an infinite angle: DENIED');
@@ -355,7 +356,9 @@ async function viewproSequence(dir) {
   await gcs.bind();
   await gcs.heartbeat();
   const before = st.output.gimbal.pitch;
-  check(await gcs.command(CMD.PITCHYAW, [before + 10, st.output.gimbal.yaw, NaN, NaN, 0, 0, 2]) === MAV_RESULT.ACCEPTED,
+  // The Viewpro is gimbal device 2, managed by component 171 (contract section 14).
+  const viewproAt = { targetComponent: 171 };
+  check(await gcs.command(CMD.PITCHYAW, [before + 10, st.output.gimbal.yaw, NaN, NaN, 0, 0, 2], viewproAt) === MAV_RESULT.ACCEPTED,
     'Viewpro: PITCHYAW angles: ACCEPTED');
   await sleep(300);
   check(logs.some((l) => l.event === 'command' && l.cmd === 'viewpro_adjust' && l.gimbal === 'sim-viewpro' && l.ok),
@@ -368,12 +371,13 @@ async function viewproSequence(dir) {
   }
   check(target1.lat !== target0.lat || target1.lon !== target0.lon,
     `Viewpro: the simulated gimbal's calculated point moved (${JSON.stringify(target0)} -> ${JSON.stringify(target1)})`);
-  check(await gcs.command(CMD.PITCHYAW, [NaN, NaN, 5, 5, 0, 0, 2]) === MAV_RESULT.UNSUPPORTED, 'Viewpro: rates UNSUPPORTED');
-  check(await gcs.command(CMD.ROI_LOCATION, [2, 0, 0, 0, 6.95, 79.88, 10]) === MAV_RESULT.UNSUPPORTED, 'Viewpro: ROI UNSUPPORTED');
-  check(await gcs.command(CMD.ZOOM, [2, 50, 2, 0, 0, 0, 0]) === MAV_RESULT.UNSUPPORTED, 'Viewpro: zoom UNSUPPORTED');
+  check(await gcs.command(CMD.PITCHYAW, [NaN, NaN, 5, 5, 0, 0, 2], viewproAt) === MAV_RESULT.UNSUPPORTED, 'Viewpro: rates UNSUPPORTED');
+  check(await gcs.command(CMD.ROI_LOCATION, [2, 0, 0, 0, 6.95, 79.88, 10], viewproAt) === MAV_RESULT.UNSUPPORTED, 'Viewpro: ROI UNSUPPORTED');
+  check(await gcs.command(CMD.ZOOM, [2, 50, 2, 0, 0, 0, 0], viewproAt) === MAV_RESULT.UNSUPPORTED, 'Viewpro: zoom UNSUPPORTED');
   const t = Date.now();
   const status = await gcs.waitFor((x) => x.name === 'GIMBAL_DEVICE_ATTITUDE_STATUS' && x.data.gimbalDeviceId === 2, 1000, t);
-  check(status && Number.isFinite(status.data.q[0]) && status.data.failureFlags === 0, 'Viewpro: GIMBAL_DEVICE_ATTITUDE_STATUS for device 2');
+  check(status && Number.isFinite(status.data.q[0]) && status.data.failureFlags === 0 && status.packet.header.compid === 171,
+    'Viewpro: GIMBAL_DEVICE_ATTITUDE_STATUS for device 2, from component 171');
   gcs.close();
   daemon.kill('SIGTERM');
   await sleep(300);

@@ -11,6 +11,7 @@
 
 #include "config.hpp"
 #include "mavlink_endpoint.hpp"
+#include "signing_state.hpp"
 
 using namespace gimbal::daemon;
 using nlohmann::json;
@@ -41,11 +42,17 @@ TEST_CASE("mavlink section: defaults and every key", "[config]") {
     CHECK_FALSE(r.config.mavlink.system_id);
 
     json c = base();
+    CHECK(r.config.mavlink.commands);
+    CHECK_FALSE(r.config.mavlink.home_alt_msl);
+    CHECK_FALSE(r.config.mavlink.signing_state_file);
     c["mavlink"] = {{"gimbal_manager", true},
                     {"system_id", 7},
                     {"component_id", 171},
                     {"targets", {"127.0.0.1:14550", "gcs.local:14551"}},
-                    {"signing_key_file", "/etc/gimbald/mavlink.key"}};
+                    {"signing_key_file", "/etc/gimbald/mavlink.key"},
+                    {"commands", false},
+                    {"home_alt_msl", 412.5},
+                    {"signing_state_file", "/var/lib/gimbald/signing.json"}};
     r = parse_config(c.dump());
     INFO(problems(c).size());
     REQUIRE(r.ok());
@@ -54,6 +61,9 @@ TEST_CASE("mavlink section: defaults and every key", "[config]") {
     CHECK(r.config.mavlink.component_id == 171);
     CHECK(r.config.mavlink.targets.size() == 2);
     CHECK(r.config.mavlink.signing_key_file == "/etc/gimbald/mavlink.key");
+    CHECK_FALSE(r.config.mavlink.commands);
+    CHECK(r.config.mavlink.home_alt_msl == 412.5);
+    CHECK(r.config.mavlink.signing_state_file == "/var/lib/gimbald/signing.json");
     CHECK(to_json(r.config)["mavlink"] == c["mavlink"]);
 }
 
@@ -63,6 +73,9 @@ TEST_CASE("mavlink section: problems with their paths", "[config]") {
                     {"component_id", 0},
                     {"system_id", 256},
                     {"signing_key_file", ""},
+                    {"signing_state_file", 3},
+                    {"commands", "yes"},
+                    {"home_alt_msl", 20000},
                     {"bogus", 1}};
     const auto p = problems(c);
     const auto has = [&](const std::string& prefix) {
@@ -77,6 +90,9 @@ TEST_CASE("mavlink section: problems with their paths", "[config]") {
     CHECK(has("mavlink.component_id"));
     CHECK(has("mavlink.system_id"));
     CHECK(has("mavlink.signing_key_file"));
+    CHECK(has("mavlink.signing_state_file"));
+    CHECK(has("mavlink.commands"));
+    CHECK(has("mavlink.home_alt_msl"));
     CHECK(has("mavlink.bogus"));
 
     json no_vehicle = base();
@@ -85,6 +101,61 @@ TEST_CASE("mavlink section: problems with their paths", "[config]") {
     CHECK(problems(no_vehicle) ==
           std::vector<std::string>{"mavlink.gimbal_manager: needs a vehicle section: the gimbal "
                                    "manager talks on vehicle.source"});
+}
+
+TEST_CASE("command.auth signed covers MAVLink: a signing key, or commands off", "[config]") {
+    const auto key_file =
+        std::filesystem::temp_directory_path() / ("gimbald-opskey-" + std::to_string(::getpid()));
+    std::ofstream(key_file) << std::string(64, 'a') << "\n";
+    ::chmod(key_file.c_str(), 0600);
+    json c = base();
+    c["command"] = {
+        {"auth", "signed"},
+        {"keys", {{{"id", "ops"}, {"secret_file", key_file.string()}, {"roles", {"control"}}}}}};
+    c["mavlink"] = {{"gimbal_manager", true}};
+    const auto p = problems(c);
+    REQUIRE(p.size() == 1);
+    CHECK(p[0].rfind("mavlink.signing_key_file: command.auth is \"signed\"", 0) == 0);
+    CHECK(p[0].find("mavlink.commands") != std::string::npos);
+    c["mavlink"]["commands"] = false;
+    CHECK(problems(c).empty());
+    c["mavlink"]["commands"] = true;
+    c["mavlink"]["signing_key_file"] = "/etc/gimbald/mavlink.key";
+    CHECK(problems(c).empty());
+    c["mavlink"] = {{"gimbal_manager", false}};
+    CHECK(problems(c).empty());
+    std::filesystem::remove(key_file);
+}
+
+TEST_CASE("MAVLink signing state: where it is kept, and the file round trip", "[config]") {
+    using gimbald::signing_state_path;
+    CHECK(signing_state_path(std::string("/x/s.json"), "/var/lib/gimbald") == "/x/s.json");
+    CHECK(signing_state_path(std::nullopt, "/var/lib/gimbald:/var/lib/gimbald/recordings") ==
+          "/var/lib/gimbald/mavlink-signing.json");
+    CHECK_FALSE(signing_state_path(std::nullopt, nullptr));
+    CHECK_FALSE(signing_state_path(std::nullopt, ""));
+
+    const auto dir = std::filesystem::temp_directory_path() /
+                     ("gimbald-signstate-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    const auto path = (dir / "mavlink-signing.json").string();
+    CHECK(gimbald::load_signing_state(path).streams.empty());  // the first start
+    gimbald::SigningState state;
+    state.local_timestamp = 123456789012ull;
+    state.streams = {{255, 190, 0, 123456789000ull}, {1, 1, 2, 5}};
+    CHECK(gimbald::save_signing_state(path, state).empty());
+    CHECK((std::filesystem::status(path).permissions() & std::filesystem::perms::others_read) ==
+          std::filesystem::perms::none);
+    const auto back = gimbald::load_signing_state(path);
+    CHECK(back.local_timestamp == state.local_timestamp);
+    CHECK(back.streams == state.streams);
+    std::ofstream(path) << "{\"streams\": [{\"sysid\": 300}]}";
+    CHECK_THROWS_WITH(gimbald::load_signing_state(path),
+                      Catch::Contains(path) && Catch::Contains("sysid"));
+    std::ofstream(path) << "not json";
+    CHECK_THROWS(gimbald::load_signing_state(path));
+    CHECK_FALSE(gimbald::save_signing_state((dir / "no" / "such.json").string(), state).empty());
+    std::filesystem::remove_all(dir);
 }
 
 TEST_CASE("MAVLink signing key file: 32 raw bytes or 64 hex digits, private", "[config]") {
