@@ -1,6 +1,6 @@
-// libFuzzer target for the MAVLink codec: the framer fed the input whole and in chunks
-// (with and without accepting signed frames), every message re-encoded and decoded again,
-// and decode_payload() on arbitrary ids and lengths. Any crash, sanitizer report or broken
+// libFuzzer target for the MAVLink codec: the framer fed the input whole, in chunks and as one
+// UDP datagram (with and without accepting signed frames), every message re-encoded and decoded
+// again, and decode_payload() on arbitrary ids and lengths. Any crash, sanitizer report or broken
 // invariant aborts.
 #include <algorithm>
 #include <cstdio>
@@ -54,6 +54,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
             i += n;
         }
         if (!std::ranges::equal(pieces, all, same)) fail("chunked delivery differs from one push");
+
+        // As one UDP datagram: parsed on its own, nothing left over for the next one.
+        m::Framer datagram(m::FramerOptions{accept_signed, {}});
+        const auto from_datagram = datagram.push_datagram(input);
+        check_accounting(datagram);
+        if (datagram.pending_bytes() != 0) fail("a datagram left bytes for the next one");
+        if (datagram.stats().frames != from_datagram.size())
+            fail("frames counter differs from messages (datagram)");
 
         for (const auto& msg : all) {
             const auto bytes = msg.version == 1
