@@ -308,6 +308,15 @@ nlohmann::json GimbalSession::snapshot() const {
     return state;
 }
 
+nlohmann::json GimbalSession::gimbal_state() const {
+    const double now = now_s();
+    nlohmann::json state = protocol_->snapshot(now);
+    state["protocol"] = std::string(protocol_->name());
+    state["stale"] = protocol_->stale(now);
+    state["link"] = {{"connected", link_->connected()}};
+    return state;
+}
+
 bool GimbalSession::send_feed(std::vector<std::uint8_t> bytes) {
     return link_->connected() && link_->send(std::move(bytes));
 }

@@ -55,6 +55,9 @@ class GimbalSession {
 
     // STATE (contract section 5).
     nlohmann::json snapshot() const;
+    // What the gimbal reported (the protocol's keys), `stale` and `link.connected` only: the
+    // MAVLink streams read it ten times a second, where the whole STATE would cost ~5x more.
+    nlohmann::json gimbal_state() const;
     // The vehicle feed: writes one feed packet when the link is up (false otherwise), beside
     // the commands on the same ordered queue.
     bool send_feed(std::vector<std::uint8_t> bytes);

@@ -189,8 +189,9 @@ gp::VehicleView MavlinkEndpoint::vehicle_view() const {
 }
 
 nlohmann::json MavlinkEndpoint::state_of(const std::string& gimbal) const {
+    // The gimbal's own keys are all the MAVLink mapping and streams read (lib/gimbal_protocol).
     for (const auto* s : sessions_)
-        if (s->name() == gimbal) return s->snapshot();
+        if (s->name() == gimbal) return s->gimbal_state();
     return nlohmann::json::object();
 }
 

@@ -136,10 +136,10 @@ class Peer:
         return data
 
     def pump(self, timeout):
-        """Reads every datagram arriving within `timeout` seconds."""
-        deadline = time.monotonic() + timeout
+        """Waits up to `timeout` seconds for datagrams; reads every one that is there."""
+        wait = timeout
         while True:
-            ready, _, _ = select.select([self.sock], [], [], max(0.0, deadline - time.monotonic()))
+            ready, _, _ = select.select([self.sock], [], [], wait)
             if not ready:
                 return
             try:
@@ -149,8 +149,7 @@ class Peer:
             now = time.monotonic()
             for sysid, compid, msgid, payload in parse(data):
                 self.received.append((now, sysid, compid, msgid, payload))
-            if time.monotonic() >= deadline:
-                return
+            wait = 0.0  # drain what has arrived, then return
 
     def wait(self, predicate, timeout=3.0, since=0.0):
         """The first received (t, sysid, compid, msgid, payload) with predicate true, or None."""
