@@ -481,13 +481,15 @@ class Bench {
         // steady_clock is CLOCK_MONOTONIC on Linux, so its epoch is the timer's.
         if (timerfd_settime(timer, TFD_TIMER_ABSTIME, &spec, nullptr) != 0)
             die_errno("timerfd_settime");
-        for (const int fd : {timer, gimbal_, client_}) {
+        // The MAVLink socket too: its COMMAND_ACK may come after the gimbal's packet.
+        for (const int fd : {timer, gimbal_, client_, mav_}) {
+            if (fd < 0) continue;
             epoll_event ev{};
             ev.events = EPOLLIN;
             ev.data.fd = fd;
             if (epoll_ctl(ep, EPOLL_CTL_ADD, fd, &ev) != 0) die_errno("epoll_ctl");
         }
-        std::array<epoll_event, 4> events{};
+        std::array<epoll_event, 5> events{};
         while (sent_ < opt_.count) {
             const int n = epoll_wait(ep, events.data(), static_cast<int>(events.size()), 100);
             if (n < 0 && errno != EINTR) die_errno("epoll_wait");
