@@ -55,7 +55,8 @@ class Link {
     virtual void stop() = 0;
     virtual bool connected() const = 0;
     // Queues ONE whole packet. Returns false and queues nothing when not connected or when the
-    // bounded queue is full. Packets are written in order, never interleaved; a write error
+    // bounded queue is full. Packets are written in order, never interleaved (an idle link
+    // writes at once; the handlers are never called from inside a send); a write error
     // counts as a disconnect. Queued packets are discarded (counted in tx_dropped) on a
     // disconnect: stale commands must not reach the gimbal after a reconnect.
     // A queued packet may be displaced (dropped, counted) to make room for safety traffic.

@@ -5,7 +5,8 @@
 // Writes are done here with non-blocking write_some() plus async_wait(wait_write) rather than
 // async_write(): we then always know exactly how many bytes of the front packet went out, so
 // a cease-fire (send_safety(), send_now()) can follow a half-written packet instead of
-// interleaving with it. The queue and its two lanes: link/send_queue.hpp.
+// interleaving with it. An idle link writes a new packet at once, from inside the send. The
+// queue and its two lanes: link/send_queue.hpp.
 #pragma once
 
 #include <poll.h>
@@ -250,11 +251,24 @@ class StreamLink : public Link {
         return true;
     }
 
+    // An idle link writes at once: the command (or cease-fire) leaves before the rest of its
+    // request is handled (reply, audit, logs), which is the command's latency. What the stream
+    // does not take now, and any error, is handled from the io_context (flush()), so no
+    // handler of ours ever runs from inside a send.
     void start_writing() {
         if (writing_ || queue_.empty()) return;
         writing_ = true;
-        // Deferred so a write error never calls the state handler from inside a send.
-        boost::asio::post(io_, guarded([this] { flush(); }));
+        boost::system::error_code ec;
+        const std::size_t n = stream_ ? write_next(ec) : 0;
+        if (stream_ && !ec) {
+            if (auto done = account_written(n); done.handler)
+                boost::asio::post(io_, guarded([h = std::move(done.handler)] { h(true); }));
+            if (queue_.empty()) {
+                writing_ = false;
+                return;
+            }
+        }
+        boost::asio::post(io_, guarded([this] { flush(); }));  // the rest, or the error
     }
 
     std::size_t write_next(boost::system::error_code& ec) {

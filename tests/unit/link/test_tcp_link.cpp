@@ -32,6 +32,27 @@ Bytes numbered_packet(std::size_t index, std::size_t size) {
     return packet;
 }
 
+// Fills the link until its queue refuses even after the writer had time to push what the
+// kernel would take: the peer does not read, so the socket buffers are full too. Returns the
+// packets accepted, in order.
+std::vector<Bytes> fill(boost::asio::io_context& io, TcpLink& link) {
+    std::vector<Bytes> sent;
+    std::size_t index = 0;
+    const auto next = [&] { return numbered_packet(index, 200 + (index * 37) % 900); };
+    for (int round = 0; round < 10000; ++round) {
+        for (Bytes packet = next(); link.send(packet); packet = next()) {
+            sent.push_back(std::move(packet));
+            ++index;
+        }
+        run_for(io, 20ms);
+        Bytes probe = next();
+        if (!link.send(probe)) break;  // still full: the kernel took nothing more
+        sent.push_back(std::move(probe));
+        ++index;
+    }
+    return sent;
+}
+
 }  // namespace
 
 TEST_CASE("tcp link connects and carries bytes both ways", "[tcp]") {
@@ -171,36 +192,34 @@ TEST_CASE("tcp send is refused when not connected", "[tcp]") {
 }
 
 TEST_CASE("tcp send is refused when the queue is full", "[tcp]") {
+    // An idle link writes at once, so the queue fills only behind a gimbal that does not read
+    // (its socket buffers full). The exact bounds are unit-tested in test_send_queue.cpp.
     boost::asio::io_context io;
-    TcpPeer peer(io);
+    TcpPeer peer(io, 0, 16, 4096);
+    peer.set_reading(false);
     peer.accept();
     TcpLinkOptions options = loopback(peer.port());
+    SECTION("by packet count") {
+        options.queue = {.max_packets = 4, .max_bytes = 64 * 1024};
+    }
+    SECTION("by bytes") {
+        options.queue = {.max_packets = 256, .max_bytes = 3000};
+    }
     TcpLink link(io, options);
     LinkEvents events;
     events.start(link);
     REQUIRE(run_until(io, [&] { return link.connected() && peer.has_client(); }));
 
-    SECTION("by packet count") {
-        // Nothing is written until the io_context runs, so the queue fills deterministically.
-        for (std::size_t i = 0; i < options.queue.max_packets; ++i) {
-            REQUIRE(link.send({static_cast<std::uint8_t>(i)}));
-        }
-        CHECK_FALSE(link.send({0xFF}));
-        CHECK(link.stats().tx_dropped == 1);
-        REQUIRE(run_until(io, [&] { return peer.received.size() >= options.queue.max_packets; }));
-        CHECK(peer.received.size() == options.queue.max_packets);
-        CHECK(link.send({0xFF}));  // drained: room again
-    }
-    SECTION("by bytes") {
-        const std::size_t big = options.queue.max_bytes / 2 + 1;
-        CHECK(link.send(Bytes(big, 0xAA)));
-        CHECK_FALSE(link.send(Bytes(big, 0xBB)));
-        CHECK(link.send(Bytes(options.queue.max_bytes - big, 0xCC)));  // exactly full
-        CHECK_FALSE(link.send({0xDD}));
-        CHECK(link.stats().tx_dropped == 2);
-        REQUIRE(run_until(io, [&] { return peer.received.size() >= options.queue.max_bytes; }));
-        CHECK(peer.received.size() == options.queue.max_bytes);
-    }
+    const std::vector<Bytes> sent = fill(io, link);
+    CHECK_FALSE(link.send(numbered_packet(7, 3000)));  // more than either bound leaves room for
+    CHECK(link.stats().tx_dropped >= 2);  // the refusal that ended fill(), and this one
+    Bytes expected;
+    for (const auto& p : sent) expected.insert(expected.end(), p.begin(), p.end());
+    peer.set_reading(true);
+    REQUIRE(run_until(
+        io, [&] { return peer.received.size() >= expected.size(); }, 20000ms));
+    CHECK(peer.received == expected);
+    CHECK(link.send({0xFF}));  // drained: room again
 }
 
 TEST_CASE("tcp packets are written whole and in order under backpressure", "[tcp]") {
@@ -245,8 +264,7 @@ TEST_CASE("tcp packets are written whole and in order under backpressure", "[tcp
     CHECK(link.stats().tx_bytes == expected.size());
 }
 
-TEST_CASE("tcp send_now writes the cease-fire ahead of the queue, then the queue, at once",
-          "[tcp]") {
+TEST_CASE("tcp send_now writes the queue and then the packet at once", "[tcp]") {
     boost::asio::io_context io;
     TcpPeer peer(io);
     peer.accept();
@@ -260,15 +278,48 @@ TEST_CASE("tcp send_now writes the cease-fire ahead of the queue, then the queue
     const Bytes cease_fire = numbered_packet(3, 20);
     REQUIRE(link.send(a));
     REQUIRE(link.send(b));
-    // No io_context run in between: written synchronously, and first (contract section 14).
-    CHECK(link.send_now(cease_fire));
+    link.send_now(cease_fire);  // no io_context run in between: written synchronously
     CHECK(link.stats().tx_packets == 3);
     CHECK(link.stats().tx_bytes == a.size() + b.size() + cease_fire.size());
 
-    Bytes expected = cease_fire;
-    expected.insert(expected.end(), a.begin(), a.end());
+    Bytes expected = a;
     expected.insert(expected.end(), b.begin(), b.end());
+    expected.insert(expected.end(), cease_fire.begin(), cease_fire.end());
     REQUIRE(run_until(io, [&] { return peer.received.size() >= expected.size(); }));
+    CHECK(peer.received == expected);
+}
+
+TEST_CASE("tcp send_now behind a gimbal that does not read: the cease-fire goes ahead of the queue",
+          "[tcp][safety]") {
+    boost::asio::io_context io;
+    TcpPeer peer(io, 0, 16, 4096);
+    peer.set_reading(false);
+    peer.accept();
+    TcpLinkOptions options = loopback(peer.port());
+    options.queue = {.max_packets = 8, .max_bytes = 64 * 1024};
+    options.send_now_timeout_s = 0.05;
+    TcpLink link(io, options);
+    LinkEvents events;
+    events.start(link);
+    REQUIRE(run_until(io, [&] { return link.connected() && peer.has_client(); }));
+    const std::vector<Bytes> sent = fill(io, link);
+    const std::uint64_t on_wire = link.stats().tx_bytes;
+    const Bytes cease_fire(20, 0xEE);
+    // The kernel takes (next to) nothing: written in time or not, the cease-fire is first in
+    // line, and when the gimbal reads it follows the half-written packet.
+    const bool in_time = link.send_now(cease_fire);
+    INFO("send_now wrote it in time: " << in_time);
+    peer.set_reading(true);
+    std::size_t at = 0, first_unstarted = 0;
+    while (first_unstarted < sent.size() && at < on_wire) at += sent[first_unstarted++].size();
+    Bytes expected;
+    for (std::size_t i = 0; i < first_unstarted; ++i)
+        expected.insert(expected.end(), sent[i].begin(), sent[i].end());
+    expected.insert(expected.end(), cease_fire.begin(), cease_fire.end());
+    for (std::size_t i = first_unstarted + 1; i < sent.size(); ++i)  // one displaced
+        expected.insert(expected.end(), sent[i].begin(), sent[i].end());
+    REQUIRE(run_until(
+        io, [&] { return peer.received.size() >= expected.size(); }, 20000ms));
     CHECK(peer.received == expected);
 }
 
@@ -281,31 +332,6 @@ TEST_CASE("tcp send_now is false when not connected", "[tcp]") {
     CHECK_FALSE(link.send_safety(numbered_packet(3, 20), [](bool) { FAIL("called"); }));
     run_for(io, 50ms);
 }
-
-namespace {
-
-// Fills the link until its queue refuses even after the writer had time to push what the
-// kernel would take: the peer does not read, so the socket buffers are full too. Returns the
-// packets accepted, in order.
-std::vector<Bytes> fill(boost::asio::io_context& io, TcpLink& link) {
-    std::vector<Bytes> sent;
-    std::size_t index = 0;
-    const auto next = [&] { return numbered_packet(index, 200 + (index * 37) % 900); };
-    for (int round = 0; round < 10000; ++round) {
-        for (Bytes packet = next(); link.send(packet); packet = next()) {
-            sent.push_back(std::move(packet));
-            ++index;
-        }
-        run_for(io, 20ms);
-        Bytes probe = next();
-        if (!link.send(probe)) break;  // still full: the kernel took nothing more
-        sent.push_back(std::move(probe));
-        ++index;
-    }
-    return sent;
-}
-
-}  // namespace
 
 TEST_CASE(
     "tcp cease-fire on a full queue: ahead of the queue, after the half-written packet, "
