@@ -122,6 +122,7 @@ void App::start_http() {
     options.bind = h.bind.to_string();
     options.port = h.port;
     options.max_connections = h.max_connections;
+    options.max_connections_per_client = h.max_connections_per_client;
     options.idle_timeout_s = h.idle_timeout_s;
     options.ws_queue_max = h.ws_queue_max;
     options.api.console = h.console;

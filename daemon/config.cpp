@@ -861,6 +861,7 @@ HttpConfig read_http(Fields& f) {
     if (http.web_root && http.web_root->front() != '/')
         f.problem("web_root", "must be an absolute path");
     f.integer("max_connections", http.max_connections, {1, 10000});
+    f.integer("max_connections_per_client", http.max_connections_per_client, {1, 10000});
     f.number("idle_timeout_s", http.idle_timeout_s, {1, 3600});
     f.integer("ws_queue_max", http.ws_queue_max, {2, 100000});
     if (const json* hosts = f.find("allowed_hosts")) {
@@ -891,6 +892,7 @@ json http_to_json(const HttpConfig& h) {
             {"tiles_url", optional(h.tiles_url)},
             {"web_root", optional(h.web_root)},
             {"max_connections", h.max_connections},
+            {"max_connections_per_client", h.max_connections_per_client},
             {"idle_timeout_s", h.idle_timeout_s},
             {"ws_queue_max", h.ws_queue_max},
             {"allowed_hosts", h.allowed_hosts}};

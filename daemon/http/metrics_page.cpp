@@ -118,7 +118,8 @@ std::string render_metrics(const DaemonView& daemon, const CommandMetrics& comma
     e.family("gimbald_http_connections_total", Type::counter, "HTTP connections accepted.");
     e.sample({}, static_cast<double>(http.connections_total));
     e.family("gimbald_http_connections_rejected_total", Type::counter,
-             "HTTP connections closed at once because http.max_connections were open.");
+             "HTTP connections closed at once because http.max_connections were open, or "
+             "http.max_connections_per_client from that address.");
     e.sample({}, static_cast<double>(http.over_capacity_total));
     e.family("gimbald_http_cross_site_refused_total", Type::counter,
              "HTTP requests refused (403) because their Host or Origin names another site.");
