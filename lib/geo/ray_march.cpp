@@ -80,15 +80,17 @@ Intersection march(Surface& surface, const Lla& from, const Vec3& dir, const Ray
     double t = 0;
     bool first = true;
     // A Bound region the ray is below: no use asking again while it descends inside it.
-    std::optional<GeoRect> below_bound;
+    // (a flag and a rectangle: GCC 12 at -O3 misreads an optional here)
+    bool below = false;
+    GeoRect below_bound;
     while (t < t_max) {
         const RaySample r = path.at(t);
         const double lat = r.lat_deg;
         const double lon = wrap_lon(r.lon_deg);
         if (r.dalt >= 0 && r.alt_m > top) return {RayStatus::no_ground, path.exact(t), t};
 
-        if (!(below_bound && r.dalt < 0 && contains(*below_bound, lat, lon))) {
-            below_bound.reset();
+        if (!(below && r.dalt < 0 && contains(below_bound, lat, lon))) {
+            below = false;
             if (const auto b = surface.bound(lat, lon, r.dlat, r.dlon, r.alt_m)) {
                 const double clear = r.alt_m - (b->max_alt_m + bound_margin_m);
                 if (clear > 0) {
@@ -101,6 +103,7 @@ Intersection march(Surface& surface, const Lla& from, const Vec3& dir, const Ray
                     first = false;
                     continue;
                 }
+                below = true;
                 below_bound = b->region;
             }
         }
