@@ -283,6 +283,21 @@ bool encode_value(const Item& item, Bytes& out, std::string& error) {
     return false;
 }
 
+std::uint32_t add_corners(LocalSet& set, LatLon frame_center,
+                          const std::array<LatLon, 4>& corners) {
+    const bool offsets = std::all_of(corners.begin(), corners.end(), [&](const LatLon& c) {
+        return corner_offset_fits(c.lat, frame_center.lat) &&
+               corner_offset_fits(c.lon, frame_center.lon);
+    });
+    const std::uint32_t first = offsets ? 26 : 82;
+    for (std::uint32_t i = 0; i < 4; ++i) {
+        const LatLon& c = corners[i];
+        set.add(first + 2 * i, offsets ? c.lat - frame_center.lat : c.lat);
+        set.add(first + 2 * i + 1, offsets ? c.lon - frame_center.lon : c.lon);
+    }
+    return first;
+}
+
 Encoded encode(const LocalSet& set) {
     Encoded result;
     Bytes body;

@@ -32,6 +32,7 @@
 // decode() expects the set at the start of its input and reads no further than the set.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <nlohmann/json.hpp>
@@ -69,6 +70,16 @@ struct LocalSet {
         return *this;
     }
 };
+
+// The image corners (upper left, upper right, lower right, lower left; latitude, longitude in
+// degrees) as contract section 17 sends them: offsets from the frame centre (tags 26-33) when
+// every corner is within 0.075 degrees of it, else the full corner points (tags 82-89).
+// Returns the first tag used (26 or 82).
+struct LatLon {
+    double lat = 0;
+    double lon = 0;
+};
+std::uint32_t add_corners(LocalSet& set, LatLon frame_center, const std::array<LatLon, 4>& corners);
 
 struct Encoded {
     Bytes bytes;        // key, BER length, items, checksum; empty on error

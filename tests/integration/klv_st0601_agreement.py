@@ -29,7 +29,7 @@ def mapping_step(fmt, mapping, raw):
         step = 2.0 ** (math.ceil(math.log2(b - a)) - (8 * len(raw) - 1))
         return step * 1000.0 if fmt.endswith("km") else step
     if mapping is None:
-        return 1e-6 if fmt.endswith("us") else 0.0
+        return 1e-6 if fmt == "int us" else 0.0
     bits = 8 * len(raw)
     if mapping.startswith("+-"):
         return 2 * float(mapping[2:]) / ((1 << bits) - 2)
@@ -99,7 +99,7 @@ def check_set(base, problems):
             if fmt.startswith("flags:") or fmt.startswith("nibbles:"):
                 width = len(raws[tag])
                 expected = st0601.decode_value(fmt, mapping, given[name].to_bytes(width, "big"))
-        elif fmt == "us":
+        elif fmt in ("us", "uint us"):
             expected = st0601.iso_utc(given[name])
         elif fmt == "frame_rate":
             expected = {"numerator": given[name][0],

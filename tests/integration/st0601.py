@@ -24,7 +24,7 @@ UAS_LS_KEY = bytes.fromhex("060E2B34020B01010E01030101000000")
 #   "intN +-a"     : map -(2^(N-1)-1)..(2^(N-1)-1) onto +-a; -(2^(N-1)) is reserved
 #   "IMAPB(a, b)"  : MISB ST 1201 with the item's length
 #   "uintN", "int" : the integer as it is; "uint" and "int" are variable length
-#   "us"           : microseconds since 1970 (uint64)
+#   "us"           : microseconds since 1970 (uint64); "uint us": the same, 1 to 8 bytes
 #   "utf8", "set" (kept as hex), "enum:<name>", "flags:<name>", "nibbles:<name>",
 #   "oids", "frame_rate", "active_bits"
 ITEMS = [
@@ -158,7 +158,7 @@ ITEMS = [
     (128, "Wavelengths List", "set", None),
     (129, "Target ID", "utf8", None),
     (130, "Airbase Locations", "set", None),
-    (131, "Take-off Time", "us", None),
+    (131, "Take-off Time", "uint us", None),
     (132, "Transmission Frequency", "IMAPB(1, 99999)", None),
     (133, "On-board MI Storage Capacity", "uint", None),
     (134, "Zoom Percentage", "IMAPB(0, 100)", None),
@@ -277,8 +277,8 @@ def decode_value(fmt, mapping, raw):
         return raw.hex().upper()
     if fmt == "utf8":
         return text(raw)
-    if fmt == "us":
-        if len(raw) > 8:
+    if fmt in ("us", "uint us"):  # "us": exactly 8 bytes; "uint us": 1 to 8
+        if len(raw) > 8 or (fmt == "us" and len(raw) != 8):
             raise Invalid()
         return iso_utc(int.from_bytes(raw, "big"))
     if fmt.startswith("IMAPB"):

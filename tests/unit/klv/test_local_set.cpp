@@ -492,3 +492,25 @@ TEST_CASE("find_sets: a stream split at every byte offset loses no set") {
         CHECK(sets == 3);
     }
 }
+
+TEST_CASE("add_corners: offsets while every corner is within 0.075 deg, else full points") {
+    const LatLon center{47.40, 8.54};
+    LocalSet near;
+    CHECK(add_corners(near, center,
+                      {{{47.43, 8.50}, {47.43, 8.58}, {47.37, 8.58}, {47.37, 8.50}}}) == 26);
+    REQUIRE(near.items.size() == 8);
+    CHECK(near.items[0].tag == 26);
+    CHECK(std::get<double>(near.items[0].value) == Approx(0.03));
+    CHECK(near.items[7].tag == 33);
+    CHECK(std::get<double>(near.items[7].value) == Approx(-0.04));
+    LocalSet far;
+    CHECK(add_corners(far, center,
+                      {{{47.43, 8.50}, {47.43, 8.62}, {47.37, 8.58}, {47.37, 8.50}}}) == 82);
+    REQUIRE(far.items.size() == 8);
+    CHECK(far.items[3].tag == 85);
+    CHECK(std::get<double>(far.items[3].value) == 8.62);
+    // Decoded offsets come back as offsets: the reader adds the frame centre.
+    near.items.insert(near.items.begin(), {2, std::uint64_t{1}, 0});
+    const json j = round_trip(near);
+    CHECK(j["offset_corner_latitude_point_1"].get<double>() == Approx(0.03).margin(step(26)));
+}
