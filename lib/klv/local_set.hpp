@@ -65,10 +65,9 @@ struct Item {
 struct LocalSet {
     std::vector<Item> items;
 
-    LocalSet& add(std::uint32_t tag, Value value, std::uint8_t length = 0) {
-        items.push_back({tag, std::move(value), length});
-        return *this;
-    }
+    // Defined out of line: inlined into callers that add doubles, GCC 12 -O3 warns falsely
+    // (-Wmaybe-uninitialized) about the variant's string alternative.
+    LocalSet& add(std::uint32_t tag, Value value, std::uint8_t length = 0);
 };
 
 // The image corners (upper left, upper right, lower right, lower left; latitude, longitude in
