@@ -238,7 +238,7 @@ std::string RequestPath::finish(Outcome& o, const RequestSource& from,
     if (o.cmd && reaches_gimbal(*o.cmd)) audit(o, from);
 
     const CompletedRequest done{
-        from.transport, o.cmd, o.error ? o.error->code : std::string("ok"),
+        from.transport, o.cmd, o.error ? std::string(to_string(o.error->code)) : std::string("ok"),
         std::chrono::duration<double>(std::chrono::steady_clock::now() - o.received).count()};
     for (const auto& observe : observers_) observe(done);
     for (const auto& tap : taps_) tap(from, request_bytes, text);

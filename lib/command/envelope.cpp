@@ -44,7 +44,7 @@ std::optional<EnvelopeError> parse_envelope(std::string_view datagram,
             {code::bad_json, "the datagram is not a JSON object"}, std::nullopt, std::nullopt};
 
     EnvelopeError failure{{}, std::nullopt, std::nullopt};
-    auto fail = [&failure](const char* c, std::string message) {
+    auto fail = [&failure](ErrorCode c, std::string message) {
         failure.error = Error{c, std::move(message)};
         return failure;
     };
