@@ -9,6 +9,7 @@
 #include "command/params.hpp"
 #include "command/viewpro_commands.hpp"
 #include "logging.hpp"
+#include "protocols/registry.hpp"
 #include "state/messages.hpp"
 
 namespace gimbald {
@@ -306,7 +307,7 @@ json RequestPath::dispatch(Outcome& o, const RequestSource& from) {
         if (cmd == "ping") results["pong"] = true;
         if (cmd == "version") {
             results["version"] = GIMBALD_VERSION;
-            results["protocols"] = {"orion", "viewpro"};
+            results["protocols"] = gimbal::protocols::names();
         }
         if (cmd == "list") {
             auto list = json::array();

@@ -36,7 +36,8 @@ constexpr std::string_view known_keys[] = {"protocol",
                                            "command",
                                            "mavlink",
                                            "mqtt",
-                                           "record"};
+                                           "record",
+                                           "capabilities"};
 
 bool always_kept(std::string_view key) {
     return key == "protocol" || key == "link" || key == "stale";
