@@ -4,10 +4,9 @@
 
 #include "auth/hmac.hpp"
 #include "auth/signed_envelope.hpp"
+#include "command/catalogue.hpp"
 #include "command/envelope.hpp"
-#include "command/orion_commands.hpp"
 #include "command/params.hpp"
-#include "command/viewpro_commands.hpp"
 #include "logging.hpp"
 #include "protocols/registry.hpp"
 #include "state/messages.hpp"
@@ -23,8 +22,7 @@ using nlohmann::json;
 namespace {
 
 bool known_command(std::string_view cmd) {
-    return cmdns::is_common_command(cmd) || cmdns::is_orion_command(cmd) ||
-           cmdns::is_viewpro_command(cmd);
+    return cmdns::is_known_command(cmd);
 }
 
 json or_null(const std::optional<std::string>& s) {
