@@ -1,4 +1,6 @@
-// Section 4.2 of the interface contract: Orion commands. Units are the contract's: degrees,
+// The gimbal commands of the command catalogue (lib/command/catalogue.hpp): their arguments
+// on the command line. The help group (which protocols plan them) and the one-line description
+// come from the catalogue and the protocol registry. Units are the contract's: degrees,
 // metres, seconds or milliseconds as the key says. Ranges are checked by the daemon, which
 // answers out_of_range naming the key; gimbalctl only checks types and closed name lists.
 #include <memory>
@@ -21,8 +23,7 @@ std::shared_ptr<Params> params_of(Command& command) {
 }
 
 void add_geopoint(CommandTable& table) {
-    Command& command = table.add("geopoint", "geopoint", group_orion,
-                                 "Point at a geographic location (GeopointCmd).");
+    Command& command = table.add("geopoint", "geopoint");
     auto p = params_of(command);
     p->number("LAT", "lat", "latitude, degrees, north positive")->required();
     p->number("LON", "lon", "longitude, degrees, east positive")->required();
@@ -44,8 +45,7 @@ void add_geopoint(CommandTable& table) {
 }
 
 void add_path(CommandTable& table) {
-    Command& command = table.add("path", "path", group_orion,
-                                 "Scan along a path of points, or point down (OrionPath).");
+    Command& command = table.add("path", "path");
     auto p = params_of(command);
     auto points = std::make_shared<std::vector<std::string>>();
     CLI::Option* points_option =
@@ -79,9 +79,7 @@ void add_path(CommandTable& table) {
 
 void add_laser(CommandTable& table) {
     Command& command =
-        table.add("laser", "laser", group_orion,
-                  "Command a laser (OrionLaserCommand). enable, arm and fire are always sent: "
-                  "false unless given.");
+        table.add("laser", "laser", "enable, arm and fire are always sent: false unless given.");
     auto p = params_of(command);
     p->integer("--index", "index", "laser index (0..1)")->type_name("I")->default_str("0");
     p->flag("--enable", "enable", "enable the laser", true)->default_str("off (sent as false)");
@@ -99,9 +97,9 @@ void add_laser(CommandTable& table) {
         ->default_str("off");
 }
 
-void add_pan_tilt(CommandTable& table, const std::string& name, const std::string& description,
-                  const std::string& unit, const std::string& stabilized_default) {
-    Command& command = table.add(name, name, group_orion, description);
+void add_pan_tilt(CommandTable& table, const std::string& name, const std::string& unit,
+                  const std::string& stabilized_default) {
+    Command& command = table.add(name, name);
     auto p = params_of(command);
     p->number("PAN", "pan", "pan, " + unit)->required();
     p->number("TILT", "tilt", "tilt, " + unit)->required();
@@ -113,8 +111,7 @@ void add_pan_tilt(CommandTable& table, const std::string& name, const std::strin
 }
 
 void add_mode(CommandTable& table) {
-    Command& command =
-        table.add("mode", "mode", group_orion, "Switch to a mode without targets (OrionCmd).");
+    Command& command = table.add("mode", "mode");
     auto p = params_of(command);
     p->text("NAME", "mode", "the mode")
         ->required()
@@ -123,8 +120,7 @@ void add_mode(CommandTable& table) {
 }
 
 void add_stare_ack(CommandTable& table) {
-    Command& command =
-        table.add("stare-ack", "stare_ack", group_orion, "Acknowledge a stare (StareAck).");
+    Command& command = table.add("stare-ack", "stare_ack");
     auto p = params_of(command);
     p->integer("--system-time", "system_time_ms", "system time of the StareStart, ms")
         ->type_name("MS")
@@ -132,8 +128,7 @@ void add_stare_ack(CommandTable& table) {
 }
 
 void add_retract(CommandTable& table) {
-    Command& command = table.add("retract", "retract", group_orion,
-                                 "Deploy or retract the gimbal (OrionRetractCommand).");
+    Command& command = table.add("retract", "retract");
     auto p = params_of(command);
     p->text("ACTION", "action", "deploy, retract or disable")
         ->required()
@@ -141,15 +136,13 @@ void add_retract(CommandTable& table) {
 }
 
 void add_camera_switch(CommandTable& table) {
-    Command& command = table.add("camera-switch", "camera_switch", group_orion,
-                                 "Select the video camera (OrionCameraSwitch).");
+    Command& command = table.add("camera-switch", "camera_switch");
     auto p = params_of(command);
     p->integer("INDEX", "index", "camera index")->required();
 }
 
 void add_camera_zoom(CommandTable& table) {
-    Command& command = table.add("camera-zoom", "camera_zoom", group_orion,
-                                 "Set a camera's zoom and focus (OrionCameraState).");
+    Command& command = table.add("camera-zoom", "camera_zoom");
     auto p = params_of(command);
     p->number("ZOOM", "zoom", "zoom ratio")->required();
     p->number("--focus", "focus", "focus (-1: leave as it is)")->type_name("F")->default_str("-1");
@@ -157,8 +150,7 @@ void add_camera_zoom(CommandTable& table) {
 }
 
 void add_range(CommandTable& table) {
-    Command& command = table.add("range", "range", group_orion,
-                                 "Give the gimbal a range to the target (OrionRangeData).");
+    Command& command = table.add("range", "range");
     auto p = params_of(command);
     p->number("RANGE_M", "range_m", "range, metres")->required();
     p->integer("--max-age-ms", "max_age_ms", "how long the range stays valid, ms")
@@ -170,8 +162,7 @@ void add_range(CommandTable& table) {
 }
 
 void add_request(CommandTable& table) {
-    Command& command = table.add("request", "request", group_orion,
-                                 "Ask the gimbal to send a packet (zero-length request).");
+    Command& command = table.add("request", "request");
     auto p = params_of(command);
     p->text("PACKET", "packet",
             "packet name (crown_version, cameras, limits, network_settings, ...) or "
@@ -179,15 +170,79 @@ void add_request(CommandTable& table) {
         ->required();
 }
 
+// A flag pair "--x/--no-x" that must be given one way or the other.
+void required_switch(Params& p, const std::string& name, const std::string& description) {
+    p.flag("--" + name + ",!--no-" + name, name, description)
+        ->required()
+        ->default_str("none: one of the two is required");
+}
+
+void add_output(CommandTable& table) {
+    Command& command = table.add("viewpro-output", "viewpro_output");
+    auto p = params_of(command);
+    p->text("--osd", "osd", "target or uav")
+        ->required()
+        ->check(CLI::IsMember({"target", "uav"}))
+        ->type_name("WHAT")
+        ->default_str("none: required");
+    required_switch(*p, "serial", "output on the serial port, or not");
+    required_switch(*p, "network", "output on the network, or not");
+    p->text("--format", "format", "out1, out2, out3 or out4")
+        ->required()
+        ->check(CLI::IsMember({"out1", "out2", "out3", "out4"}))
+        ->type_name("FMT")
+        ->default_str("none: required");
+}
+
+void add_adjust(CommandTable& table) {
+    Command& command = table.add("viewpro-adjust", "viewpro_adjust");
+    auto p = params_of(command);
+    CLI::Option* yaw = p->number("--yaw", "yaw_deg", "yaw trim, degrees (-20..20, step 0.01)")
+                           ->type_name("DEG")
+                           ->default_str("not sent");
+    CLI::Option* pitch =
+        p->number("--pitch", "pitch_deg", "pitch trim, degrees (-20..20, step 0.01)")
+            ->type_name("DEG")
+            ->default_str("not sent");
+    p->check([yaw, pitch] {
+        if (yaw->count() == 0 && pitch->count() == 0) {
+            throw CLI::ValidationError("viewpro-adjust", "give --yaw and/or --pitch");
+        }
+    });
+}
+
+void add_vehicle(CommandTable& table) {
+    Command& command = table.add("vehicle", "vehicle");
+    auto p = params_of(command);
+    const auto required_number = [&p](const std::string& name, const std::string& key,
+                                      const std::string& type, const std::string& description) {
+        p->number(name, key, description)
+            ->required()
+            ->type_name(type)
+            ->default_str("none: required");
+    };
+    required_number("--roll", "roll", "DEG", "vehicle roll, degrees");
+    required_number("--pitch", "pitch", "DEG", "vehicle pitch, degrees");
+    required_number("--yaw", "yaw", "DEG", "vehicle yaw, degrees");
+    required_number("--lat", "lat", "DEG", "latitude, degrees");
+    required_number("--lon", "lon", "DEG", "longitude, degrees");
+    required_number("--alt-msl", "alt_msl", "M", "altitude above mean sea level, metres");
+    p->numbers("--vel-ned", "vel_ned", 3, "velocity north, east, down, m/s (selects IN2)")
+        ->type_name("N E D")
+        ->default_str("not sent (IN1)");
+    p->text("--time", "time", "UTC time, ISO-8601, e.g. 2026-11-21T06:41:50.123Z")
+        ->type_name("ISO")
+        ->default_str("now");
+}
+
 }  // namespace
 
-void add_orion_commands(CommandTable& table) {
+void add_gimbal_commands(CommandTable& table) {
     add_geopoint(table);
     add_path(table);
     add_laser(table);
-    add_pan_tilt(table, "position", "Point at pan/tilt angles (OrionCmd, position mode).",
-                 "degrees", "off");
-    add_pan_tilt(table, "rate", "Move at pan/tilt rates (OrionCmd, rate mode).", "degrees/s", "on");
+    add_pan_tilt(table, "position", "degrees", "off");
+    add_pan_tilt(table, "rate", "degrees/s", "on");
     add_mode(table);
     add_stare_ack(table);
     add_retract(table);
@@ -195,6 +250,9 @@ void add_orion_commands(CommandTable& table) {
     add_camera_zoom(table);
     add_range(table);
     add_request(table);
+    add_output(table);
+    add_adjust(table);
+    add_vehicle(table);
 }
 
 }  // namespace gimbalctl

@@ -1,9 +1,9 @@
-#include "session/orion_protocol.hpp"
+#include "protocols/orion/orion_protocol.hpp"
 
 #include "orion/enums.hpp"
 #include "orion/framing.hpp"
 
-namespace gimbal::session {
+namespace gimbal::protocols {
 
 namespace o = gimbal::orion;
 
@@ -51,6 +51,10 @@ bool OrionProtocol::supports(std::string_view cmd) const {
     return command::is_orion_command(cmd);
 }
 
+const session::Capabilities& OrionProtocol::capabilities() const {
+    return orion_capabilities();
+}
+
 std::optional<command::Error> OrionProtocol::plan(std::string_view cmd,
                                                   const nlohmann::json& request, const Now&,
                                                   command::Plan& plan) {
@@ -62,4 +66,4 @@ std::optional<command::Error> OrionProtocol::plan(std::string_view cmd,
     return command::plan_orion(cmd, request, ctx, plan);
 }
 
-}  // namespace gimbal::session
+}  // namespace gimbal::protocols

@@ -5,10 +5,15 @@
 
 #include "command/orion_commands.hpp"
 #include "orion/framer.hpp"
+#include "protocols/orion/orion_capabilities.hpp"
 #include "session/protocol.hpp"
 #include "state/orion_state.hpp"
 
-namespace gimbal::session {
+namespace gimbal::protocols {
+
+using session::Bytes;
+using session::FrameCounters;
+using session::Now;
 
 struct OrionOptions {
     double stale_after_s = 1.0;
@@ -17,7 +22,7 @@ struct OrionOptions {
     bool allow_safety_bypass = false;
 };
 
-class OrionProtocol final : public Protocol {
+class OrionProtocol final : public session::Protocol {
   public:
     explicit OrionProtocol(const OrionOptions& options);
 
@@ -31,6 +36,7 @@ class OrionProtocol final : public Protocol {
     nlohmann::json snapshot(double now_s) const override { return state_.snapshot(now_s); }
     FrameCounters counters() const override;
     bool supports(std::string_view cmd) const override;
+    const session::Capabilities& capabilities() const override;
     std::optional<command::Error> plan(std::string_view cmd, const nlohmann::json& request,
                                        const Now& now, command::Plan& plan) override;
 
@@ -42,4 +48,4 @@ class OrionProtocol final : public Protocol {
     state::OrionState state_;
 };
 
-}  // namespace gimbal::session
+}  // namespace gimbal::protocols

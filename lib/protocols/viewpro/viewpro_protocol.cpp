@@ -1,8 +1,8 @@
-#include "session/viewpro_protocol.hpp"
+#include "protocols/viewpro/viewpro_protocol.hpp"
 
 #include "command/viewpro_commands.hpp"
 
-namespace gimbal::session {
+namespace gimbal::protocols {
 
 ViewproProtocol::ViewproProtocol(const ViewproOptions& options)
     : options_(options), state_(options.stale_after_s) {}
@@ -31,10 +31,14 @@ bool ViewproProtocol::supports(std::string_view cmd) const {
     return command::is_viewpro_command(cmd);
 }
 
+const session::Capabilities& ViewproProtocol::capabilities() const {
+    return viewpro_capabilities();
+}
+
 std::optional<command::Error> ViewproProtocol::plan(std::string_view cmd,
                                                     const nlohmann::json& request, const Now& now,
                                                     command::Plan& plan) {
     return command::plan_viewpro(cmd, request, command::ViewproContext{now.unix_s}, plan);
 }
 
-}  // namespace gimbal::session
+}  // namespace gimbal::protocols

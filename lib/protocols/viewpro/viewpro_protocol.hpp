@@ -2,19 +2,24 @@
 // every (re)connect it sends the configured mode command so the gimbal starts reporting.
 #pragma once
 
+#include "protocols/viewpro/viewpro_capabilities.hpp"
 #include "session/protocol.hpp"
 #include "state/viewpro_state.hpp"
 #include "viewpro/mode.hpp"
 #include "viewpro/output_framer.hpp"
 
-namespace gimbal::session {
+namespace gimbal::protocols {
+
+using session::Bytes;
+using session::FrameCounters;
+using session::Now;
 
 struct ViewproOptions {
     double stale_after_s = 1.0;
     viewpro::Mode output;  // gimbals[].viewpro.output
 };
 
-class ViewproProtocol final : public Protocol {
+class ViewproProtocol final : public session::Protocol {
   public:
     explicit ViewproProtocol(const ViewproOptions& options);
 
@@ -28,6 +33,7 @@ class ViewproProtocol final : public Protocol {
     nlohmann::json snapshot(double now_s) const override { return state_.snapshot(now_s); }
     FrameCounters counters() const override;
     bool supports(std::string_view cmd) const override;
+    const session::Capabilities& capabilities() const override;
     std::optional<command::Error> plan(std::string_view cmd, const nlohmann::json& request,
                                        const Now& now, command::Plan& plan) override;
 
@@ -37,4 +43,4 @@ class ViewproProtocol final : public Protocol {
     state::ViewproState state_;
 };
 
-}  // namespace gimbal::session
+}  // namespace gimbal::protocols
