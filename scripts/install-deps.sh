@@ -12,6 +12,7 @@ packages=(
   libmosquitto-dev mosquitto mosquitto-clients python3-paho-mqtt openssl
   dpkg-dev lintian
   tshark prometheus chromium
+  libgdal-dev proj-data gdal-bin python3-gdal
 )
 
 # --cross ARCH (scripts/package.sh --arch arm64): the cross compiler, QEMU and the ARCH
