@@ -48,7 +48,8 @@ std::size_t TsMuxer::packet(std::uint16_t pid, bool unit_start, const Adaptation
                             std::span<const std::uint8_t> a, std::span<const std::uint8_t> b,
                             bool has_payload) {
     const std::size_t available = a.size() + b.size();
-    const bool need_flags = flags.pcr_base.has_value() || flags.random_access;
+    const bool need_flags =
+        flags.pcr_base.has_value() || flags.random_access || flags.discontinuity;
     std::size_t af_size = 0;  // adaptation field including its length byte
     if (need_flags) af_size = 2 + (flags.pcr_base ? 6 : 0);
     std::size_t payload = has_payload ? std::min(available, 184 - af_size) : 0;
@@ -71,7 +72,8 @@ std::size_t TsMuxer::packet(std::uint16_t pid, bool unit_start, const Adaptation
         p[pos++] = static_cast<std::uint8_t>(af_size - 1);
         if (af_size > 1) {
             const std::size_t af_end = 4 + af_size;
-            p[pos++] = static_cast<std::uint8_t>((flags.random_access ? 0x40 : 0) |
+            p[pos++] = static_cast<std::uint8_t>((flags.discontinuity ? 0x80 : 0) |
+                                                 (flags.random_access ? 0x40 : 0) |
                                                  (flags.pcr_base ? 0x10 : 0));
             if (flags.pcr_base) {
                 const std::uint64_t base = *flags.pcr_base % pts_modulus;
@@ -121,10 +123,14 @@ void TsMuxer::write_psi() {
                                options_.klv_pid,
                                {0x05, 0x04, 'K', 'L', 'V', 'A'}});  // registration_descriptor
     }
+    // pointer_field 0, the section, 0xFF to the end of the payload (2.4.4.1), as players
+    // expect it (no adaptation-field stuffing in PSI packets).
     for (const auto& [pid, section] :
          {std::pair{pat_pid, build_pat(pat)}, std::pair{options_.pmt_pid, build_pmt(pmt)}}) {
-        const std::uint8_t pointer = 0;
-        packet(pid, true, {}, std::span(&pointer, 1), section);
+        std::vector<std::uint8_t> payload(184, 0xFF);
+        payload[0] = 0;
+        std::copy(section.begin(), section.end(), payload.begin() + 1);
+        packet(pid, true, {}, payload, {});
     }
     ++stats_.psi_repeats;
     psi_due_ = false;
@@ -159,6 +165,27 @@ void TsMuxer::write_pes(std::uint16_t pid, std::span<const std::uint8_t> header,
     }
 }
 
+// The PCR for a unit decoded at `dts`: dts - pcr_lead, never behind the last PCR (KLV
+// may have moved it on a little); a jump of more than a second either way (a restarted
+// encoder, a PTS wrap of the input) is flagged with discontinuity_indicator (2.4.3.5).
+std::uint64_t TsMuxer::next_pcr(std::uint64_t dts, bool& discontinuity) {
+    std::uint64_t pcr = (dts + pts_modulus - options_.pcr_lead % pts_modulus) % pts_modulus;
+    discontinuity = false;
+    if (last_pcr_) {
+        const auto forward = elapsed(*last_pcr_, pcr);
+        const auto back = elapsed(pcr, *last_pcr_);
+        if (forward && *forward > pts_hz) {
+            discontinuity = true;
+        } else if (!forward && back && *back <= pts_hz) {
+            pcr = *last_pcr_;
+        } else if (!forward) {
+            discontinuity = true;
+        }
+    }
+    last_pcr_ = pcr;
+    return pcr;
+}
+
 void TsMuxer::write_pcr_only(std::uint64_t pcr_base) {
     AdaptationFlags flags;
     flags.pcr_base = pcr_base;
@@ -179,8 +206,7 @@ void TsMuxer::write_video(const AccessUnit& au) {
     AdaptationFlags first;
     first.random_access = au.key_frame;
     if (now) {
-        first.pcr_base = (*now + pts_modulus - options_.pcr_lead % pts_modulus) % pts_modulus;
-        last_pcr_ = first.pcr_base;
+        first.pcr_base = next_pcr(*now, first.discontinuity);
         ++stats_.pcrs;
     }
     header_.clear();
@@ -199,8 +225,10 @@ void TsMuxer::write_klv(std::span<const std::uint8_t> klv, std::optional<std::ui
     if (pts) {
         const std::uint64_t pcr =
             (*pts + pts_modulus - options_.pcr_lead % pts_modulus) % pts_modulus;
+        // Only when the video has stalled: KLV timestamps may run ahead of the video's
+        // DTS, and a PCR must not pass the DTS of the next unit.
         const auto since = last_pcr_ ? elapsed(*last_pcr_, pcr) : std::nullopt;
-        if (!last_pcr_ || (since && *since >= options_.pcr_interval)) write_pcr_only(pcr);
+        if (since && *since >= options_.pcr_interval && *since <= pts_hz) write_pcr_only(pcr);
     }
     header_.clear();
     write_pes_header(header_, stream_id::private_stream_1, klv.size(), pts, std::nullopt, true);

@@ -4,9 +4,9 @@
 //
 // - PAT and PMT before the first unit, before every key frame and whenever psi_interval of
 //   stream time has passed since the last ones (players can join at any time).
-// - PCR on the video PID in the first packet of every access unit (at most one frame
-//   apart), PCR = DTS - pcr_lead; when KLV arrives and no PCR went out for pcr_interval, a
-//   PCR-only packet keeps the clock going (slow or paused video).
+// - PCR on the video PID in the first packet of every access unit (one frame apart),
+//   PCR = DTS - pcr_lead, never going back; when KLV arrives and no PCR went out for
+//   pcr_interval, a PCR-only packet keeps the clock going (slow or stalled video).
 // - Continuity counters per PID, adaptation-field stuffing, random_access_indicator on key
 //   frames.
 // - Output in chunks of packets_per_chunk packets (7 x 188 = 1316 bytes: one UDP datagram);
@@ -33,7 +33,7 @@ struct MuxerOptions {
     std::uint16_t klv_pid = 0x0101;
     bool klv = true;                           // declare the KLV data stream in the PMT
     std::uint64_t psi_interval = pts_hz / 4;   // 250 ms, in 90 kHz ticks
-    std::uint64_t pcr_interval = pts_hz / 25;  // 40 ms
+    std::uint64_t pcr_interval = pts_hz / 11;  // ~90 ms: KLV-only PCRs when video stalls
     std::uint64_t pcr_lead = pts_hz / 10;      // PCR this far behind the DTS (decoder buffer)
     std::size_t packets_per_chunk = 7;
 };
@@ -71,6 +71,7 @@ class TsMuxer {
     struct AdaptationFlags {
         std::optional<std::uint64_t> pcr_base;  // 90 kHz (extension 0)
         bool random_access = false;
+        bool discontinuity = false;
     };
 
     void write_psi();
@@ -78,6 +79,7 @@ class TsMuxer {
     void write_pes(std::uint16_t pid, std::span<const std::uint8_t> header,
                    std::span<const std::uint8_t> payload, const AdaptationFlags& first);
     void write_pcr_only(std::uint64_t pcr_base);
+    std::uint64_t next_pcr(std::uint64_t dts, bool& discontinuity);
     // Appends one packet taking up to 184 - adaptation bytes of `payload`; returns how many.
     std::size_t packet(std::uint16_t pid, bool unit_start, const AdaptationFlags& flags,
                        std::span<const std::uint8_t> a, std::span<const std::uint8_t> b,
