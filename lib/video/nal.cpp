@@ -210,12 +210,10 @@ std::optional<Bytes> length_prefixed_to_annexb(ByteView sample, int length_size)
 
 Bytes with_parameter_sets(Codec codec, ByteView annexb_au, const ParameterSets& sets) {
     const std::vector<ByteView> nals = split_annexb(annexb_au);
-    bool key = false;
+    const bool key = is_key_frame(codec, annexb_au);
     bool has_sps = false;
     for (const ByteView nal : nals) {
-        const std::uint8_t t = nal_type(codec, nal);
-        key = key || is_key_nal(codec, t);
-        has_sps = has_sps || t == (codec == Codec::h264 ? h264::sps : h265::sps);
+        has_sps = has_sps || nal_type(codec, nal) == (codec == Codec::h264 ? h264::sps : h265::sps);
     }
     if (!key || has_sps || sets.empty()) return Bytes(annexb_au.begin(), annexb_au.end());
     Bytes out;

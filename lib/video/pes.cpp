@@ -14,7 +14,8 @@ std::uint64_t read_timestamp(std::span<const std::uint8_t> b) {
 
 void put_timestamp(std::vector<std::uint8_t>& out, std::uint8_t prefix, std::uint64_t ts) {
     ts %= pts_modulus;
-    out.push_back(static_cast<std::uint8_t>((prefix << 4) | ((ts >> 29) & 0x0E) | 1));
+    out.push_back(
+        static_cast<std::uint8_t>((std::uint64_t{prefix} << 4) | ((ts >> 29) & 0x0E) | 1));
     out.push_back(static_cast<std::uint8_t>(ts >> 22));
     out.push_back(static_cast<std::uint8_t>(((ts >> 14) & 0xFE) | 1));
     out.push_back(static_cast<std::uint8_t>(ts >> 7));

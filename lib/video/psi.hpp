@@ -86,7 +86,10 @@ class SectionAssembler {
                 return;
             }
             std::size_t want = 3;
-            if (buffer_.size() >= 3) want = 3 + (((buffer_[1] & 0x0Fu) << 8) | buffer_[2]);
+            if (buffer_.size() >= 3) {
+                want = 3 + (((buffer_[1] & 0x0Fu) << 8) | buffer_[2]);
+                if (want == 3) return reset();  // an empty section: nothing valid follows
+            }
             const std::size_t take = std::min(want - buffer_.size(), bytes.size());
             buffer_.insert(buffer_.end(), bytes.begin(), bytes.begin() + static_cast<long>(take));
             bytes = bytes.subspan(take);

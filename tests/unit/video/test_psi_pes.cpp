@@ -141,3 +141,27 @@ TEST_CASE("PES header: PTS/DTS coding (2.4.3.7) both ways", "[video][pes]") {
     CHECK_FALSE(v::parse_pes_header(Bytes{0x00, 0x00, 0x02, 0xE0, 0, 0}));
     CHECK_FALSE(v::parse_pes_header(Bytes{0x00, 0x00, 0x01, 0xE0, 0, 0, 0x84, 0x80, 0x05, 0x21}));
 }
+
+TEST_CASE("Section assembly: spanning packets, several per packet, empty sections",
+          "[video][psi]") {
+    const Bytes a = gimbal::test::pat(1, 0x100);
+    const Bytes b = gimbal::test::pat(2, 0x200);
+    std::vector<Bytes> got;
+    v::SectionAssembler asm_;
+    auto on = [&](std::span<const std::uint8_t> s) { got.emplace_back(s.begin(), s.end()); };
+    // Two sections in one payload, the second cut and finished by the next packet.
+    Bytes first = {0x00};
+    first.insert(first.end(), a.begin(), a.end());
+    first.insert(first.end(), b.begin(), b.begin() + 5);
+    asm_.push(first, true, on);
+    asm_.push(Bytes(b.begin() + 5, b.end()), false, on);
+    REQUIRE(got.size() == 2);
+    CHECK(got[0] == a);
+    CHECK(got[1] == b);
+    // A section_length of 0 (found by the fuzzer: it used to spin) ends the payload.
+    asm_.push(Bytes{0x00, 0x00, 0xB0, 0x00, 0x00, 0x00}, true, on);
+    CHECK(got.size() == 2);
+    // A pointer_field past the payload is dropped.
+    asm_.push(Bytes{0x10, 0x00}, true, on);
+    CHECK(got.size() == 2);
+}
