@@ -269,11 +269,12 @@ void TsDemuxer::pes_packet(PesStream& s, const TsPacket& p, bool video) {
         if (!s.active) return;  // joined mid-PES: wait for the next start
         s.data.insert(s.data.end(), p.payload.begin(), p.payload.end());
     }
-    // A bounded PES is complete as soon as its length is in: deliver without waiting for
-    // the next one (KLV, and video from muxers that write the length).
+    // A bounded PES is complete as soon as its length is in; an unbounded one (video from
+    // most encoders) when a packet is stuffed, which a muxer does only at the end of a PES.
+    // Either way the unit goes out now instead of when the next one starts.
     if (s.data.size() >= 6) {
         const std::size_t length = (std::size_t{s.data[4]} << 8) | s.data[5];
-        if (length != 0 && s.data.size() >= 6 + length) finish_pes(s, video);
+        if (length != 0 ? s.data.size() >= 6 + length : p.stuffed) finish_pes(s, video);
     }
 }
 

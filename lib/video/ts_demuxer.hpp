@@ -10,6 +10,9 @@
 // - KLV: stream_type 0x06 with registration 'KLVA' (asynchronous, ST 1402) and
 //   stream_type 0x15 with a KLVA metadata_descriptor (synchronous; PES payload of metadata
 //   AU cells, 13818-1 2.12.4).
+// - Units end when the PES does: at its PES_packet_length, at a packet with
+//   adaptation-field stuffing (only the last packet of a PES may have it), or else when the
+//   next PES starts; so a unit goes out with the datagram that completes it.
 // - Loss: a continuity-counter gap (without the discontinuity indicator) or a transport
 //   error on a PID marks its partial PES damaged; a damaged PES is dropped and counted,
 //   never delivered. Duplicate packets (same CC) are ignored as 2.4.3.3 allows.
@@ -73,8 +76,8 @@ class TsDemuxer {
 
     // Any number of bytes; handlers are called from inside.
     void push(std::span<const std::uint8_t> bytes);
-    // End of stream: delivers a PES still open (video PES of unbounded length end only when
-    // the next one starts).
+    // End of stream: delivers a PES still open (an unbounded one whose last packet was
+    // exactly full ends only when the next one starts).
     void flush();
 
     const DemuxStats& stats() const { return stats_; }

@@ -18,10 +18,22 @@ std::optional<TsPacket> parse_ts_packet(std::span<const std::uint8_t> p) {
         pos = 5 + length;
         // 2.4.3.4: at most 183 bytes with a payload, exactly 183 without one.
         if (pos > ts_packet_size) return std::nullopt;
+        t.stuffed = length == 0;  // a one-byte field is itself stuffing (2.4.3.4)
         if (length > 0) {
             const std::uint8_t flags = p[5];
             t.discontinuity = (flags & 0x80) != 0;
             t.random_access = (flags & 0x40) != 0;
+            // The fields the flags announce (Table 2-6): PCR, OPCR, splice countdown,
+            // private data, extension; what is left over is stuffing.
+            std::size_t used = 1;
+            if (flags & 0x10) used += 6;
+            if (flags & 0x08) used += 6;
+            if (flags & 0x04) used += 1;
+            if ((flags & 0x02) && 4 + 1 + used < ts_packet_size && used < length)
+                used += 1 + std::size_t{p[5 + used]};
+            if ((flags & 0x01) && 4 + 1 + used < ts_packet_size && used < length)
+                used += 1 + std::size_t{p[5 + used]};
+            t.stuffed = used < length;
             if ((flags & 0x10) && length >= 7) {
                 const std::uint64_t base =
                     (std::uint64_t{p[6]} << 25) | (std::uint64_t{p[7]} << 17) |

@@ -34,6 +34,9 @@ struct TsPacket {
     bool discontinuity = false;
     bool random_access = false;
     std::optional<std::uint64_t> pcr;  // 27 MHz: base * 300 + extension
+    // Stuffing bytes after the adaptation field's own fields: in a packet carrying PES
+    // data they are only allowed when the PES packet ends here (2.4.3.5, 2.4.3.4).
+    bool stuffed = false;
     std::span<const std::uint8_t> payload;
 };
 

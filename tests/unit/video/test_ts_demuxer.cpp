@@ -118,8 +118,8 @@ TEST_CASE("Demux: program, access units, async KLV, PCR", "[video][demux]") {
     t::Collector c;
     v::TsDemuxer d(c.handlers());
     d.push(stream);
-    // Unbounded video PES: the last one ends only at the end of the stream.
-    CHECK(c.units.size() == aus.size() - 1);
+    // Unbounded video PES, each ended by its stuffed last packet: all out without a flush.
+    CHECK(c.units.size() == aus.size());
     d.flush();
     check_units(c, aus);
     REQUIRE(c.programs.size() == 1);
@@ -154,6 +154,36 @@ TEST_CASE("Demux: a bounded video PES is delivered without waiting for the next"
     v::TsDemuxer d(c.handlers());
     d.push(build(sb, aus));
     check_units(c, aus);
+}
+
+TEST_CASE("Demux: an unbounded PES ends at stuffing, not at a PCR, else at the next start",
+          "[video][demux]") {
+    t::Collector c;
+    v::TsDemuxer d(c.handlers());
+    Bytes s = t::psi_packet(0, t::pat(1, pmt_pid));
+    t::put(s, t::psi_packet(pmt_pid, t::pmt(1, video_pid, {{0x1B, video_pid, {}}})));
+    d.push(s);
+    // 14-byte PES header + 354 bytes = two full packets: no stuffing anywhere.
+    const Bytes exact = t::h264_au(false, 354 - 12);
+    REQUIRE(exact.size() == 354);
+    int cc = 0;
+    d.push(t::join(t::pes_packets(video_pid, t::pes(0xE0, exact, 1000, std::nullopt, false), cc)));
+    CHECK(c.units.empty());  // could go on: waits for the next start
+    // The next PES: its middle packet has a PCR (an adaptation field without stuffing).
+    const Bytes next = t::h264_au(false, 400, 0x66);  // PES of 426 bytes: 184 + 176 + 66
+    const Bytes pes = t::pes(0xE0, next, 4000, std::nullopt, false);
+    d.push(t::packet(video_pid, Bytes(pes.begin(), pes.begin() + 184),
+                     t::PacketOptions().start().counter(cc)));
+    REQUIRE(c.units.size() == 1);
+    CHECK(c.units[0].data == exact);
+    d.push(t::packet(video_pid, Bytes(pes.begin() + 184, pes.begin() + 360),
+                     t::PacketOptions().counter(cc + 1).pcr(500)));
+    CHECK(c.units.size() == 1);
+    d.push(t::packet(video_pid, Bytes(pes.begin() + 360, pes.end()),
+                     t::PacketOptions().counter(cc + 2)));
+    REQUIRE(c.units.size() == 2);  // stuffed: done
+    CHECK(c.units[1].data == next);
+    CHECK(c.units[1].pts == 4000u);
 }
 
 TEST_CASE("Demux: every split of the byte stream gives the same units", "[video][demux]") {
