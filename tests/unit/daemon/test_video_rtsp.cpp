@@ -143,3 +143,34 @@ TEST_CASE("video rtsp input: a server that goes away is reported and retried", "
     CHECK_FALSE(st.last_error.empty());
     input.stop();
 }
+
+TEST_CASE("video rtsp input: H.265 over TCP", "[video][rtsp]") {
+    RtspServer server({"--codec", "h265", "--width", "352", "--height", "288", "--fps", "10"});
+    REQUIRE(server.port() != 0);
+    asio::io_context io;
+    Received got;
+    vd::RtspInput input(
+        io, url("rtsp://127.0.0.1:" + std::to_string(server.port()) + "/test?transport=tcp"), {},
+        got.handlers());
+    input.start();
+    REQUIRE(run_until(
+        io, [&] { return got.units.size() >= 10; }, 15000ms));
+    const auto st = input.status();
+    CHECK(st.stream.codec == gv::Codec::h265);
+    CHECK(st.stream.width == 352);
+    CHECK(st.stream.height == 288);
+    const auto key =
+        std::find_if(got.units.begin(), got.units.end(), [](const auto& u) { return u.key_frame; });
+    REQUIRE(key != got.units.end());
+    bool vps = false, sps = false, pps = false;
+    for (const auto nal : gv::split_annexb(key->data)) {
+        const auto t = gv::nal_type(gv::Codec::h265, nal);
+        vps = vps || t == gv::h265::vps;
+        sps = sps || t == gv::h265::sps;
+        pps = pps || t == gv::h265::pps;
+    }
+    CHECK(vps);
+    CHECK(sps);
+    CHECK(pps);
+    input.stop();
+}
