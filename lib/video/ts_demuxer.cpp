@@ -11,6 +11,8 @@ namespace gimbal::video {
 namespace {
 
 constexpr std::uint8_t no_cc = 0x10;
+// Far above any access unit (a 4K intra frame at high quality is a few MiB).
+constexpr std::size_t max_pes_bytes = 16u << 20;
 
 bool is_klva_async(const PmtStream& s) {
     return s.stream_type == stream_type::private_pes &&
@@ -267,6 +269,13 @@ void TsDemuxer::pes_packet(PesStream& s, const TsPacket& p, bool video) {
         s.damaged = false;
     } else {
         if (!s.active) return;  // joined mid-PES: wait for the next start
+        if (s.data.size() + p.payload.size() > max_pes_bytes) {
+            // No end in sight (a broken or hostile stream): memory stays bounded.
+            ++stats_.pes_errors;
+            s.active = false;
+            s.data.clear();
+            return;
+        }
         s.data.insert(s.data.end(), p.payload.begin(), p.payload.end());
     }
     // A bounded PES is complete as soon as its length is in; an unbounded one (video from

@@ -44,7 +44,7 @@ struct DemuxStats {
     std::uint64_t bad_packets = 0;       // adaptation field longer than the packet
     std::uint64_t scrambled = 0;         // packets of a selected PID that are scrambled
     std::uint64_t psi_errors = 0;        // PAT/PMT sections with a bad CRC or layout
-    std::uint64_t pes_errors = 0;        // PES whose header does not parse
+    std::uint64_t pes_errors = 0;        // PES whose header does not parse, or over 16 MiB
     std::uint64_t dropped_units = 0;     // damaged PES (lost packets) not delivered
     std::uint64_t access_units = 0;
     std::uint64_t klv_units = 0;

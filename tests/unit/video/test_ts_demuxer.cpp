@@ -459,3 +459,26 @@ TEST_CASE("Demux: streams it does not follow and broken PSI", "[video][demux]") 
     CHECK(c.klv.empty());
     CHECK(d.stats().psi_errors == 1);
 }
+
+TEST_CASE("Demux: a PES that never ends is dropped at 16 MiB", "[video][demux]") {
+    t::Collector c;
+    v::TsDemuxer d(c.handlers());
+    Bytes s = t::psi_packet(0, t::pat(1, pmt_pid));
+    t::put(s, t::psi_packet(pmt_pid, t::pmt(1, video_pid, {{0x1B, video_pid, {}}})));
+    d.push(s);
+    int cc = 0;
+    const Bytes start = t::pes(0xE0, Bytes(184 - 14, 0x11), 1000, std::nullopt, false);
+    d.push(t::packet(video_pid, start, t::PacketOptions().start().counter(cc)));
+    const Bytes filler(184, 0x22);
+    for (int i = 0; i < (16 << 20) / 184 + 10; ++i) {
+        cc = (cc + 1) & 15;
+        d.push(t::packet(video_pid, filler, t::PacketOptions().counter(cc)));
+    }
+    CHECK(d.stats().pes_errors == 1);
+    CHECK(c.units.empty());
+    // The next unit is read normally.
+    cc = (cc + 1) & 15;
+    for (Bytes& p : t::pes_packets(video_pid, t::pes(0xE0, t::h264_au(true), 5000), cc)) d.push(p);
+    REQUIRE(c.units.size() == 1);
+    CHECK(c.units[0].pts == 5000u);
+}
