@@ -197,3 +197,41 @@ TEST_CASE("Mux: a unit without timestamps still goes out, PSI by packet count", 
     CHECK_FALSE(c.units[0].pts);
     CHECK(mux.stats().psi_repeats >= 50);  // every unit is a key frame here
 }
+
+TEST_CASE("Mux: a restarted input (PTS back to zero, new codec) is flagged and announced",
+          "[video][mux]") {
+    Output out;
+    auto mux = make(out);
+    for (int i = 0; i < 5; ++i) mux.write_video(unit(i).view());
+    // The encoder restarts as H.265 with timestamps near zero.
+    v::AccessUnitBuffer again = unit(0);
+    again.codec = v::Codec::h265;
+    again.dts = 3000;
+    again.pts = 9000;
+    const std::size_t before = out.packets().size();
+    mux.write_video(again.view());
+    const auto packets = out.packets();
+    bool pmt_h265 = false;
+    bool discontinuity = false;
+    for (std::size_t i = before; i < packets.size(); ++i) {
+        if (packets[i] ==
+            t::psi_packet(
+                0x1000,
+                t::pmt(1, 0x100, {{0x24, 0x100, {}}, {0x06, 0x101, t::klva_registration}}, 1),
+                static_cast<int>((packets[i][3] & 0x0F))))
+            pmt_h265 = true;
+        const auto tp = v::parse_ts_packet(packets[i]);
+        if (tp->pid == 0x100 && tp->payload_unit_start) {
+            discontinuity = tp->discontinuity;
+            CHECK(tp->pcr == (3000u + v::pts_modulus - 9000u) % v::pts_modulus * 300u);
+        }
+    }
+    CHECK(pmt_h265);       // PMT version 1 says H.265
+    CHECK(discontinuity);  // the PCR went back: discontinuity_indicator
+    t::Collector c;
+    v::TsDemuxer d(c.handlers());
+    d.push(out.all());
+    REQUIRE(c.units.size() == 6);
+    CHECK(c.units.back().codec == v::Codec::h265);
+    CHECK(d.stats().program_changes == 1);
+}
