@@ -32,8 +32,7 @@ asio::ip::address parse_address(const std::string& text, const char* what) {
 
 UdpTsInput::UdpTsInput(asio::io_context& io, gv::VideoUrl url, VideoInputOptions options,
                        VideoInputHandlers handlers)
-    : io_(io),
-      url_(std::move(url)),
+    : url_(std::move(url)),
       options_(std::move(options)),
       handlers_(std::move(handlers)),
       socket_(io),

@@ -40,7 +40,6 @@ class UdpTsInput final : public VideoInput {
     void tick();
     void set_connected(bool connected);
 
-    boost::asio::io_context& io_;
     gimbal::video::VideoUrl url_;
     VideoInputOptions options_;
     VideoInputHandlers handlers_;

@@ -53,6 +53,7 @@ class BitReader {
         return (k & 1u) ? magnitude : -magnitude;
     }
     bool failed() const { return failed_; }
+    void fail() { failed_ = true; }
     std::size_t position() const { return pos_; }
 
   private:

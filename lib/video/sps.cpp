@@ -21,7 +21,11 @@ void skip_h264_scaling_list(BitReader& r, int size) {
     int last = 8;
     int next = 8;
     for (int j = 0; j < size && !r.failed(); ++j) {
-        if (next != 0) next = (last + r.se() + 256) % 256;
+        if (next != 0) {
+            const std::int32_t delta = r.se();  // delta_scale: -128..127
+            if (delta < -128 || delta > 127) return r.fail();
+            next = (last + delta + 256) % 256;
+        }
         last = next == 0 ? last : next;
     }
 }
