@@ -12,6 +12,7 @@ packages=(
   libmosquitto-dev mosquitto mosquitto-clients python3-paho-mqtt openssl
   dpkg-dev lintian
   tshark prometheus chromium
+  libgdal-dev proj-data gdal-bin python3-gdal
   libavformat-dev libavcodec-dev libavutil-dev ffmpeg
   gstreamer1.0-tools gstreamer1.0-plugins-base gstreamer1.0-plugins-good
   gstreamer1.0-plugins-bad gstreamer1.0-plugins-ugly python3-gi gir1.2-gst-rtsp-server-1.0

@@ -11,7 +11,7 @@
 // its frame time. A benchmark, never a pass/fail timing test: it prints the figures and the
 // targets, and exits non-zero only when units were lost (the smoke run's check).
 //
-//   bench_video_relay [--seconds 10] [--dir DIR]
+//   bench_video_relay [--seconds 10] [--dir DIR]    (--smoke: 2 s)
 #include <poll.h>
 #include <pthread.h>
 #include <time.h>
@@ -80,10 +80,11 @@ double percentile(std::vector<double> v, double p) {
 int main(int argc, char** argv) {
     double seconds = 10;
     fs::path dir = fs::temp_directory_path();
-    for (int i = 1; i + 1 < argc; i += 2) {
+    for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
-        if (a == "--seconds") seconds = std::max(1.0, std::atof(argv[i + 1]));
-        if (a == "--dir") dir = argv[i + 1];
+        if (a == "--smoke") seconds = 2;
+        if (a == "--seconds" && i + 1 < argc) seconds = std::max(1.0, std::atof(argv[++i]));
+        if (a == "--dir" && i + 1 < argc) dir = argv[++i];
     }
     gimbal::log::configure({gimbal::log::Level::warn, gimbal::log::Format::text, {}});
 
