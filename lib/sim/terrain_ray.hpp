@@ -39,10 +39,18 @@ class TerrainRayCaster {
     double max_range_m() const { return max_range_m_; }
 
   private:
-    double exact_gap(const geo::Vec3& dir_ecef, double t) const;
-    Result hit_at(const geo::Vec3& dir_ecef, double t) const;
-    Result solve(const geo::Vec3& dir_ecef, double t_lo, double g_lo, double t_hi,
-                 double g_hi) const;
+    struct Ray;
+    // Height above the ground at t along the ray: on the tangent-plane model, over the march
+    // grid's bound or the terrain itself; and on the exact geometry (`at` gets the point).
+    double bound_gap(const Ray& ray, double t) const;
+    double model_gap(const Ray& ray, double t) const;
+    double exact_gap(const Ray& ray, double t, geo::Lla* at = nullptr) const;
+    Result hit(const geo::Lla& point, double t) const;
+    // Where the ray crosses the ground between t_lo (above) and t_hi (on or below), on the
+    // model (exact = false) or exactly.
+    double root(const Ray& ray, double t_lo, double g_lo, double t_hi, double g_hi,
+                double* slope) const;
+    Result exact_root(const Ray& ray, double t_model, double slope) const;
 
     geo::Lla from_;
     geo::Vec3 from_ecef_;
