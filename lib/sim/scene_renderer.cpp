@@ -81,9 +81,11 @@ struct Mark {
 constexpr double height_step_m = 2;
 // A grid node whose w bends more than this (relative second difference) marks an edge.
 constexpr float kink_threshold = 0.05f;
+// Cells with an edge are split down to this size; there, the corners' colours are blended.
+constexpr int min_cell_px = 4;
 // A cell with a kink whose corners' depths differ more than this holds an edge.
 constexpr double edge_depth_ratio = 1.3;
-// Fine cells whose corners' depths differ more than this are not interpolated.
+// Split cells whose corners' depths differ more than this are split again.
 constexpr double fine_depth_ratio = 1.2;
 // Edges in ground this deep in haze (beyond 0.45 of the max range) are not refined.
 constexpr float far_fog = 0.3f;
@@ -94,7 +96,7 @@ constexpr double gradient_step_m = 5;
 bool valid(const SceneOptions& o) {
     return o.width >= 16 && o.width <= 4096 && o.height >= 16 && o.height <= 4096 &&
            o.width % 2 == 0 && o.height % 2 == 0 && o.grid_px >= 4 && o.grid_px <= 64 &&
-           o.max_range_m > 0 && std::isfinite(o.max_range_m);
+           (o.grid_px & (o.grid_px - 1)) == 0 && o.max_range_m > 0 && std::isfinite(o.max_range_m);
 }
 
 struct SceneRenderer::Impl {
@@ -116,7 +118,6 @@ struct SceneRenderer::Impl {
     std::vector<Mark> all_marks;
     std::vector<Node> nodes;  // (cells_x + 1) x (cells_y + 1)
     int cells_x = 0, cells_y = 0;
-    std::vector<Node> sub;          // one refined cell's nodes
     std::uint8_t* y_out = nullptr;  // the frame's luma plane
     std::vector<std::uint8_t> u_full, v_full;
 
@@ -227,14 +228,30 @@ struct SceneRenderer::Impl {
         float fx = 1, fy = 1;
     };
 
-    Colour ground(float x, float y, float h, float shade, float river, float fog, Footprint f,
+    // What the footprint means for lines and landmarks, worked out once per cell.
+    struct Scale {
+        float px_x, px_y;                  // pixels per metre across x, y lines
+        float minor_fade_x, minor_fade_y;  // 100 m lines fade out beyond 6..12 m/px
+        float major_fade_x, major_fade_y;  // 1 km lines beyond 60..120 m/px
+        float mark_px;                     // pixels per metre for landmark edges
+        explicit Scale(Footprint f)
+            : px_x(1 / f.fx),
+              px_y(1 / f.fy),
+              minor_fade_x(clamp01((12.f - f.fx) / 6.f)),
+              minor_fade_y(clamp01((12.f - f.fy) / 6.f)),
+              major_fade_x(clamp01((120.f - f.fx) / 60.f)),
+              major_fade_y(clamp01((120.f - f.fy) / 60.f)),
+              mark_px(1 / std::min(f.fx, f.fy)) {}
+    };
+
+    Colour ground(float x, float y, float h, float shade, float river, float fog, const Scale& s,
                   const Mark* marks, std::size_t n_marks) const {
         const auto hi =
             static_cast<std::size_t>(std::min(std::max(h / static_cast<float>(height_step_m), 0.f),
                                               static_cast<float>(ramp.size() - 1)));
         Colour c = ramp[hi];
-        const float river_cov =
-            clamp01((static_cast<float>(scene::river_halfwidth_m) - std::abs(river)) / f.fy + 0.5f);
+        const float river_cov = clamp01(
+            (static_cast<float>(scene::river_halfwidth_m) - std::abs(river)) * s.px_y + 0.5f);
         c = lerp(c, water, river_cov);
         c = scaled(c, shade);
 
@@ -242,30 +259,25 @@ struct SceneRenderer::Impl {
         // footprint, so they stay 1 and 2 px wide at any range.
         constexpr auto minor = static_cast<float>(scene::grid_minor_m);
         constexpr auto major = static_cast<float>(scene::grid_major_m);
-        const float dx_minor = to_nearest_multiple(x, minor, 1 / minor) / f.fx;
-        const float dy_minor = to_nearest_multiple(y, minor, 1 / minor) / f.fy;
-        const float fade_x = clamp01((12.f - f.fx) / 6.f), fade_y = clamp01((12.f - f.fy) / 6.f);
-        const float minor_cov =
-            std::max(clamp01(1.f - dx_minor) * fade_x, clamp01(1.f - dy_minor) * fade_y);
+        const float dx_minor = to_nearest_multiple(x, minor, 1 / minor) * s.px_x;
+        const float dy_minor = to_nearest_multiple(y, minor, 1 / minor) * s.px_y;
+        const float minor_cov = std::max(clamp01(1.f - dx_minor) * s.minor_fade_x,
+                                         clamp01(1.f - dy_minor) * s.minor_fade_y);
         c = scaled(c, 1.f - static_cast<float>(scene::grid_minor_darken) * minor_cov);
-        const float dx_major = to_nearest_multiple(x, major, 1 / major) / f.fx;
-        const float dy_major = to_nearest_multiple(y, major, 1 / major) / f.fy;
-        // 1 km lines fade out where they would crowd (less than 10 px apart).
-        const float major_fade_x = clamp01((120.f - f.fx) / 60.f);
-        const float major_fade_y = clamp01((120.f - f.fy) / 60.f);
-        const float major_cov = std::max(clamp01(1.5f - dx_major) * major_fade_x,
-                                         clamp01(1.5f - dy_major) * major_fade_y);
+        const float dx_major = to_nearest_multiple(x, major, 1 / major) * s.px_x;
+        const float dy_major = to_nearest_multiple(y, major, 1 / major) * s.px_y;
+        const float major_cov = std::max(clamp01(1.5f - dx_major) * s.major_fade_x,
+                                         clamp01(1.5f - dy_major) * s.major_fade_y);
         c = lerp(c, grid_major, 0.85f * major_cov);
 
-        const float f_mark = std::min(f.fx, f.fy);
         for (std::size_t k = 0; k < n_marks; ++k) {
             const Mark& m = marks[k];
-            const float reach = m.r_ring + f_mark;
+            const float reach = m.r_ring + 1 / s.mark_px;
             const float dx = x - m.x, dy = y - m.y;
             if (std::abs(dx) > reach || std::abs(dy) > reach) continue;
             const float d = std::sqrt(dx * dx + dy * dy);
-            c = lerp(c, ring, clamp01((m.r_ring - d) / f_mark + 0.5f));
-            c = lerp(c, m.colour, clamp01((m.r_disc - d) / f_mark + 0.5f));
+            c = lerp(c, ring, clamp01((m.r_ring - d) * s.mark_px + 0.5f));
+            c = lerp(c, m.colour, clamp01((m.r_disc - d) * s.mark_px + 0.5f));
         }
         return lerp(c, haze, clamp01(fog));
     }
@@ -304,6 +316,7 @@ struct SceneRenderer::Impl {
                      const Node& n10, const Node& n01, const Node& n11) {
         const Node* corners[4] = {&n00, &n10, &n01, &n11};
         const Footprint f = footprint(n00, n10, n01, size);
+        const Scale scale(f);
         std::array<Mark, 8> marks;
         const std::size_t n_marks = marks_near(corners, 4, f, marks);
         const float inv = 1.f / static_cast<float>(size);
@@ -322,7 +335,7 @@ struct SceneRenderer::Impl {
                 for (std::size_t k = 0; k < n_attr; ++k) v[k] = (l[k] + (r[k] - l[k]) * fx) * iw;
                 put(i, j,
                     ground(v[attr_x], v[attr_y], v[attr_height], v[attr_shade], v[attr_river],
-                           v[attr_fog], f, marks.data(), n_marks));
+                           v[attr_fog], scale, marks.data(), n_marks));
             }
         }
     }
@@ -337,29 +350,28 @@ struct SceneRenderer::Impl {
         const Footprint f{across, across};
         const std::size_t n_marks = marks_near(self, 1, f, marks);
         return ground(n.a[attr_x] * iw, n.a[attr_y] * iw, n.a[attr_height] * iw,
-                      n.a[attr_shade] * iw, n.a[attr_river] * iw, n.a[attr_fog] * iw, f,
+                      n.a[attr_shade] * iw, n.a[attr_river] * iw, n.a[attr_fog] * iw, Scale(f),
                       marks.data(), n_marks);
     }
 
-    // Each pixel as its nearest corner: sky, underground or that corner's ground.
-    void fill_nearest(int cx, int cy, int size, int x0, int x1, int y0, int y1,
-                      const Node* const* corners) {
-        ++stats.nearest_cells;
-        std::array<std::optional<Colour>, 4> ground_colour;
-        for (int j = y0; j < y1; ++j)
-            for (int i = x0; i < x1; ++i) {
-                const std::size_t k =
-                    (2 * (j - cy) >= size ? 2u : 0u) + (2 * (i - cx) >= size ? 1u : 0u);
-                const Node& n = *corners[k];
-                if (n.below) {
-                    put(i, j, underground);
-                } else if (!n.ground) {
-                    put(i, j, sky(i, j));
-                } else {
-                    if (!ground_colour[k]) ground_colour[k] = ground_at_node(n);
-                    put(i, j, *ground_colour[k]);
-                }
-            }
+    // An edge cell too small to split: the corners' colours (sky, underground or each one's
+    // own ground) blended across it, a soft edge rather than a staircase.
+    void fill_blend(int cx, int cy, int size, int x0, int x1, int y0, int y1,
+                    const Node* const* corners) {
+        ++stats.blended_cells;
+        std::array<Colour, 4> c;
+        for (std::size_t k = 0; k < 4; ++k) {
+            const Node& n = *corners[k];
+            const int px = std::min(cx + static_cast<int>(k % 2) * size, o.width - 1);
+            const int py = std::min(cy + static_cast<int>(k / 2) * size, o.height - 1);
+            c[k] = n.below ? underground : n.ground ? ground_at_node(n) : sky(px, py);
+        }
+        const float inv = 1.f / static_cast<float>(size);
+        for (int j = y0; j < y1; ++j) {
+            const float fy = static_cast<float>(j - cy) * inv;
+            const Colour l = lerp(c[0], c[2], fy), r = lerp(c[1], c[3], fy);
+            for (int i = x0; i < x1; ++i) put(i, j, lerp(l, r, static_cast<float>(i - cx) * inv));
+        }
     }
 
     void fill_by_pixel(int x0, int x1, int y0, int y1) {
@@ -421,7 +433,7 @@ struct SceneRenderer::Impl {
             case Fill::refine:
                 break;
         }
-        if (fine) {
+        if (size < 2 * min_cell_px) {
             // An edge across a landmark gets a ray per pixel, so the landmark keeps its shape.
             std::array<Mark, 8> marks;
             float across = 0;
@@ -432,33 +444,22 @@ struct SceneRenderer::Impl {
             if (across > 0 && marks_near(corners, 4, {reach, reach}, marks) > 0)
                 fill_by_pixel(x0, x1, y0, y1);
             else
-                fill_nearest(cx, cy, size, x0, x1, y0, y1, corners);
+                fill_blend(cx, cy, size, x0, x1, y0, y1, corners);
             return;
         }
-        // Cast again every size / 4 pixels.
+        // Split in four (five more rays) and look again.
         ++stats.refined_cells;
-        constexpr int n = 4;
-        const int step = size / n;
-        const auto at = [&](int i, int j) -> Node& {
-            return sub[static_cast<std::size_t>(j * (n + 1) + i)];
-        };
-        sub.resize((n + 1) * (n + 1));
-        for (int j = 0; j <= n; ++j)
-            for (int i = 0; i <= n; ++i) {
-                if ((i == 0 || i == n) && (j == 0 || j == n)) continue;
-                at(i, j) = cast(cx + i * step + 0.5, cy + j * step + 0.5);
-            }
-        at(0, 0) = *corners[0];
-        at(n, 0) = *corners[1];
-        at(0, n) = *corners[2];
-        at(n, n) = *corners[3];
-        // Fine cells never refine again, so `sub` stays put while they are filled.
-        for (int j = 0; j < n; ++j)
-            for (int i = 0; i < n; ++i) {
-                const Node* fine_corners[4] = {&at(i, j), &at(i + 1, j), &at(i, j + 1),
-                                               &at(i + 1, j + 1)};
-                fill_cell(cx + i * step, cy + j * step, step, fine_corners, true);
-            }
+        const int h = size / 2;
+        const Node top = cast(cx + h + 0.5, cy + 0.5), left = cast(cx + 0.5, cy + h + 0.5);
+        const Node centre = cast(cx + h + 0.5, cy + h + 0.5);
+        const Node right = cast(cx + size + 0.5, cy + h + 0.5);
+        const Node bottom = cast(cx + h + 0.5, cy + size + 0.5);
+        const Node* quarters[4][4] = {{corners[0], &top, &left, &centre},
+                                      {&top, corners[1], &centre, &right},
+                                      {&left, &centre, corners[2], &bottom},
+                                      {&centre, &right, &bottom, corners[3]}};
+        for (int q = 0; q < 4; ++q)
+            fill_cell(cx + (q % 2) * h, cy + (q / 2) * h, h, quarters[q], true);
     }
 
     // Marks nodes where the ground is not smooth: w = 1/depth is affine across the image for a

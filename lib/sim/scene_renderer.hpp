@@ -6,9 +6,9 @@
 // Rays are cast only on a grid of image points (every grid_px pixels, through
 // TerrainRayCaster); between them the ground coordinates are interpolated perspective-correct
 // (exact for a plane) and each pixel is textured from them. Cells whose corners disagree - the
-// horizon, the edge of a hill hiding the ground behind it - are cast again on a grid four
-// times finer; fine cells that still disagree take each pixel from its nearest corner (edges
-// are then exact to a couple of pixels), or cast a ray per pixel where a landmark is. A landmark is
+// horizon, the edge of a hill hiding the ground behind it - are split in four and cast again,
+// down to 4 px; those that still disagree blend their corners' colours (a soft edge, right to
+// a couple of pixels), or cast a ray per pixel where a landmark is. A landmark is
 // drawn where the ray meets its ground, so it appears where geo::project puts it (within a pixel or
 // two).
 #pragma once
@@ -23,7 +23,7 @@ namespace gimbal::sim {
 struct SceneOptions {
     int width = 640;   // even, 16..4096
     int height = 360;  // even, 16..4096
-    int grid_px = 16;  // ray spacing, 4..64 pixels
+    int grid_px = 16;  // ray spacing, 4, 8, 16, 32 or 64 pixels
     // Ground farther than this is not drawn (the haze colour takes over towards it).
     double max_range_m = 30000;
     bool monochrome = false;  // luma only, neutral chroma (the LWIR camera)
@@ -32,9 +32,9 @@ bool valid(const SceneOptions& options);
 
 struct RenderStats {
     int rays = 0;           // rays cast for the last frame
-    int refined_cells = 0;  // grid cells cast again on the finer grid
-    int nearest_cells = 0;  // fine cells drawn from their nearest corners (edges)
-    int pixel_cells = 0;    // fine cells cast pixel by pixel (edges across a landmark)
+    int refined_cells = 0;  // cells split in four (each split casts five rays)
+    int blended_cells = 0;  // 4 px cells blended from their corners' colours (edges)
+    int pixel_cells = 0;    // 4 px cells cast pixel by pixel (edges across a landmark)
 };
 
 class SceneRenderer {
