@@ -13,6 +13,7 @@ packages=(
   dpkg-dev lintian
   tshark prometheus chromium
   libgdal-dev proj-data gdal-bin python3-gdal
+  libavcodec-dev libavutil-dev ffmpeg
 )
 
 # --cross ARCH (scripts/package.sh --arch arm64): the cross compiler, QEMU and the ARCH
@@ -28,6 +29,7 @@ if [ "${1:-}" = "--cross" ]; then
     "libsystemd-dev:$cross_arch" "libgeographiclib23:$cross_arch"
     "libssl-dev:$cross_arch"
     "libmosquitto-dev:$cross_arch"
+    "libavcodec-dev:$cross_arch" "libavutil-dev:$cross_arch"
   )
 fi
 
