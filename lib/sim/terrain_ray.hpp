@@ -46,8 +46,9 @@ class TerrainRayCaster {
     double model_gap(const Ray& ray, double t) const;
     double exact_gap(const Ray& ray, double t, geo::Lla* at = nullptr) const;
     Result hit(const geo::Lla& point, double t) const;
-    // Where the ray crosses the ground between t_lo (above) and t_hi (on or below), on the
-    // model (exact = false) or exactly.
+    // Where the ray crosses the model's ground between t_lo (above) and t_hi (on or below);
+    // `slope` gets the gap's rate of change there. exact_root goes on from such a crossing
+    // to the exact one.
     double root(const Ray& ray, double t_lo, double g_lo, double t_hi, double g_hi,
                 double* slope) const;
     Result exact_root(const Ray& ray, double t_model, double slope) const;
