@@ -941,16 +941,6 @@ std::string syntax_problem(std::string_view text, const json::parse_error& e) {
 
 }  // namespace
 
-std::string_view to_string(Protocol protocol) {
-    return protocol == Protocol::orion ? "orion" : "viewpro";
-}
-
-std::optional<Protocol> parse_protocol(std::string_view name) {
-    if (name == "orion") return Protocol::orion;
-    if (name == "viewpro") return Protocol::viewpro;
-    return std::nullopt;
-}
-
 std::span<const std::uint32_t> standard_baud_rates() {
     return baud_rates;
 }
@@ -1143,7 +1133,8 @@ std::vector<GimbalConfig> sim_gimbals(std::span<const Protocol> protocols) {
         return gimbal;
     };
     std::vector<GimbalConfig> gimbals;
-    if (protocols.empty()) gimbals.push_back(simulated("sim", Protocol::orion));
+    if (protocols.empty())
+        gimbals.push_back(simulated("sim", gimbal::protocols::all_protocol_ids.front()));
     for (Protocol protocol : protocols) {
         gimbals.push_back(simulated(fmt::format("sim-{}", to_string(protocol)), protocol));
     }

@@ -15,12 +15,14 @@
 #include <vector>
 
 #include "logging.hpp"
+#include "protocols/protocol_id.hpp"
 
 namespace gimbal::daemon {
 
-enum class Protocol { orion, viewpro };
-std::string_view to_string(Protocol protocol);
-std::optional<Protocol> parse_protocol(std::string_view name);
+// The protocols are the registry's (lib/protocols).
+using Protocol = gimbal::protocols::ProtocolId;
+using gimbal::protocols::parse_protocol;
+using gimbal::protocols::to_string;
 
 // The termios rates from 1200 baud up; a serial link's `baud` must be one of them.
 std::span<const std::uint32_t> standard_baud_rates();

@@ -4,11 +4,11 @@
 
 #include "auth/hmac.hpp"
 #include "auth/signed_envelope.hpp"
+#include "command/catalogue.hpp"
 #include "command/envelope.hpp"
-#include "command/orion_commands.hpp"
 #include "command/params.hpp"
-#include "command/viewpro_commands.hpp"
 #include "logging.hpp"
+#include "protocols/registry.hpp"
 #include "state/messages.hpp"
 
 namespace gimbald {
@@ -22,8 +22,7 @@ using nlohmann::json;
 namespace {
 
 bool known_command(std::string_view cmd) {
-    return cmdns::is_common_command(cmd) || cmdns::is_orion_command(cmd) ||
-           cmdns::is_viewpro_command(cmd);
+    return cmdns::is_known_command(cmd);
 }
 
 json or_null(const std::optional<std::string>& s) {
@@ -238,7 +237,7 @@ std::string RequestPath::finish(Outcome& o, const RequestSource& from,
     if (o.cmd && reaches_gimbal(*o.cmd)) audit(o, from);
 
     const CompletedRequest done{
-        from.transport, o.cmd, o.error ? o.error->code : std::string("ok"),
+        from.transport, o.cmd, o.error ? std::string(to_string(o.error->code)) : std::string("ok"),
         std::chrono::duration<double>(std::chrono::steady_clock::now() - o.received).count()};
     for (const auto& observe : observers_) observe(done);
     for (const auto& tap : taps_) tap(from, request_bytes, text);
@@ -306,7 +305,7 @@ json RequestPath::dispatch(Outcome& o, const RequestSource& from) {
         if (cmd == "ping") results["pong"] = true;
         if (cmd == "version") {
             results["version"] = GIMBALD_VERSION;
-            results["protocols"] = {"orion", "viewpro"};
+            results["protocols"] = gimbal::protocols::names();
         }
         if (cmd == "list") {
             auto list = json::array();

@@ -4,10 +4,9 @@
 #include <cmath>
 #include <map>
 
+#include "command/catalogue.hpp"
 #include "command/envelope.hpp"
-#include "command/orion_commands.hpp"
 #include "command/params.hpp"
-#include "command/viewpro_commands.hpp"
 #include "logging.hpp"
 #include "state/messages.hpp"
 #include "subscriptions.hpp"
@@ -30,8 +29,7 @@ std::string dump(const json& j) {
 }
 
 bool known_command(std::string_view cmd) {
-    return cmdns::is_common_command(cmd) || cmdns::is_orion_command(cmd) ||
-           cmdns::is_viewpro_command(cmd);
+    return cmdns::is_known_command(cmd);
 }
 
 bool covers(const StreamSubscription& s, const std::string& gimbal) {

@@ -1,23 +1,23 @@
 #include "command/envelope.hpp"
 
-#include <array>
+#include "command/catalogue.hpp"
 
 namespace gimbal::command {
 
+// Thin views of the catalogue, kept for their callers in daemon/.
 bool is_common_command(std::string_view cmd) {
-    static constexpr std::array<std::string_view, 6> common{"ping",  "version",   "list",
-                                                            "state", "subscribe", "unsubscribe"};
-    for (auto c : common)
-        if (c == cmd) return true;
-    return false;
+    const auto* c = find_command(cmd);
+    return c && c->scope != Scope::protocol;
 }
 
 bool is_open_command(std::string_view cmd) {
-    return cmd == "ping" || cmd == "version" || cmd == "list" || cmd == "state";
+    const auto* c = find_command(cmd);
+    return c && !c->needs_token;
 }
 
 bool is_global_command(std::string_view cmd) {
-    return cmd == "ping" || cmd == "version" || cmd == "list";
+    const auto* c = find_command(cmd);
+    return c && c->scope == Scope::daemon;
 }
 
 std::optional<EnvelopeError> parse_envelope(std::string_view datagram,
@@ -44,7 +44,7 @@ std::optional<EnvelopeError> parse_envelope(std::string_view datagram,
             {code::bad_json, "the datagram is not a JSON object"}, std::nullopt, std::nullopt};
 
     EnvelopeError failure{{}, std::nullopt, std::nullopt};
-    auto fail = [&failure](const char* c, std::string message) {
+    auto fail = [&failure](ErrorCode c, std::string message) {
         failure.error = Error{c, std::move(message)};
         return failure;
     };

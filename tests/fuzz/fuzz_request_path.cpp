@@ -18,11 +18,8 @@
 #include "gimbal_session.hpp"
 #include "link/sim_link.hpp"
 #include "logging.hpp"
+#include "protocols/registry.hpp"
 #include "request_path.hpp"
-#include "session/orion_protocol.hpp"
-#include "session/viewpro_protocol.hpp"
-#include "sim/orion_sim.hpp"
-#include "sim/viewpro_sim.hpp"
 
 namespace {
 
@@ -44,18 +41,19 @@ struct World {
         quiet.level = gimbal::log::Level::error;
         gimbal::log::configure(quiet);
 
-        gimbal::session::OrionOptions orion;
-        orion.allow_fire = true;
-        orion.allow_safety_bypass = false;
-        sessions.push_back(std::make_unique<gimbald::GimbalSession>(
-            io, "main", std::make_unique<gimbal::session::OrionProtocol>(orion),
-            std::make_unique<gimbald::SimLink>(io, gimbal::sim::make_orion_sim({})), 5.0,
-            [](const std::string&, const gimbal::state::Event&) {}));
-        sessions.push_back(std::make_unique<gimbald::GimbalSession>(
-            io, "nose",
-            std::make_unique<gimbal::session::ViewproProtocol>(gimbal::session::ViewproOptions{}),
-            std::make_unique<gimbald::SimLink>(io, gimbal::sim::make_viewpro_sim({})), 5.0,
-            [](const std::string&, const gimbal::state::Event&) {}));
+        // Every protocol of the registry, each with its in-process simulated gimbal.
+        gimbal::protocols::SessionSettings settings;
+        settings.allow_fire = true;
+        settings.allow_safety_bypass = false;
+        const char* names[] = {"main", "nose", "tail", "wing"};
+        std::size_t n = 0;
+        for (const auto* entry : gimbal::protocols::entries()) {
+            const nlohmann::json config = {{"name", names[n % 4]}, {"protocol", entry->name}};
+            sessions.push_back(std::make_unique<gimbald::GimbalSession>(
+                io, names[n++ % 4], entry->make_session(settings, config),
+                std::make_unique<gimbald::SimLink>(io, entry->simulator.make({})), 5.0,
+                [](const std::string&, const gimbal::state::Event&) {}));
+        }
         std::vector<gimbald::GimbalSession*> raw;
         for (auto& s : sessions) {
             s->start();
