@@ -68,9 +68,25 @@ double to_lon(double x) {
 }  // namespace
 
 double terrain_height(double lat, double lon) {
-    const double y = (lat - terrain_origin_lat_deg) * geo::deg2rad * radii().meridian;
-    const double x = (lon - terrain_origin_lon_deg) * geo::deg2rad * radii().normal_cos;
-    return local_height(x, y);
+    const TerrainXY p = terrain_xy(lat, lon);
+    return local_height(p.east_m, p.north_m);
+}
+
+TerrainXY terrain_xy(double lat, double lon) {
+    return {(lon - terrain_origin_lon_deg) * geo::deg2rad * radii().normal_cos,
+            (lat - terrain_origin_lat_deg) * geo::deg2rad * radii().meridian};
+}
+
+geo::LatLon terrain_lat_lon(TerrainXY p) {
+    return {to_lat(p.north_m), to_lon(p.east_m)};
+}
+
+double terrain_height_xy(TerrainXY p) {
+    return local_height(p.east_m, p.north_m);
+}
+
+double river_north_m(double east_m) {
+    return river_y(east_m);
 }
 
 const std::vector<Landmark>& landmarks() {

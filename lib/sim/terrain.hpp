@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "geo/footprint.hpp"
 #include "geo/sampled_surface.hpp"
 
 namespace gimbal::sim {
@@ -26,6 +27,19 @@ inline constexpr double terrain_max_alt_m = 1300;
 
 // Height above the WGS84 ellipsoid (m) at any point.
 double terrain_height(double lat_deg, double lon_deg);
+
+// A point on the terrain's local grid: metres east and north of the origin (the rendered
+// video's texture and grid lines are laid out on it).
+struct TerrainXY {
+    double east_m = 0;
+    double north_m = 0;
+};
+TerrainXY terrain_xy(double lat_deg, double lon_deg);
+geo::LatLon terrain_lat_lon(TerrainXY p);
+// terrain_height at a grid point.
+double terrain_height_xy(TerrainXY p);
+// The river's centre line along the valley floor: its northing at an easting.
+double river_north_m(double east_m);
 
 // Named points the rendered video will draw: on the ground, alt is the terrain's height.
 struct Landmark {
