@@ -287,9 +287,9 @@ void MavlinkEndpoint::run(gp::Mapped mapped, const gp::MavId& from,
             if (!outcome.error) {
                 results.push_back(mav::MavResult::accepted);
             } else {
-                results.push_back(gp::result_for_error(outcome.error->code));
-                if (reason.empty())
-                    reason = r.gimbal + ": " + outcome.error->code + ": " + outcome.error->message;
+                const std::string code(gimbal::command::to_string(outcome.error->code));
+                results.push_back(gp::result_for_error(code));
+                if (reason.empty()) reason = r.gimbal + ": " + code + ": " + outcome.error->message;
             }
         }
         result = gp::combine(results);

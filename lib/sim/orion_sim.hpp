@@ -4,9 +4,11 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "geo/wgs84.hpp"
 #include "orion/enums.hpp"
 #include "sim/device.hpp"
 
@@ -54,6 +56,21 @@ struct OrionSimOptions {
 };
 
 std::unique_ptr<Device> make_orion_sim(const OrionSimOptions& options = {});
+
+// What the simulated Orion's active camera looks at, at the model's current time (that of the
+// latest receive or advance): for rendering its video (sim/sim_camera.hpp).
+struct OrionCameraView {
+    double model_time_s = 0;  // seconds since the model's start
+    geo::Lla position;        // the gimbal
+    geo::Quat mount_to_ned;   // the mount's attitude, as telemetry's quat
+    double pan_rad = 0;       // pan and tilt as telemetry reports them
+    double tilt_rad = 0;
+    double hfov_rad = 0;  // the active camera's fields of view at its zoom
+    double vfov_rad = 0;
+    bool infrared = false;  // the active camera is the LWIR one
+};
+// nullopt when `device` is not a simulated Orion made by make_orion_sim.
+std::optional<OrionCameraView> orion_sim_camera(const Device& device);
 
 // GPS time for a Unix time: GPS counts from 1980-01-06 and includes the leap seconds UTC
 // skips (18 since 2017).

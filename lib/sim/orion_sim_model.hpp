@@ -29,6 +29,7 @@ class OrionSim final : public Device {
 
     void receive(std::span<const std::uint8_t> bytes, double now_s) override;
     void advance(double now_s, std::vector<std::uint8_t>& out) override;
+    OrionCameraView camera_view() const;  // orion_sim_camera.cpp
 
   private:
     // What the axes are asked to do, from the latest command.

@@ -3,9 +3,6 @@
 #include <iostream>
 #include <vector>
 
-#include "sim/orion_sim.hpp"
-#include "sim/viewpro_sim.hpp"
-
 namespace gimbal_sim {
 
 namespace asio = boost::asio;
@@ -16,7 +13,7 @@ gimbal::sim::FaultOptions fault_options(const ToolOptions& o) {
     gimbal::sim::FaultOptions f;
     f.corrupt_fraction = o.corrupt_fraction;
     f.junk_every = o.junk_every;
-    f.seed = o.model.seed;
+    f.seed = o.scenario.seed;
     return f;
 }
 
@@ -29,15 +26,6 @@ gimbal::sim::ReadFaultOptions read_fault_options(const ToolOptions& o) {
 // A small receive buffer makes a gimbal that reads slowly push back on the sender at once.
 constexpr int slow_reader_receive_buffer = 4096;
 
-bool is_viewpro(const ToolOptions& o) {
-    return o.protocol == "viewpro";
-}
-
-std::unique_ptr<gimbal::sim::Device> make_device(const ToolOptions& o) {
-    if (is_viewpro(o)) return gimbal::sim::make_viewpro_sim(o.viewpro_model);
-    return gimbal::sim::make_orion_sim(o.model);
-}
-
 void note(const std::string& text) {
     std::cerr << "gimbal-sim: " << text << std::endl;
 }
@@ -49,11 +37,10 @@ SimApp::SimApp(asio::io_context& io, const ToolOptions& options)
       options_(options),
       epoch_(std::chrono::steady_clock::now()),
       tick_timer_(io),
-      device_(make_device(options)),
-      faults_(fault_options(options)),
-      viewpro_faults_(fault_options(options), gimbal::sim::viewpro_output_frames()),
+      device_(options.entry().simulator.make(options.scenario)),
+      faults_(fault_options(options), options.entry().simulator.fault_frames()),
       read_gate_(read_fault_options(options)) {
-    if (!options_.rx_log.empty()) rx_log_.emplace(options_.rx_log, options_.protocol);
+    if (!options_.rx_log.empty()) rx_log_.emplace(options_.rx_log, options_.entry());
 
     if (options_.tcp) {
         tcp_.emplace(
@@ -86,10 +73,11 @@ SimApp::SimApp(asio::io_context& io, const ToolOptions& options)
         if (read_gate_.active()) pty_->set_read_policy([this] { return read_budget(); });
         std::cout << "pty: " << pty_->device() << std::endl;
     }
-    if (options_.discovery && !is_viewpro(options_)) {
+    if (options_.discovery) {
+        const auto& simulator = options_.entry().simulator;
         try {
             discovery_.emplace(io, options_.discovery_port, options_.discovery_reply_port,
-                               gimbal::sim::orion_sim_crown_version_frame());
+                               simulator.is_discovery_request, simulator.discovery_reply());
             std::cout << "discovery: 0.0.0.0:" << discovery_->port() << std::endl;
         } catch (const std::exception& e) {
             // Another simulator may hold the port; serving without discovery beats not at all.
@@ -172,9 +160,7 @@ void SimApp::deliver(double now) {
     device_->advance(now, out);
     if (out.empty() || stalled(now)) return;  // a stalled gimbal says nothing; the model runs on
     std::vector<std::uint8_t> wire;
-    if (is_viewpro(options_) && viewpro_faults_.active()) {
-        viewpro_faults_.apply(out, wire);
-    } else if (!is_viewpro(options_) && faults_.active()) {
+    if (faults_.active()) {
         faults_.apply(out, wire);
     } else {
         wire.swap(out);
@@ -188,7 +174,7 @@ void SimApp::on_input(const std::string& src, std::span<const std::uint8_t> byte
     read_gate_.consumed(bytes.size(), now);
     if (rx_log_) rx_log_->received(src, bytes, now);
     device_->receive(bytes, now);
-    deliver(now);  // answers (the OrionCmd echo, requested packets) go out now, not next tick
+    deliver(now);  // answers (command echoes, requested packets) go out now, not next tick
 }
 
 }  // namespace gimbal_sim

@@ -43,6 +43,7 @@ class Harness {
     void request(std::uint8_t id) { send(gimbal::orion::request_bytes(id)); }
 
     double now() const { return now_; }
+    const gimbal::sim::Device& device() const { return *device_; }
     // Every byte the device sent so far.
     const Bytes& raw() const { return raw_; }
     const gimbal::orion::FramerStats& framer_stats() const { return framer_.stats(); }

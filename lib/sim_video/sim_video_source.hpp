@@ -1,0 +1,59 @@
+// The simulated camera's video, frame by frame: render the scene the camera sees
+// (sim::SceneRenderer), draw the frame's time into it (sim/frame_code.hpp), encode it
+// (H264Encoder). The caller owns time: it says when each frame is taken (Unix ms, drawn as the
+// time code) and its presentation time (90 kHz, as MPEG-TS counts). Muxing and sending are
+// the caller's (lib/video, daemon).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "geo/footprint.hpp"
+#include "sim/i420_frame.hpp"
+#include "sim/orion_sim.hpp"
+#include "sim/scene_renderer.hpp"
+#include "sim_video/h264_encoder.hpp"
+
+namespace gimbal::sim_video {
+
+struct SimVideoOptions {
+    // The picture: width, height, ray grid. The encoder's size follows it.
+    sim::SceneOptions scene;
+    H264Options h264;
+};
+
+class SimVideoSource {
+  public:
+    struct Opened {
+        std::unique_ptr<SimVideoSource> source;
+        std::string error;
+    };
+    static Opened open(const SimVideoOptions& options);
+
+    // One frame of what `camera` sees, taken at unix_ms and shown at pts_90k; its access
+    // unit(s) are appended to `out`. False (error() says why) when the encoder refuses it; an
+    // invalid camera still gives a (grey) frame.
+    bool frame(const geo::CameraPose& camera, std::uint64_t unix_ms, std::int64_t pts_90k,
+               std::vector<AccessUnit>& out);
+    // The simulated Orion's active camera (sim::orion_sim_camera): its pose, and no colour
+    // when it is the infrared one.
+    bool frame(const sim::OrionCameraView& view, std::uint64_t unix_ms, std::int64_t pts_90k,
+               std::vector<AccessUnit>& out);
+
+    // The last frame as rendered (time code included), before encoding.
+    const sim::I420Frame& picture() const { return picture_; }
+    const sim::RenderStats& render_stats() const { return renderer_.stats(); }
+    const H264Encoder& encoder() const { return *encoder_; }
+    const std::string& error() const { return encoder_->error(); }
+
+  private:
+    SimVideoSource(const sim::SceneOptions& scene, std::unique_ptr<H264Encoder> encoder);
+
+    sim::SceneRenderer renderer_;
+    std::unique_ptr<H264Encoder> encoder_;
+    sim::I420Frame picture_;
+};
+
+}  // namespace gimbal::sim_video
