@@ -31,10 +31,6 @@ std::vector<gp::ExposedGimbal> exposed(const std::vector<GimbalSession*>& sessio
 }
 
 // The commands that only ask for reports: answered even with mavlink.commands false.
-bool reports_only(std::uint16_t command) {
-    return command == gimbal::mavlink::mav_cmd::request_message;
-}
-
 constexpr const char* commands_off = "mavlink.commands is false: this gimbal manager only reports";
 
 std::string source_address(const gp::MavId& id) {
@@ -231,7 +227,7 @@ void MavlinkEndpoint::on_message(const mav::Message& m) {
         // The ACK comes from the component addressed (for 0: the first gimbal's manager).
         const std::uint8_t answering =
             command->target_component != 0 ? command->target_component : first_component();
-        if (!config_.commands && !reports_only(command->command)) {
+        if (!config_.commands) {  // contract section 14: every command, REQUEST_MESSAGE too
             run(refused(mav::MavResult::denied, commands_off), from, command->command, answering);
             return;
         }

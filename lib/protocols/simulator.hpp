@@ -21,7 +21,8 @@ namespace gimbal::protocols {
 // What every simulated gimbal is told: its clock, its seed, and the settings gimbal-sim
 // shares between models, each only when given (a model keeps its own default otherwise).
 struct SimScenario {
-    double unix_time_s = 0;  // UTC when the model starts; the models read no clock
+    // UTC when the model starts (the models read no clock); 2025-01-01 unless told.
+    double unix_time_s = 1'735'689'600.0;
     std::uint32_t seed = 1;  // noise and faults: the same seed gives the same bytes
     std::optional<double> lat_deg, lon_deg;
     std::optional<double> alt_m;          // the aircraft's altitude (each model says which datum)

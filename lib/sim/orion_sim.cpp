@@ -225,6 +225,11 @@ std::uint32_t OrionSim::system_time_ms() const {
     return options_.uptime_at_start_ms + static_cast<std::uint32_t>(std::llround(t_ * 1000.0));
 }
 
+// A start time before the GPS epoch (1980) is clamped to it: week and time of week stay in range.
+double OrionSim::gps_seconds() const {
+    return std::max(0.0, options_.gps_time_at_start_s + t_);
+}
+
 // --- input -------------------------------------------------------------------------------------
 
 void OrionSim::handle(const orion::Frame& frame) {

@@ -57,6 +57,7 @@ class OrionSim final : public Device {
     void step(double dt);
     void update_platform(double t);
     std::uint32_t system_time_ms() const;
+    double gps_seconds() const;
 
     // --- input (orion_sim.cpp) ---
     void handle(const orion::Frame& frame);

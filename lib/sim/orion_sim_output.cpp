@@ -95,7 +95,7 @@ Vec3 OrionSim::line_of_sight_vector(orion::RangeSource& source) const {
 
 orion::GeolocateTelemetry OrionSim::telemetry() const {
     orion::GeolocateTelemetry t;
-    const double gps_s = options_.gps_time_at_start_s + t_;
+    const double gps_s = gps_seconds();
     const double week = std::floor(gps_s / seconds_per_week);
     t.system_time_ms = system_time_ms();
     t.gps_week = static_cast<std::uint16_t>(week);
@@ -214,7 +214,7 @@ orion::InsQuality OrionSim::ins_quality() {
 
 orion::GpsData OrionSim::gps_data() const {
     orion::GpsData g;
-    const double gps_s = options_.gps_time_at_start_s + t_;
+    const double gps_s = gps_seconds();
     const double week = std::floor(gps_s / seconds_per_week);
     g.fix_type = orion::UbloxFixType::three_d_fix;
     g.fix_state = 0x03;  // gnssFixOK | diffSoln

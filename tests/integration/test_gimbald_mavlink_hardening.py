@@ -113,10 +113,10 @@ class SignedAuthCoversMavlink(gt.GimbaldTestCase):
         time.sleep(1.0)  # the simulated Orion's first telemetry
         self.assertEqual(gcs.command(PITCHYAW, [-10, 20, mt.NAN, mt.NAN, 0, 0, 1]), DENIED)
         self.assertEqual(gcs.command(CONFIGURE, [-2, -2, -1, -1, 0, 0, 0]), DENIED)
-        # Reports still: a ground station finds the gimbal.
+        # Section 14: every command is DENIED, REQUEST_MESSAGE too; the streams still report.
+        self.assertEqual(gcs.command(mt.MAV_CMD_REQUEST_MESSAGE, [280, 0]), DENIED)
         since = time.monotonic()
-        self.assertEqual(gcs.command(mt.MAV_CMD_REQUEST_MESSAGE, [280, 0]), ACCEPTED)
-        self.assertTrue(gcs.wait(lambda m: m[3] == 280, 2.0, since))
+        self.assertTrue(gcs.wait(lambda m: m[3] == 285, 2.0, since))  # ATTITUDE_STATUS
         refused = daemon.wait_log(lambda e: e.get("event") == "mavlink_refused")
         self.assertTrue(refused)
         self.assertEqual(refused["level"], "info")

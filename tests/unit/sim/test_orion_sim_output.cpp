@@ -58,6 +58,20 @@ TEST_CASE("telemetry timestamps follow the model clock", "[sim][orion][telemetry
     CHECK(t[0].leap_seconds == 18);
 }
 
+TEST_CASE("a start time before the GPS epoch reports week 0, not a wrapped week",
+          "[sim][orion][telemetry]") {
+    sim::OrionSimOptions o;
+    o.gps_time_at_start_s = sim::gps_time_from_unix_s(0);  // 1970: ten years before GPS began
+    Harness h(o);
+    const auto t = decoded<orion::GeolocateTelemetry>(h.run(0.05));
+    REQUIRE_FALSE(t.empty());
+    CHECK(t[0].gps_week == 0);
+    CHECK(t[0].gps_itow_ms == 0);
+    const auto g = decoded<orion::GpsData>(h.run(1.05));
+    REQUIRE_FALSE(g.empty());
+    CHECK(g.back().week == 0);
+}
+
 TEST_CASE("telemetry places the gimbal on its circle and the line of sight on the terrain",
           "[sim][orion][telemetry]") {
     sim::OrionSimOptions o;
