@@ -238,6 +238,17 @@ class DeltaStream(MqttCase):
                 checker.on_delta(msg, len(m.payload), quiet)
             seen = len(messages)
         checker.verify()
+        # gimbalctl --mqtt watch prints the merged STATE, whole, on every line.
+        r = gt.run([gt.GIMBALCTL, "--mqtt", broker.url(), "--station", "st1", "watch",
+                    "--no-events", "--count", "6"], timeout=10)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        lines = [json.loads(line) for line in r.stdout.splitlines()]
+        self.assertEqual(len(lines), 6)
+        keys = set(lines[0]["state"])
+        self.assertIn("telemetry", keys)
+        for line in lines:
+            self.assertEqual((line["type"], line["gimbal"]), ("state", "main"))
+            self.assertEqual(set(line["state"]), keys)
         # A newcomer gets the retained message: always a full STATE, never a patch.
         late = self.sub(broker, topic)
         m, msg = late.wait(topic)
