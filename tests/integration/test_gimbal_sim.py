@@ -535,6 +535,16 @@ class GimbalSimLifecycle(unittest.TestCase):
         for section in ("NAME", "SYNOPSIS", "DESCRIPTION", "EXIT STATUS", "--drop-after"):
             self.assertIn(section, result.stdout)
 
+    def test_help_gives_each_protocol_its_own_start_position(self):
+        # The defaults shown are the Orion's circle; the Viewpro starts elsewhere
+        # (docs/simulator.md): the help must not hand it the Orion's position.
+        text = " ".join(subprocess.run([SIM, "--help"], capture_output=True,
+                                       text=True).stdout.split())
+        self.assertIn("45.7", text)
+        self.assertIn("Viewpro: the vehicle's latitude before any IN frame (default 6.9428789",
+                      text)
+        self.assertIn("(default 79.8812446)", text)
+
     def test_busy_port_exits_2(self):
         blocker = socket.socket()
         blocker.bind(("127.0.0.1", 0))

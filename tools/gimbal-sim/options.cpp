@@ -155,14 +155,20 @@ ParsedOptions parse_options(int argc, char** argv) {
     app.add_option("--seed", m.seed, "Seed of sensor noise and faults")->capture_default_str();
     app.add_option("--rx-log", o.rx_log, "Write every packet received as a JSON line to FILE");
 
-    app.add_option("--lat", m.lat_deg, "Circle centre (viewpro: vehicle) latitude, degrees")
+    // The defaults shown are the Orion's; the Viewpro's differ (docs/simulator.md).
+    app.add_option("--lat", m.lat_deg,
+                   "Orion: circle centre latitude, degrees. Viewpro: the vehicle's latitude "
+                   "before any IN frame (default 6.9428789, the ICD's OUT1 example)")
         ->check(CLI::Range(-89.0, 89.0))
         ->capture_default_str();
-    app.add_option("--lon", m.lon_deg, "Circle centre (viewpro: vehicle) longitude, degrees")
+    app.add_option("--lon", m.lon_deg,
+                   "Orion: circle centre longitude, degrees. Viewpro: the vehicle's longitude "
+                   "before any IN frame (default 79.8812446)")
         ->check(CLI::Range(-180.0, 180.0))
         ->capture_default_str();
     app.add_option("--alt", m.alt_m,
-                   "Flight altitude above the WGS84 ellipsoid (viewpro: MSL), metres")
+                   "Orion: flight altitude above the WGS84 ellipsoid, metres. Viewpro: the "
+                   "vehicle's altitude above mean sea level (default 300)")
         ->capture_default_str();
     app.add_option("--radius", m.radius_m, "Circle radius, metres; 0 hovers")
         ->check(CLI::NonNegativeNumber)
@@ -172,10 +178,11 @@ ParsedOptions parse_options(int argc, char** argv) {
         ->capture_default_str();
     app.add_flag("--counter-clockwise", counter_clockwise, "Circle counter-clockwise");
     app.add_option("--terrain-alt", m.terrain_alt_m,
-                   "Height of the flat terrain above the ellipsoid (viewpro: MSL), metres")
+                   "Orion: height of the flat terrain above the ellipsoid, metres. Viewpro: "
+                   "above mean sea level (default 0)")
         ->capture_default_str();
     app.add_option("--geoid-undulation", m.geoid_undulation_m,
-                   "Reported geoid height above the ellipsoid, metres")
+                   "Reported geoid height above the ellipsoid, metres (Viewpro: default 0)")
         ->capture_default_str();
     app.add_option("--pan-rate", m.pan_rate_max_dps, "Pan slew rate limit, deg/s")
         ->check(CLI::PositiveNumber)

@@ -5,6 +5,7 @@
 
 #include "command_table.hpp"
 #include "manual.hpp"
+#include "numbers.hpp"
 #include "params.hpp"
 
 namespace gimbalctl {
@@ -41,7 +42,7 @@ void add_watch_command(CommandTable& table, std::int64_t& count) {
         ->default_str("every key");
     command.app->add_option("--count", count, "exit 0 after printing this many datagrams")
         ->type_name("N")
-        ->check(CLI::PositiveNumber)
+        ->check(count_check())
         ->default_str("none, until interrupted");
     command.app->footer(manual_section(
         "REQUEST",
