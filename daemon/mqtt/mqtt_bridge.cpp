@@ -141,7 +141,7 @@ void Bridge::publish_delta(GimbalSession& session) {
     options.full_every_s = config_.state_full_every_s;
     gimbal::state::PushBatch batch(session.name(), session.snapshot());
     const auto& message = batch.next(options, stream.cursor, steady_seconds());
-    const bool full = message.json().at("full").get<bool>();
+    const bool full = message.full().value_or(true);
     client_->publish({Kind::state, topic(session.name() + "/state"), *message.text(), 0, full, {}});
 }
 

@@ -13,17 +13,33 @@ void DeltaCursor::pushed(std::shared_ptr<const json> state, bool full, double no
     if (full) next_full_s_ = now_s + full_every_s;
 }
 
+const json& PushMessage::json() const {
+    if (!json_)
+        json_ = full_ ? delta_message(gimbal_, *full_, *body_) : state_message(gimbal_, *body_);
+    return *json_;
+}
+
 const std::shared_ptr<const std::string>& PushMessage::text() const {
-    if (!text_) text_ = std::make_shared<const std::string>(dump_message(message_));
+    if (text_) return text_;
+    // Written out rather than dumped from json(): that would copy the whole STATE first.
+    const std::string body = dump_message(*body_);
+    const std::string name = dump_message(nlohmann::json(gimbal_));
+    std::string text;
+    text.reserve(body.size() + name.size() + 48);
+    text += '{';
+    if (full_) text += *full_ ? "\"full\":true," : "\"full\":false,";
+    text += "\"gimbal\":" + name + ",\"state\":" + body + ",\"type\":\"state\"}";
+    text_ = std::make_shared<const std::string>(std::move(text));
     return text_;
 }
 
 PushBatch::PushBatch(std::string gimbal, json state)
-    : gimbal_(std::move(gimbal)), state_(std::move(state)) {}
+    : gimbal_(std::move(gimbal)), state_(std::make_shared<const json>(std::move(state))) {}
 
 const std::shared_ptr<const json>& PushBatch::selected(const std::vector<std::string>& keys) {
     auto& slot = selected_[keys];
-    if (!slot) slot = std::make_shared<const json>(select_keys(state_, keys));
+    if (!slot)
+        slot = keys.empty() ? state_ : std::make_shared<const json>(select_keys(*state_, keys));
     return slot;
 }
 
@@ -34,7 +50,7 @@ const PushMessage& PushBatch::next(const StreamOptions& options, DeltaCursor& cu
         const Key key{options.keys, Kind::plain, nullptr};
         auto it = messages_.find(key);
         if (it == messages_.end())
-            it = messages_.emplace(key, PushMessage(state_message(gimbal_, *current))).first;
+            it = messages_.emplace(key, PushMessage(gimbal_, std::nullopt, current)).first;
         return it->second;
     }
     const bool full = cursor.full_due(now_s);
@@ -43,9 +59,9 @@ const PushMessage& PushBatch::next(const StreamOptions& options, DeltaCursor& cu
     auto it = messages_.find(key);
     if (it == messages_.end()) {
         if (!full) pinned_.push_back(cursor.last());
-        json body = full ? *current : merge_patch_diff(*previous, *current);
-        it = messages_.emplace(key, PushMessage(delta_message(gimbal_, full, std::move(body))))
-                 .first;
+        auto body =
+            full ? current : std::make_shared<const json>(merge_patch_diff(*previous, *current));
+        it = messages_.emplace(key, PushMessage(gimbal_, full, std::move(body))).first;
     }
     cursor.pushed(current, full, now_s, options.full_every_s);
     return it->second;

@@ -9,6 +9,7 @@
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -40,16 +41,26 @@ class DeltaCursor {
     double next_full_s_ = 0;
 };
 
-// One message of a tick, with its text made on first use (a signed subscriber needs only the
-// JSON).
+// One message of a tick: {"type":"state","gimbal":NAME,"state":BODY}, with "full" on a
+// delta stream. Its text and its JSON are made on first use, from a body that may be shared
+// with other messages (the whole STATE is never copied for a plain subscriber).
 class PushMessage {
   public:
-    explicit PushMessage(nlohmann::json message) : message_(std::move(message)) {}
-    const nlohmann::json& json() const { return message_; }
+    PushMessage(const std::string& gimbal, std::optional<bool> full,
+                std::shared_ptr<const nlohmann::json> body)
+        : gimbal_(gimbal), full_(full), body_(std::move(body)) {}
+    // The message as JSON (a signed subscriber signs it).
+    const nlohmann::json& json() const;
+    // Its text, as nlohmann::json would print the message (keys sorted, compact).
     const std::shared_ptr<const std::string>& text() const;
+    // Delta stream: true for a full STATE, false for a patch; nullopt on a plain stream.
+    std::optional<bool> full() const { return full_; }
 
   private:
-    nlohmann::json message_;
+    std::string gimbal_;
+    std::optional<bool> full_;
+    std::shared_ptr<const nlohmann::json> body_;
+    mutable std::optional<nlohmann::json> json_;
     mutable std::shared_ptr<const std::string> text_;
 };
 
@@ -68,7 +79,7 @@ class PushBatch {
     using Key = std::tuple<std::vector<std::string>, Kind, const nlohmann::json*>;
 
     std::string gimbal_;
-    nlohmann::json state_;
+    std::shared_ptr<const nlohmann::json> state_;
     std::map<std::vector<std::string>, std::shared_ptr<const nlohmann::json>> selected_;
     std::map<Key, PushMessage> messages_;
     // Previous pushes a patch was made against stay alive for the batch, so their addresses

@@ -34,6 +34,20 @@ TEST_CASE("a plain stream sends the STATE message of section 4.1, without `full`
     const auto& m = batch.next(StreamOptions{}, unused, 0.0);
     CHECK(m.json() == json{{"type", "state"}, {"gimbal", "main"}, {"state", state_at(1, 0.1)}});
     CHECK(*m.text() == m.json().dump());
+    CHECK_FALSE(m.full());
+}
+
+TEST_CASE("a message's text is what dumping its JSON gives, for every kind and any name") {
+    DeltaCursor cursor;
+    const auto options = delta();
+    PushBatch first("n\"ame\u00e9", state_at(1, 0.1));
+    const auto& full = first.next(options, cursor, 0.0);
+    CHECK(*full.text() == full.json().dump());
+    CHECK(full.full() == true);
+    PushBatch second("n\"ame\u00e9", state_at(2, 0.2));
+    const auto& patch = second.next(options, cursor, 0.1);
+    CHECK(*patch.text() == patch.json().dump());
+    CHECK(patch.full() == false);
 }
 
 TEST_CASE("a delta stream: full first, then patches, a full again every full_every_s") {
