@@ -12,35 +12,51 @@
 #include "link/tcp_link.hpp"
 #include "logging.hpp"
 #include "notify.hpp"
+#include "protocols/registry.hpp"
 #include "record/recording_link.hpp"
-#include "session/orion_protocol.hpp"
-#include "session/viewpro_protocol.hpp"
-#include "sim/orion_sim.hpp"
-#include "sim/viewpro_sim.hpp"
 
 namespace gimbald {
 
 namespace cfg = gimbal::daemon;
 namespace log = gimbal::log;
 namespace notify = gimbal::notify;
+namespace protocols = gimbal::protocols;
+
+namespace {
+
+// STATE `capabilities`: what the gimbal can do (session/capabilities.hpp) and the commands
+// its protocol plans, so clients such as the console never need to know protocols.
+nlohmann::json capabilities_key(const protocols::Entry& protocol) {
+    nlohmann::json commands = nlohmann::json::array();
+    for (const auto& c : protocol.commands) commands.push_back(c.name);
+    return {{"features", protocol.capabilities->names()}, {"commands", std::move(commands)}};
+}
+
+}  // namespace
 
 App::App(const cfg::Config& config)
     : config_(config), signals_(io_, SIGINT, SIGTERM, SIGHUP), watchdog_timer_(io_) {
     if (config_.record) start_recorder();
+    // Each protocol reads its own keys (feed, options) from its gimbal's configuration object.
+    const nlohmann::json gimbal_objects = cfg::to_json(config_)["gimbals"];
     std::vector<GimbalSession*> raw;
     for (std::size_t i = 0; i < config_.gimbals.size(); ++i) {
         const auto& g = config_.gimbals[i];
+        const auto& protocol = protocols::entry(g.protocol);
         auto link = make_link(g);
         if (recorder_)  // interface i is gimbal i (start_recorder)
             link = std::make_unique<record::RecordingLink>(std::move(link), *recorder_,
                                                            static_cast<std::uint32_t>(i),
                                                            std::string(cfg::to_string(g.protocol)));
         sessions_.push_back(std::make_unique<GimbalSession>(
-            io_, g.name, make_protocol(g), std::move(link), config_.laser.fire_timeout_s,
+            io_, g.name, make_protocol(protocol, gimbal_objects[i]), std::move(link),
+            config_.laser.fire_timeout_s,
             [this](const std::string& gimbal, const gimbal::state::Event& e) {
                 events_.publish(gimbal, e);
                 if (e.kind == "link") update_status();
             }));
+        sessions_.back()->add_state_key("capabilities",
+                                        [key = capabilities_key(protocol)] { return key; });
         raw.push_back(sessions_.back().get());
     }
     RequestPathOptions path_options;
@@ -96,7 +112,8 @@ App::App(const cfg::Config& config)
         framer_options);
     for (std::size_t i = 0; i < sessions_.size(); ++i) {
         auto& session = *sessions_[i];
-        vehicle_->add_gimbal(session, config_.gimbals[i]);
+        vehicle_->add_gimbal(
+            session, protocols::entry(config_.gimbals[i].protocol).make_feeder(gimbal_objects[i]));
         // STATE `vehicle` is null when nothing can tell gimbald about the aircraft.
         if (config_.vehicle || config_.mavlink.gimbal_manager)
             session.set_vehicle_snapshot([this, &session] { return vehicle_->snapshot(session); });
@@ -123,6 +140,7 @@ void App::start_http() {
     options.bind = h.bind.to_string();
     options.port = h.port;
     options.max_connections = h.max_connections;
+    options.max_connections_per_client = h.max_connections_per_client;
     options.idle_timeout_s = h.idle_timeout_s;
     options.ws_queue_max = h.ws_queue_max;
     options.api.console = h.console;
@@ -206,25 +224,14 @@ void App::tap_recorder() {
 
 App::~App() = default;
 
-std::unique_ptr<gimbal::session::Protocol> App::make_protocol(const cfg::GimbalConfig& g) {
-    if (g.protocol == cfg::Protocol::viewpro) {
-        gimbal::session::ViewproOptions options;
-        options.stale_after_s = config_.telemetry.stale_after_s;
-        const auto& out = g.viewpro.output;
-        options.output.osd = out.osd == cfg::ViewproOsd::uav ? gimbal::viewpro::Osd::uav
-                                                             : gimbal::viewpro::Osd::target;
-        options.output.serial = out.serial;
-        options.output.network = out.network;
-        // Both enumerations list out1..out4 in order.
-        options.output.format = static_cast<gimbal::viewpro::OutFormat>(out.format);
-        return std::make_unique<gimbal::session::ViewproProtocol>(options);
-    }
-    gimbal::session::OrionOptions options;
-    options.stale_after_s = config_.telemetry.stale_after_s;
-    options.auto_ack_stare = config_.stare.auto_ack;
-    options.allow_fire = config_.laser.allow_fire;
-    options.allow_safety_bypass = config_.laser.allow_safety_bypass;
-    return std::make_unique<gimbal::session::OrionProtocol>(options);
+std::unique_ptr<gimbal::session::Protocol> App::make_protocol(const protocols::Entry& protocol,
+                                                              const nlohmann::json& gimbal) {
+    protocols::SessionSettings settings;
+    settings.stale_after_s = config_.telemetry.stale_after_s;
+    settings.auto_ack_stare = config_.stare.auto_ack;
+    settings.allow_fire = config_.laser.allow_fire;
+    settings.allow_safety_bypass = config_.laser.allow_safety_bypass;
+    return protocol.make_session(settings, gimbal);
 }
 
 std::unique_ptr<Link> App::make_link(const cfg::GimbalConfig& g) {
@@ -250,16 +257,10 @@ std::unique_ptr<Link> App::make_link(const cfg::GimbalConfig& g) {
         return std::make_unique<SerialLink>(io_, o);
     }
     // The models read no clock: start their time at now so reported times are current.
-    const double unix_s =
+    protocols::SimScenario scenario;
+    scenario.unix_time_s =
         std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
-    if (g.protocol == cfg::Protocol::viewpro) {
-        gimbal::sim::ViewproSimOptions sim;
-        sim.unix_time_at_start_s = unix_s;
-        return std::make_unique<SimLink>(io_, gimbal::sim::make_viewpro_sim(sim));
-    }
-    gimbal::sim::OrionSimOptions sim;
-    sim.gps_time_at_start_s = gimbal::sim::gps_time_from_unix_s(unix_s);
-    return std::make_unique<SimLink>(io_, gimbal::sim::make_orion_sim(sim));
+    return std::make_unique<SimLink>(io_, protocols::entry(g.protocol).simulator.make(scenario));
 }
 
 void App::on_signal(const boost::system::error_code& ec, int signo) {

@@ -15,6 +15,7 @@
 #include "http/http_server.hpp"
 #include "mavlink_endpoint.hpp"
 #include "mqtt/mqtt_bridge.hpp"
+#include "protocols/registry.hpp"
 #include "record/recorder.hpp"
 #include "request_path.hpp"
 #include "vehicle_feed.hpp"
@@ -31,7 +32,8 @@ class App {
     int run();
 
   private:
-    std::unique_ptr<gimbal::session::Protocol> make_protocol(const gimbal::daemon::GimbalConfig& g);
+    std::unique_ptr<gimbal::session::Protocol> make_protocol(
+        const gimbal::protocols::Entry& protocol, const nlohmann::json& gimbal);
     std::unique_ptr<Link> make_link(const gimbal::daemon::GimbalConfig& g);
     void start_recorder();
     void tap_recorder();

@@ -866,6 +866,7 @@ HttpConfig read_http(Fields& f) {
     if (http.web_root && http.web_root->front() != '/')
         f.problem("web_root", "must be an absolute path");
     f.integer("max_connections", http.max_connections, {1, 10000});
+    f.integer("max_connections_per_client", http.max_connections_per_client, {1, 10000});
     f.number("idle_timeout_s", http.idle_timeout_s, {1, 3600});
     f.integer("ws_queue_max", http.ws_queue_max, {2, 100000});
     if (const json* hosts = f.find("allowed_hosts")) {
@@ -896,6 +897,7 @@ json http_to_json(const HttpConfig& h) {
             {"tiles_url", optional(h.tiles_url)},
             {"web_root", optional(h.web_root)},
             {"max_connections", h.max_connections},
+            {"max_connections_per_client", h.max_connections_per_client},
             {"idle_timeout_s", h.idle_timeout_s},
             {"ws_queue_max", h.ws_queue_max},
             {"allowed_hosts", h.allowed_hosts}};
@@ -945,16 +947,6 @@ std::string syntax_problem(std::string_view text, const json::parse_error& e) {
 }
 
 }  // namespace
-
-std::string_view to_string(Protocol protocol) {
-    return protocol == Protocol::orion ? "orion" : "viewpro";
-}
-
-std::optional<Protocol> parse_protocol(std::string_view name) {
-    if (name == "orion") return Protocol::orion;
-    if (name == "viewpro") return Protocol::viewpro;
-    return std::nullopt;
-}
 
 std::span<const std::uint32_t> standard_baud_rates() {
     return baud_rates;
@@ -1148,7 +1140,8 @@ std::vector<GimbalConfig> sim_gimbals(std::span<const Protocol> protocols) {
         return gimbal;
     };
     std::vector<GimbalConfig> gimbals;
-    if (protocols.empty()) gimbals.push_back(simulated("sim", Protocol::orion));
+    if (protocols.empty())
+        gimbals.push_back(simulated("sim", gimbal::protocols::all_protocol_ids.front()));
     for (Protocol protocol : protocols) {
         gimbals.push_back(simulated(fmt::format("sim-{}", to_string(protocol)), protocol));
     }

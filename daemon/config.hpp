@@ -15,12 +15,14 @@
 #include <vector>
 
 #include "logging.hpp"
+#include "protocols/protocol_id.hpp"
 
 namespace gimbal::daemon {
 
-enum class Protocol { orion, viewpro };
-std::string_view to_string(Protocol protocol);
-std::optional<Protocol> parse_protocol(std::string_view name);
+// The protocols are the registry's (lib/protocols).
+using Protocol = gimbal::protocols::ProtocolId;
+using gimbal::protocols::parse_protocol;
+using gimbal::protocols::to_string;
 
 // The termios rates from 1200 baud up; a serial link's `baud` must be one of them.
 std::span<const std::uint32_t> standard_baud_rates();
@@ -231,12 +233,13 @@ struct MqttConfig {
 struct HttpConfig {
     boost::asio::ip::address bind = boost::asio::ip::make_address_v4("127.0.0.1");
     std::uint16_t port = 8761;
-    bool console = true;                   // serve the console (GET / and static files)
-    std::optional<std::string> tiles_url;  // XYZ template for the console's background map
-    std::optional<std::string> web_root;   // null: the installed console directory
-    unsigned max_connections = 64;         // HTTP and WebSocket connections together
-    double idle_timeout_s = 30;            // a request must arrive (and finish) within this
-    unsigned ws_queue_max = 64;            // messages queued for one WebSocket client
+    bool console = true;                       // serve the console (GET / and static files)
+    std::optional<std::string> tiles_url;      // XYZ template for the console's background map
+    std::optional<std::string> web_root;       // null: the installed console directory
+    unsigned max_connections = 64;             // HTTP and WebSocket connections together
+    unsigned max_connections_per_client = 16;  // the same, from one client address
+    double idle_timeout_s = 30;  // a request must arrive (its header then within 10 s)
+    unsigned ws_queue_max = 64;  // messages queued for one WebSocket client
     // Host names browsers may use besides addresses and localhost (DNS-rebinding guard).
     std::vector<std::string> allowed_hosts;
     bool operator==(const HttpConfig&) const = default;

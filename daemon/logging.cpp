@@ -1,5 +1,6 @@
 #include "logging.hpp"
 
+#include <spdlog/details/log_msg.h>
 #include <spdlog/logger.h>
 #include <spdlog/sinks/base_sink.h>
 #include <spdlog/sinks/ostream_sink.h>
@@ -14,6 +15,8 @@
 #include <mutex>
 #include <stdexcept>
 #include <utility>
+
+#include "journal.hpp"
 
 namespace gimbal::log {
 
@@ -62,12 +65,47 @@ bool is_bare_word(std::string_view s) {
     return true;
 }
 
+// Control characters (C0, DEL and, in UTF-8, C1) as escapes, so no text from a request can
+// end a line or forge the start of another; with `backslash`, a backslash is doubled too so
+// an escape in the output is never ambiguous. JSON text (dump()) has its C0 characters and
+// backslashes escaped already, but not DEL and C1.
+void append_escaped(std::string& out, std::string_view text, bool backslash) {
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        const auto c = static_cast<unsigned char>(text[i]);
+        if (c == '\\' && backslash) {
+            out += "\\\\";
+        } else if (c == '\n') {
+            out += "\\n";
+        } else if (c == '\r') {
+            out += "\\r";
+        } else if (c == '\t') {
+            out += "\\t";
+        } else if (c < 0x20 || c == 0x7f) {
+            out += fmt::format("\\x{:02x}", c);
+        } else if (c == 0xc2 && i + 1 < text.size() &&
+                   static_cast<unsigned char>(text[i + 1]) >= 0x80 &&
+                   static_cast<unsigned char>(text[i + 1]) <= 0x9f) {
+            out += fmt::format("\\u{:04x}", static_cast<unsigned char>(text[++i]));
+        } else {
+            out += static_cast<char>(c);
+        }
+    }
+}
+
+std::string escaped(std::string_view text) {
+    std::string out;
+    append_escaped(out, text, true);
+    return out;
+}
+
 std::string text_value(const json& value) {
     if (value.is_string()) {
         const auto& s = value.get_ref<const std::string&>();
         if (is_bare_word(s)) return s;
     }
-    return dump(value);
+    std::string out;
+    append_escaped(out, dump(value), false);
+    return out;
 }
 
 struct BrokenDownTime {
@@ -189,17 +227,18 @@ std::string format_text(const Record& record) {
     std::string line =
         fmt::format("{:04}-{:02}-{:02} {:02}:{:02}:{:02}.{:03} {} {}", t.tm.tm_year + 1900,
                     t.tm.tm_mon + 1, t.tm.tm_mday, t.tm.tm_hour, t.tm.tm_min, t.tm.tm_sec,
-                    t.micros / 1000, level_labels[index_of(record.level)], record.event);
+                    t.micros / 1000, level_labels[index_of(record.level)], escaped(record.event));
     if (record.fields != nullptr && record.fields->is_object()) {
         for (const auto& [key, value] : record.fields->items()) {
-            line += fmt::format(" {}={}", key, text_value(value));
+            line += fmt::format(" {}={}", escaped(key), text_value(value));
         }
     } else if (record.fields != nullptr && !record.fields->is_null()) {
-        line += " fields=" + dump(*record.fields);
+        line += " fields=";
+        append_escaped(line, dump(*record.fields), false);
     }
     if (!record.msg.empty()) {
         line += ": ";
-        line += record.msg;
+        append_escaped(line, record.msg, true);
     }
     return line;
 }
@@ -213,6 +252,7 @@ struct Logger::Impl {
     Settings settings;
     Clock clock;
     spdlog::sink_ptr console;
+    bool journal = false;  // standard output is the journal: records go to it natively
     std::shared_ptr<ReopenableFileSink> file;
     std::shared_ptr<spdlog::logger> transport;
 
@@ -248,12 +288,21 @@ struct Logger::Impl {
                       const json& fields) {
         const Record record{clock(), level, event, msg, &fields};
         const std::string line = format_record(record, settings.format);
-        transport->log(to_spdlog(level), spdlog::string_view_t(line.data(), line.size()));
+        const spdlog::string_view_t text(line.data(), line.size());
+        if (journal && send_to_journal(journal_fields(record, line))) {
+            // Journaled: only the file still needs the line. Else (journald unreachable)
+            // standard output has it, as without a journal.
+            if (file) file->log(spdlog::details::log_msg("gimbald", to_spdlog(level), text));
+            return;
+        }
+        transport->log(to_spdlog(level), text);
     }
 };
 
 Logger::Logger(const Settings& settings)
-    : Logger(settings, std::make_shared<spdlog::sinks::stdout_sink_st>(), Clock{}) {}
+    : Logger(settings, std::make_shared<spdlog::sinks::stdout_sink_st>(), Clock{}) {
+    impl_->journal = stdout_is_journal();
+}
 
 Logger::Logger(const Settings& settings, std::ostream& console, Clock clock)
     : Logger(settings, std::make_shared<spdlog::sinks::ostream_sink_st>(console, true),

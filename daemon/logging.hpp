@@ -60,7 +60,8 @@ class Logger {
   public:
     using Clock = std::function<SystemTime()>;
 
-    // Lines go to standard output (and the settings' file).
+    // Lines go to standard output (and the settings' file); when standard output is the
+    // systemd journal, records go to it natively instead (journal.hpp).
     explicit Logger(const Settings& settings = {});
     // Lines go to `console` instead of standard output; `clock` stamps them (tests).
     Logger(const Settings& settings, std::ostream& console, Clock clock = {});

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <ostream>
 
+#include "protocols/registry.hpp"
+
 #ifndef GIMBALD_VERSION
 #define GIMBALD_VERSION "0.0.0"
 #endif
@@ -14,8 +16,26 @@ namespace gimbal::daemon {
 
 namespace {
 
-constexpr const char* name_line =
-    "gimbald - ground-control daemon for camera gimbals (Trillium Orion, Viewpro)";
+// The protocols as the registry lists them, each between `before` and `after`, joined by
+// `separator`: display names or names.
+std::string joined(std::string_view separator, std::string_view before, std::string_view after,
+                   bool display) {
+    std::string out;
+    for (const auto* p : gimbal::protocols::entries())
+        out += (out.empty() ? "" : std::string(separator)) + std::string(before) +
+               std::string(display ? p->display_name : p->name) + std::string(after);
+    return out;
+}
+
+std::string first_protocol() {
+    return std::string(
+        gimbal::protocols::entry(gimbal::protocols::all_protocol_ids.front()).display_name);
+}
+
+std::string name_line() {
+    return "gimbald - ground-control daemon for camera gimbals (" + joined(", ", "", "", true) +
+           ")";
+}
 
 constexpr const char* synopsis =
     "gimbald [-c FILE] [--sim [PROTOCOLS]] [--log-level LEVEL]\n"
@@ -31,18 +51,26 @@ constexpr const char* description =
     "a client sends. Logs are one JSON object per line on standard output. Under systemd "
     "it reports readiness, status and watchdog keep-alives through NOTIFY_SOCKET.";
 
-constexpr const char* footer = R"(EXAMPLES
-  gimbald -c /etc/gimbald/gimbald.json
-      Run with the installed configuration (what the systemd unit does).
-  gimbald --check-config -c my.json
-      Validate my.json, print every problem with its JSON path, exit 0 or 1.
-  gimbald --sim --log-format text
-      One simulated Orion gimbal named "sim"; no configuration file is read.
-  gimbald --sim orion,viewpro -c my.json
-      Simulated gimbals "sim-orion" and "sim-viewpro" with the command, laser,
-      log ... settings of my.json (its gimbals are ignored).
+std::string examples() {
+    return "EXAMPLES\n"
+           "  gimbald -c /etc/gimbald/gimbald.json\n"
+           "      Run with the installed configuration (what the systemd unit does).\n"
+           "  gimbald --check-config -c my.json\n"
+           "      Validate my.json, print every problem with its JSON path, exit 0 or 1.\n"
+           "  gimbald --sim --log-format text\n"
+           "      One simulated " +
+           first_protocol() +
+           " gimbal named \"sim\"; no configuration file is read.\n"
+           "  gimbald --sim " +
+           joined(",", "", "", false) +
+           " -c my.json\n"
+           "      Simulated gimbals " +
+           joined(", ", "\"sim-", "\"", false) +
+           " with the command,\n"
+           "      laser, log ... settings of my.json (its gimbals are ignored).\n\n";
+}
 
-EXIT STATUS
+constexpr const char* footer = R"(EXIT STATUS
   0  clean stop (SIGTERM or SIGINT); --check-config: the configuration is valid
   1  configuration error: invalid file or command line
   2  runtime failure, e.g. the command port cannot be bound
@@ -93,7 +121,7 @@ std::string indented(std::string_view lines, std::size_t indent) {
 // --help in the layout of a man page: NAME, SYNOPSIS, DESCRIPTION, OPTIONS (from the
 // options themselves, so it cannot drift), then the footer sections.
 std::string man_page(const CLI::App* app) {
-    std::string out = "NAME\n" + indented(name_line, 2) + "\nSYNOPSIS\n" + indented(synopsis, 2) +
+    std::string out = "NAME\n" + indented(name_line(), 2) + "\nSYNOPSIS\n" + indented(synopsis, 2) +
                       "\nDESCRIPTION\n" + wrap(description, 2) + "\nOPTIONS\n";
     for (const CLI::Option* option : app->get_options()) {
         std::string names;
@@ -120,7 +148,8 @@ std::optional<std::vector<Protocol>> parse_sim_protocols(std::string_view list,
         const auto name = list.substr(start, comma - start);
         const auto protocol = parse_protocol(name);
         if (!protocol) {
-            error = fmt::format("--sim: unknown protocol \"{}\" (expected orion, viewpro)", name);
+            error = fmt::format("--sim: unknown protocol \"{}\" (expected {})", name,
+                                gimbal::protocols::names_text());
             return std::nullopt;
         }
         if (std::find(protocols.begin(), protocols.end(), *protocol) != protocols.end()) {
@@ -139,7 +168,7 @@ CommandLine parse_command_line(int argc, const char* const* argv, std::ostream& 
     Options& options = result.options;
 
     CLI::App app{description, "gimbald"};
-    app.footer(footer);
+    app.footer(examples() + footer);
     app.formatter_fn(
         [](const CLI::App* a, std::string, CLI::AppFormatMode) { return man_page(a); });
     app.set_help_flag("-h,--help", "Print this help and exit.");
@@ -156,9 +185,10 @@ CommandLine parse_command_line(int argc, const char* const* argv, std::ostream& 
                        ->type_name("FILE");
     auto* sim = app.add_option("--sim", sim_list,
                                "Serve simulated gimbals in-process instead of the file's "
-                               "gimbals. Alone: one Orion named \"sim\"; with a list such as "
-                               "orion,viewpro: gimbals \"sim-orion\", \"sim-viewpro\". "
-                               "Default: off.")
+                               "gimbals. Alone: one " +
+                                   first_protocol() + " named \"sim\"; with a list such as " +
+                                   joined(",", "", "", false) + ": gimbals " +
+                                   joined(", ", "\"sim-", "\"", false) + ". Default: off.")
                     ->expected(0, 1)
                     ->type_name("[PROTOCOLS]");
     app.add_flag("--check-config", options.check_config,

@@ -27,7 +27,7 @@ struct Options {
     std::string config_path{default_config_path};
     bool config_given = false;  // -c/--config was on the command line
     bool sim = false;
-    std::vector<Protocol> sim_protocols;  // empty for `--sim` alone (one Orion named "sim")
+    std::vector<Protocol> sim_protocols;  // empty for `--sim` alone (one gimbal "sim")
     bool check_config = false;
     std::optional<log::Level> log_level;
     std::optional<log::Format> log_format;
@@ -43,7 +43,7 @@ struct CommandLine {
 CommandLine parse_command_line(int argc, const char* const* argv, std::ostream& out,
                                std::ostream& err);
 
-// "orion,viewpro" -> {orion, viewpro}; empty text -> {}. Unknown or repeated names: nullopt
+// "a,b" (registry names) -> {a, b}; empty text -> {}. Unknown or repeated names: nullopt
 // and a message in `error`.
 std::optional<std::vector<Protocol>> parse_sim_protocols(std::string_view list, std::string& error);
 

@@ -4,11 +4,13 @@
 
 #include "auth/hmac.hpp"
 #include "auth/signed_envelope.hpp"
+#include "auth/token.hpp"
+#include "command/catalogue.hpp"
 #include "command/envelope.hpp"
-#include "command/orion_commands.hpp"
 #include "command/params.hpp"
-#include "command/viewpro_commands.hpp"
+#include "command/request_limits.hpp"
 #include "logging.hpp"
+#include "protocols/registry.hpp"
 #include "state/messages.hpp"
 #include "stream_params.hpp"
 
@@ -23,8 +25,7 @@ using nlohmann::json;
 namespace {
 
 bool known_command(std::string_view cmd) {
-    return cmdns::is_common_command(cmd) || cmdns::is_orion_command(cmd) ||
-           cmdns::is_viewpro_command(cmd);
+    return cmdns::is_known_command(cmd);
 }
 
 json or_null(const std::optional<std::string>& s) {
@@ -43,7 +44,8 @@ bool reaches_gimbal(std::string_view cmd) {
 }
 
 // The rate limit's key: a UDP client's address without its port (one host, one bucket),
-// else the transport's own name for the client.
+// else the transport's own name for the client (MQTT: "mqtt:<client_id property>", which a
+// publisher may claim at will; a signed MQTT request is keyed by its key instead, handle()).
 // HTTP clients likewise by address: "http:IP:PORT" -> "http:IP" (a new connection per
 // request must not get a new bucket).
 std::string rate_key(const RequestSource& from) {
@@ -65,10 +67,13 @@ struct RequestPath::Outcome {
     std::optional<Error> error;
     json results = json::object();
     std::chrono::steady_clock::time_point received = std::chrono::steady_clock::now();
-    // A signed request: its key (null until verified) and nonce, for the signed reply.
+    bool read = false;  // read() has run
+    // A signed request whose MAC is right (read()), before accept() checks its ts and nonce.
+    const gimbal::auth::Key* authentic = nullptr;
+    std::optional<gimbal::auth::SignedEnvelope> envelope;
+    // A signed request, accepted: its key (the reply is signed with it) and nonce.
     const gimbal::auth::Key* key = nullptr;
     std::string nonce;
-    std::string payload;  // the signed payload text, parsed as the request
 
     json fail(Error e) {
         error = std::move(e);
@@ -77,14 +82,16 @@ struct RequestPath::Outcome {
 
     // For a refusal decided before the request is read (rate limit, bad signature): the id
     // and cmd of `text`, if it has them, so the client can still match the reply.
+    // parse_envelope() refuses an oversize or too deeply nested text unread: then nothing
+    // is echoed.
     void echo_id_and_cmd(std::string_view text) {
-        cmdns::Envelope read;
-        if (auto bad = cmdns::parse_envelope(text, known_command, read)) {
+        cmdns::Envelope read_back;
+        if (auto bad = cmdns::parse_envelope(text, known_command, read_back)) {
             env.id = bad->id;
             cmd = bad->cmd;
         } else {
-            env.id = read.id;
-            cmd = read.cmd;
+            env.id = read_back.id;
+            cmd = read_back.cmd;
         }
     }
 };
@@ -112,7 +119,19 @@ GimbalSession* RequestPath::find(const std::string& name) const {
 
 std::optional<std::string> RequestPath::handle(std::string_view bytes, const RequestSource& from) {
     ++counters_.requests;
-    switch (limiter_.admit(rate_key(from), steady_seconds())) {
+    Outcome o;
+    // MQTT has no trustworthy source address: a signed request's bucket is its key, once
+    // the request is known to come from that key's holder - MAC right, ts in the window,
+    // nonce fresh - so neither a forged MAC nor a replayed capture can drain the key's
+    // bucket; those are charged to the claimed client_id. Reading first is bounded (8192
+    // bytes, 32 levels). Other transports are limited by address before anything is read.
+    const bool bucket_per_key = from.transport == "mqtt";
+    if (bucket_per_key) {
+        read(o, bytes);
+        if (!o.error) accept(o);
+    }
+    const std::string bucket = bucket_per_key && o.key ? "key:" + o.key->id : rate_key(from);
+    switch (limiter_.admit(bucket, steady_seconds())) {
         case gimbal::auth::RateLimiter::Decision::admit:
             break;
         case gimbal::auth::RateLimiter::Decision::limited_silent:
@@ -120,53 +139,103 @@ std::optional<std::string> RequestPath::handle(std::string_view bytes, const Req
             return std::nullopt;
         case gimbal::auth::RateLimiter::Decision::limited_reply: {
             ++counters_.rate_limited;
-            // Once a second per source: parsing the id is affordable at that rate.
-            Outcome o;
-            o.echo_id_and_cmd(bytes);
-            o.error = Error{code::rate_limited,
-                            "more than command.rate_limit allows from " + rate_key(from) +
-                                "; this request and the others over the limit in the next "
-                                "second were not executed"};
-            return finish(o, from, bytes);
+            // Once a second per bucket: parsing the id is affordable at that rate.
+            Outcome refused;
+            if (o.read) {
+                refused.env.id = o.env.id;
+                refused.cmd = o.cmd;
+            } else {
+                refused.echo_id_and_cmd(bytes);
+            }
+            refused.error = Error{code::rate_limited,
+                                  "more than command.rate_limit allows from " + bucket +
+                                      "; this request and the others over the limit in the next "
+                                      "second were not executed"};
+            return finish(refused, from, bytes);
         }
     }
 
-    Outcome o;
-    authenticate(o, bytes);
+    if (!o.read) read(o, bytes);
+    if (!o.error) accept(o);
     if (!o.error) authorize(o);
     if (!o.error) run(o, from);
     return finish(o, from, bytes);
 }
 
-void RequestPath::authenticate(Outcome& o, std::string_view bytes) {
-    std::string_view request_text = bytes;
-    if (bytes.size() <= cmdns::max_datagram) {
-        const json doc = json::parse(bytes, nullptr, false);
-        if (auto envelope = gimbal::auth::read_signed(doc)) {
-            if (const auto* problem = std::get_if<std::string>(&*envelope)) {
-                o.error = Error{code::bad_request, *problem};
-                return;
-            }
-            auto result = verifier_.verify(std::get<gimbal::auth::SignedEnvelope>(*envelope),
-                                           options_.unix_ms());
-            if (const auto* rejected = std::get_if<gimbal::auth::Rejected>(&result)) {
-                o.error = Error{rejected->kind == gimbal::auth::Rejected::Kind::bad_json
-                                    ? code::bad_json
-                                    : code::forbidden,
-                                rejected->reason};
-                // The unsigned refusal still echoes id and cmd, so the client can match it;
-                // nothing else of an unverified payload is used.
-                o.echo_id_and_cmd(std::get<gimbal::auth::SignedEnvelope>(*envelope).payload);
-                return;
-            }
-            auto& verified = std::get<gimbal::auth::Verified>(result);
-            o.key = verified.key;
-            o.nonce = std::move(verified.nonce);
-            o.payload = std::get<gimbal::auth::SignedEnvelope>(*envelope).payload;
-            request_text = o.payload;
-        }
+std::optional<std::string> RequestPath::refuse_too_large(std::optional<std::size_t> size,
+                                                         const RequestSource& from) {
+    ++counters_.requests;
+    switch (limiter_.admit(rate_key(from), steady_seconds())) {
+        case gimbal::auth::RateLimiter::Decision::admit:
+            break;
+        case gimbal::auth::RateLimiter::Decision::limited_silent:
+        case gimbal::auth::RateLimiter::Decision::limited_reply:
+            // Nothing of it was read; the client learns nothing more from a rate_limited.
+            ++counters_.rate_limited;
+            return std::nullopt;
     }
-    if (auto bad = cmdns::parse_envelope(request_text, known_command, o.env)) {
+    Outcome o;
+    o.env.id = json(nullptr);
+    const std::string limit = std::to_string(cmdns::max_request_bytes);
+    o.error = Error{code::too_large, size ? "the request is " + std::to_string(*size) +
+                                                " bytes, the limit is " + limit
+                                          : "the request is over the limit of " + limit + " bytes"};
+    return finish(o, from, {});
+}
+
+void RequestPath::read(Outcome& o, std::string_view bytes) {
+    o.read = true;
+    // Size and nesting first, on the raw bytes: an oversize request is never parsed.
+    if (auto refused = cmdns::check_request_limits(bytes)) {
+        if (refused->code == code::too_large) o.env.id = json(nullptr);
+        o.error = std::move(refused);
+        return;
+    }
+    const json doc = json::parse(bytes, nullptr, false);
+    auto signed_request = gimbal::auth::read_signed(doc);
+    if (!signed_request) {
+        if (auto bad = cmdns::parse_envelope(bytes, known_command, o.env)) {
+            o.error = bad->error;
+            o.cmd = bad->cmd;
+            o.env.id = bad->id;
+            return;
+        }
+        o.cmd = o.env.cmd;
+        return;
+    }
+    if (const auto* problem = std::get_if<std::string>(&*signed_request)) {
+        o.error = Error{code::bad_request, *problem};
+        return;
+    }
+    auto& envelope = std::get<gimbal::auth::SignedEnvelope>(*signed_request);
+    auto key = verifier_.authenticate(envelope);
+    if (const auto* rejected = std::get_if<gimbal::auth::Rejected>(&key)) {
+        o.error = Error{code::forbidden, rejected->reason};
+        // The unsigned refusal still echoes id and cmd, so the client can match it;
+        // nothing else of an unverified payload is used.
+        o.echo_id_and_cmd(envelope.payload);
+        return;
+    }
+    o.authentic = std::get<const gimbal::auth::Key*>(key);
+    o.envelope = std::move(envelope);
+}
+
+void RequestPath::accept(Outcome& o) {
+    if (!o.authentic || o.key) return;  // not signed, or accepted already
+    auto result = verifier_.accept(*o.authentic, *o.envelope, options_.unix_ms());
+    if (const auto* rejected = std::get_if<gimbal::auth::Rejected>(&result)) {
+        using Kind = gimbal::auth::Rejected::Kind;
+        o.error = Error{rejected->kind == Kind::bad_json    ? code::bad_json
+                        : rejected->kind == Kind::too_large ? code::too_large
+                                                            : code::forbidden,
+                        rejected->reason};
+        o.echo_id_and_cmd(o.envelope->payload);
+        return;
+    }
+    auto& verified = std::get<gimbal::auth::Verified>(result);
+    o.key = verified.key;
+    o.nonce = std::move(verified.nonce);
+    if (auto bad = cmdns::parse_envelope(o.envelope->payload, known_command, o.env)) {
         o.error = bad->error;
         o.cmd = bad->cmd;
         o.env.id = bad->id;
@@ -190,7 +259,8 @@ void RequestPath::authorize(Outcome& o) {
                         "command.auth is \"signed\": '" + o.env.cmd + "' must be signed by a key"};
         return;
     }
-    if (options_.token && !cmdns::is_open_command(o.env.cmd) && o.env.token != options_.token)
+    if (options_.token && !cmdns::is_open_command(o.env.cmd) &&
+        !(o.env.token && gimbal::auth::token_matches(*o.env.token, *options_.token)))
         o.error =
             Error{code::forbidden, o.env.token ? "wrong token" : "this command needs 'token'"};
 }
@@ -239,7 +309,7 @@ std::string RequestPath::finish(Outcome& o, const RequestSource& from,
     if (o.cmd && reaches_gimbal(*o.cmd)) audit(o, from);
 
     const CompletedRequest done{
-        from.transport, o.cmd, o.error ? o.error->code : std::string("ok"),
+        from.transport, o.cmd, o.error ? std::string(to_string(o.error->code)) : std::string("ok"),
         std::chrono::duration<double>(std::chrono::steady_clock::now() - o.received).count()};
     for (const auto& observe : observers_) observe(done);
     for (const auto& tap : taps_) tap(from, request_bytes, text);
@@ -272,13 +342,24 @@ void RequestPath::audit(const Outcome& o, const RequestSource& from) const {
         }
     }
     const bool fire = fields.contains("fire") && fields["fire"] == true;
-    boost::asio::post(io_, [fire, msg = o.error ? o.error->message : std::string("ok"),
-                            fields = std::move(fields)] {
-        if (fire)
-            log::warn("audit", msg, fields);
-        else
-            log::info("audit", msg, fields);
-    });
+    // A laser that fired has its own event besides the audit line, so the journal can be
+    // asked for exactly those: journalctl -u gimbald EVENT=laser_fire.
+    std::optional<json> fired;
+    if (fire && !o.error)
+        fired = json{{"src", from.address},
+                     {"transport", from.transport},
+                     {"key", fields["key"]},
+                     {"gimbal", fields["gimbal"]},
+                     {"index", fields["index"]}};
+    boost::asio::post(
+        io_, [fire, fired = std::move(fired), msg = o.error ? o.error->message : std::string("ok"),
+              fields = std::move(fields)] {
+            if (fire)
+                log::warn("audit", msg, fields);
+            else
+                log::info("audit", msg, fields);
+            if (fired) log::warn("laser_fire", "laser fire commanded", *fired);
+        });
 }
 
 std::string RequestPath::random_nonce() {
@@ -307,7 +388,7 @@ json RequestPath::dispatch(Outcome& o, const RequestSource& from) {
         if (cmd == "ping") results["pong"] = true;
         if (cmd == "version") {
             results["version"] = GIMBALD_VERSION;
-            results["protocols"] = {"orion", "viewpro"};
+            results["protocols"] = gimbal::protocols::names();
         }
         if (cmd == "list") {
             auto list = json::array();

@@ -23,7 +23,8 @@ namespace gimbald {
 
 struct RequestSource {
     std::string transport;  // "udp", "mqtt", "http", "mavlink"
-    // The log's `src` and the rate-limit key: "127.0.0.1:40000" (udp), "mqtt:<client>",
+    // The log's `src` and (unless signed, on MQTT) the rate-limit key: "127.0.0.1:40000"
+    // (udp), "mqtt:<client>",
     // "http:127.0.0.1:5555", "mavlink:255/190".
     std::string address;
     std::optional<boost::asio::ip::udp::endpoint> udp;  // UDP only: subscriptions need it
@@ -70,6 +71,12 @@ class RequestPath {
     // reply text to send back, or nullopt when nothing must be sent.
     std::optional<std::string> handle(std::string_view bytes, const RequestSource& from);
 
+    // A request a transport refused for its size before it had read all of it (an HTTP body
+    // or a WebSocket message over the limit; `size` when known): answered too_large, as
+    // handle() answers an oversize request, counted, rate-limited and logged, never parsed.
+    std::optional<std::string> refuse_too_large(std::optional<std::size_t> size,
+                                                const RequestSource& from);
+
     // A request object built by an adapter that authenticates by its own means (MAVLink
     // signing): no token or signature check; the same validation, laser rules, logging and
     // audit. Returns the reply object.
@@ -94,7 +101,10 @@ class RequestPath {
     nlohmann::json dispatch(Outcome& o, const RequestSource& from);
     nlohmann::json subscription(Outcome& o, const RequestSource& from);
     std::string finish(Outcome& o, const RequestSource& from, std::string_view request_bytes);
-    void authenticate(Outcome& o, std::string_view bytes);
+    // Size and nesting limits, parse, and for a signed request its MAC (no state changes).
+    void read(Outcome& o, std::string_view bytes);
+    // A signed request's ts and nonce (the nonce is spent here), then its payload.
+    void accept(Outcome& o);
     void authorize(Outcome& o);
     void audit(const Outcome& o, const RequestSource& from) const;
     std::string random_nonce();

@@ -10,21 +10,23 @@
 
 namespace gimbal::daemon {
 
-std::variant<std::string, std::string> read_private_file(const std::string& path) {
-    using Result = std::variant<std::string, std::string>;
-    auto problem = [&path](std::string reason) {
-        return Result{std::in_place_index<1>, fmt::format("{}: {}", path, reason)};
+command::Result<std::string> read_secret_file(const std::string& path) {
+    namespace code = command::code;
+    auto problem = [&path](command::ErrorCode c, std::string reason) {
+        return command::Result<std::string>{c, fmt::format("{}: {}", path, reason)};
     };
     const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOCTTY);
-    if (fd < 0) return problem(errno == ENOENT ? "missing" : std::strerror(errno));
+    if (fd < 0)
+        return problem(code::unavailable, errno == ENOENT ? "missing" : std::strerror(errno));
     struct stat st {};
     if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
         ::close(fd);
-        return problem("not a regular file");
+        return problem(code::bad_request, "not a regular file");
     }
     if ((st.st_mode & 077) != 0) {
         ::close(fd);
-        return problem(fmt::format("readable by group or others (mode {:04o}); chmod 600 it",
+        return problem(code::forbidden,
+                       fmt::format("readable by group or others (mode {:04o}); chmod 600 it",
                                    st.st_mode & 07777));
     }
     std::string text;
@@ -35,17 +37,24 @@ std::variant<std::string, std::string> read_private_file(const std::string& path
         if (n < 0) {
             const std::string reason = std::strerror(errno);
             ::close(fd);
-            return problem(reason);
+            return problem(code::unavailable, reason);
         }
         if (n == 0) break;
         text.append(buffer, static_cast<std::size_t>(n));
         if (text.size() > 65536) {
             ::close(fd);
-            return problem("larger than 64 KiB: not a secret file");
+            return problem(code::bad_request, "larger than 64 KiB: not a secret file");
         }
     }
     ::close(fd);
-    return Result{std::in_place_index<0>, std::move(text)};
+    return text;
+}
+
+std::variant<std::string, std::string> read_private_file(const std::string& path) {
+    auto text = read_secret_file(path);
+    if (!text)
+        return std::variant<std::string, std::string>{std::in_place_index<1>, text.error().message};
+    return std::variant<std::string, std::string>{std::in_place_index<0>, std::move(text).value()};
 }
 
 }  // namespace gimbal::daemon

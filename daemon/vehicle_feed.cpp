@@ -1,8 +1,6 @@
 #include "vehicle_feed.hpp"
 
 #include "logging.hpp"
-#include "orion/framing.hpp"
-#include "vehicle/feeds.hpp"
 
 namespace gimbald {
 
@@ -12,11 +10,8 @@ namespace vehicle = gimbal::vehicle;
 
 namespace {
 
-// One tick every 50 ms: 10 Hz is every 2nd, 4 Hz every 5th, 1 Hz every 20th.
-constexpr auto tick_period = std::chrono::milliseconds(50);
-constexpr std::uint64_t ticks_10hz = 2;
-constexpr std::uint64_t ticks_4hz = 5;
-constexpr std::uint64_t ticks_1hz = 20;
+constexpr auto tick_period = std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+    std::chrono::duration<double>(gimbal::protocols::feed_tick_s));
 
 vehicle::VehicleOptions options_of(const std::optional<cfg::VehicleConfig>& config) {
     vehicle::VehicleOptions o;
@@ -25,19 +20,6 @@ vehicle::VehicleOptions options_of(const std::optional<cfg::VehicleConfig>& conf
         o.timeout_s = config->timeout_s;
     }
     return o;
-}
-
-std::string feed_kind(const cfg::GimbalConfig& g) {
-    if (g.protocol == cfg::Protocol::orion) return "orion";
-    switch (g.viewpro_feed) {
-        case cfg::ViewproFeed::in1:
-            return "in1";
-        case cfg::ViewproFeed::mavlink:
-            return "mavlink";
-        case cfg::ViewproFeed::in2:
-            break;
-    }
-    return "in2";
 }
 
 }  // namespace
@@ -71,12 +53,16 @@ double VehicleFeed::unix_now_s() const {
         .count();
 }
 
-void VehicleFeed::add_gimbal(GimbalSession& session, const cfg::GimbalConfig& config) {
+void VehicleFeed::add_gimbal(GimbalSession& session,
+                             std::unique_ptr<gimbal::protocols::VehicleFeeder> feeder) {
     Target t;
     t.session = &session;
-    t.config = config;
-    t.kind = feed_kind(config);
+    t.feeder = std::move(feeder);
     targets_.push_back(std::move(t));
+}
+
+gimbal::protocols::FeedTime VehicleFeed::feed_time(double now) const {
+    return {now, unix_now_s(), ticks_};
 }
 
 void VehicleFeed::start() {
@@ -115,9 +101,12 @@ void VehicleFeed::check_connection(double now) {
     else
         log::warn("vehicle_lost", "no vehicle data within vehicle.timeout_s",
                   {{"source", source_->describe()}});
-    // CommGood changes reach the Orions at once, not at the next 1 Hz slot.
-    for (auto& t : targets_)
-        if (t.kind == "orion" && t.config.orion_feed.autopilot) send_autopilot_data(t, now);
+    // What a gimbal must hear of the change reaches it at once, not at its next slot.
+    std::vector<gimbal::protocols::FeedBytes> packets;
+    for (auto& t : targets_) {
+        t.feeder->connection_changed(state_, feed_time(now), packets);
+        send(t, packets);
+    }
     if (on_event_) on_event_(gimbal::state::Event{"vehicle", {{"connected", *change}}});
 }
 
@@ -137,35 +126,19 @@ void VehicleFeed::schedule_tick() {
 void VehicleFeed::on_tick() {
     const double now = now_s();
     check_connection(now);
-    const std::uint64_t tick = ticks_++;
-    const double unix_now = unix_now_s();
-    for (auto& t : targets_) {
-        if (t.kind == "orion") {
-            if (t.config.orion_feed.autopilot && tick % ticks_1hz == 0) send_autopilot_data(t, now);
-            if (t.config.orion_feed.gps && tick % ticks_4hz == 0)
-                if (auto gps = vehicle::orion_gps_data(state_, now, unix_now))
-                    send(t, gimbal::orion::to_wire(*gps));
-            continue;
-        }
-        if (tick % ticks_10hz != 0) continue;
-        if (t.kind == "mavlink") {
-            auto bytes = vehicle::mavlink_forward(state_, now, t.mavlink_seq);
-            if (!bytes.empty()) send(t, std::move(bytes));
-            continue;
-        }
-        const auto frame =
-            t.kind == "in1" ? vehicle::ViewproFrame::in1 : vehicle::ViewproFrame::in2;
-        if (auto bytes = vehicle::viewpro_in(state_, now, unix_now, frame))
-            send(t, std::move(*bytes));
+    const gimbal::protocols::FeedTime t = feed_time(now);
+    ++ticks_;
+    std::vector<gimbal::protocols::FeedBytes> packets;
+    for (auto& target : targets_) {
+        target.feeder->tick(state_, t, packets);
+        send(target, packets);
     }
 }
 
-void VehicleFeed::send_autopilot_data(Target& target, double now) {
-    send(target, gimbal::orion::to_wire(vehicle::orion_autopilot_data(state_, now)));
-}
-
-void VehicleFeed::send(Target& target, std::vector<std::uint8_t> bytes) {
-    if (target.session->send_feed(std::move(bytes))) ++target.sent;
+void VehicleFeed::send(Target& target, std::vector<gimbal::protocols::FeedBytes>& packets) {
+    for (auto& bytes : packets)
+        if (target.session->send_feed(std::move(bytes))) ++target.sent;
+    packets.clear();
 }
 
 nlohmann::json VehicleFeed::snapshot(const GimbalSession& session) const {
@@ -173,7 +146,8 @@ nlohmann::json VehicleFeed::snapshot(const GimbalSession& session) const {
     for (const auto& t : targets_) {
         if (t.session != &session) continue;
         out["feed"] =
-            source_ ? nlohmann::json{{"kind", t.kind}, {"sent", t.sent}} : nlohmann::json(nullptr);
+            source_ ? nlohmann::json{{"kind", std::string(t.feeder->kind())}, {"sent", t.sent}}
+                    : nlohmann::json(nullptr);
     }
     return out;
 }

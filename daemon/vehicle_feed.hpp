@@ -1,8 +1,8 @@
 // The vehicle feed (issue 5): reads the aircraft's MAVLink (VehicleSource) into a
-// VehicleState and, on a 50 ms schedule, sends every gimbal what it needs: Orion
-// AutopilotData at 1 Hz (at once when the feed is lost or back) and GPS_DATA at 4 Hz when
-// `feed.gps`; Viewpro IN2/IN1 or forwarded MAVLink at 10 Hz while the feed is fresh.
-// Without a `vehicle` section it only serves the STATE `vehicle` object (never connected).
+// VehicleState and, on a 50 ms schedule, sends every gimbal what its protocol's feeder
+// (protocols/vehicle_feeder.hpp, made by the registry) says is due, and what it must hear at
+// once when the feed is lost or back. Without a `vehicle` section it only serves the STATE
+// `vehicle` object (never connected).
 #pragma once
 
 #include <boost/asio/io_context.hpp>
@@ -16,6 +16,7 @@
 
 #include "config.hpp"
 #include "gimbal_session.hpp"
+#include "protocols/vehicle_feeder.hpp"
 #include "state/event.hpp"
 #include "vehicle/vehicle_state.hpp"
 #include "vehicle_source.hpp"
@@ -32,8 +33,9 @@ class VehicleFeed {
                 gimbal::mavlink::FramerOptions framer_options = {});
     ~VehicleFeed();
 
-    // A gimbal to feed, as its configuration says.
-    void add_gimbal(GimbalSession& session, const gimbal::daemon::GimbalConfig& config);
+    // A gimbal to feed, by its protocol's feeder (Entry::make_feeder of its configuration).
+    void add_gimbal(GimbalSession& session,
+                    std::unique_ptr<gimbal::protocols::VehicleFeeder> feeder);
 
     void start();
     void stop();
@@ -53,10 +55,8 @@ class VehicleFeed {
   private:
     struct Target {
         GimbalSession* session = nullptr;
-        gimbal::daemon::GimbalConfig config;
-        std::uint8_t mavlink_seq = 0;
+        std::unique_ptr<gimbal::protocols::VehicleFeeder> feeder;
         std::uint64_t sent = 0;
-        std::string kind;  // what it is fed: "orion", "in2", "in1", "mavlink"
     };
 
     double now_s() const;
@@ -65,8 +65,8 @@ class VehicleFeed {
     void check_connection(double now);
     void schedule_tick();
     void on_tick();
-    void send_autopilot_data(Target& target, double now);
-    void send(Target& target, std::vector<std::uint8_t> bytes);
+    gimbal::protocols::FeedTime feed_time(double now) const;
+    void send(Target& target, std::vector<gimbal::protocols::FeedBytes>& packets);
 
     gimbal::vehicle::VehicleState state_;
     std::vector<std::function<void(const gimbal::mavlink::Message&)>> listeners_;

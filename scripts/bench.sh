@@ -1,13 +1,20 @@
 #!/usr/bin/env bash
-# Builds the benchmarks with the `release` preset and runs them. Extra arguments go to the
-# benchmark program, e.g. scripts/bench.sh --benchmark_filter=Decode --benchmark_repetitions=5
+# Builds the benchmarks with the `release` preset and runs them: the Orion codec (bench_orion),
+# MISB ST 0601 KLV generation and decoding (bench_klv), the video relay: a 1080p30 8 Mbit/s
+# H.264 TS with KLV from a UDP input to two UDP outputs (bench_video_relay, CPU and latency,
+# docs/video.md "Relay budget"; VIDEO_SECONDS sets its length, default 10), then one
+# ray-terrain intersection on a 1 arc-second model (bench_terrain, docs/terrain.md "Cost").
+# Extra arguments go to each Google Benchmark program and bench_terrain, e.g.
+#   scripts/bench.sh --benchmark_filter=Decode --benchmark_repetitions=5
 #
-#   --smoke     a few seconds: every codec benchmark once, briefly, and the recorder
-#               benchmark for one second; fails when one does not run or the recorder drops
-#               a packet (timings are not checked). ctest runs it as "bench: bench.sh --smoke".
+#   --smoke     a few seconds: every codec benchmark once, briefly, the video relay and the
+#               terrain benchmark in their smoke modes, the recorder benchmark for one
+#               second; fails when one does not run or loses something (timings are not
+#               checked). ctest runs it as "bench: bench.sh --smoke".
 #   --no-build  use the programs already built in BUILD_DIR
 #
-# Environment: BUILD_DIR, an already configured build directory instead of build/release.
+# Environment: BUILD_DIR, an already configured build directory instead of build/release;
+# JOBS, parallel build jobs (default: nproc).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 smoke=false
@@ -27,33 +34,49 @@ else
     cmake --preset release >/dev/null
     build=build/release
 fi
-targets=(bench_orion)
+targets=(bench_orion bench_klv bench_terrain bench_video_relay)
 $smoke && targets+=(bench_record)
 $build_it && cmake --build "$build" --target "${targets[@]}" -j "$jobs"
-orion=$build/tests/bench/bench_orion
+bench=$build/tests/bench
 
 if ! $smoke; then
-    exec "$orion" "${args[@]}"
+    "$bench/bench_orion" ${args[@]+"${args[@]}"}
+    "$bench/bench_klv" ${args[@]+"${args[@]}"}
+    "$bench/video/bench_video_relay" --seconds "${VIDEO_SECONDS:-10}" --dir "$bench/video"
+    exec "$bench/terrain/bench_terrain" ${args[@]+"${args[@]}"}
 fi
 
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 fail() { echo "bench.sh --smoke: FAILED: $*" >&2; exit 1; }
 
-# Every registered benchmark must run and report; none may print an error.
-expected=$("$orion" --benchmark_list_tests | wc -l)
-"$orion" --benchmark_min_time=0.01 --benchmark_format=json >"$out/orion.json" 2>"$out/orion.err" ||
-    fail "bench_orion exited $?: $(cat "$out/orion.err")"
-python3 - "$out/orion.json" "$expected" <<'PY' || fail "bench_orion did not report every benchmark"
+# Every registered Google benchmark must run and report; none may flag an error.
+for program in bench_orion bench_klv; do
+    expected=$("$bench/$program" --benchmark_list_tests | wc -l)
+    "$bench/$program" --benchmark_min_time=0.01 --benchmark_format=json \
+        >"$out/$program.json" 2>"$out/$program.err" ||
+        fail "$program exited $?: $(cat "$out/$program.err")"
+    python3 - "$out/$program.json" "$expected" "$program" <<'PY' ||
 import json, sys
 runs = json.load(open(sys.argv[1]))["benchmarks"]
 bad = [b["name"] for b in runs if b.get("error_occurred") or not b.get("iterations")]
-print("bench_orion: %d of %s benchmarks ran" % (len(runs), sys.argv[2]))
+print("%s: %d of %s benchmarks ran" % (sys.argv[3], len(runs), sys.argv[2]))
 sys.exit(1 if bad or len(runs) != int(sys.argv[2]) else 0)
 PY
+        fail "$program did not report every benchmark"
+done
+
+# The video relay exits non-zero when it loses a unit.
+"$bench/video/bench_video_relay" --smoke --dir "$bench/video" >"$out/video" 2>&1 ||
+    fail "bench_video_relay --smoke: $(tail -5 "$out/video")"
+echo "bench_video_relay --smoke: ran, nothing lost"
+
+# The terrain benchmark on its small model.
+"$bench/terrain/bench_terrain" --smoke >"$out/terrain" 2>&1 || fail "bench_terrain --smoke: $(tail -5 "$out/terrain")"
+echo "bench_terrain --smoke: ran"
 
 # The recorder: one second at 10,000 packets/s, every packet written.
-"$build/tests/bench/record/bench_record" --rate 10000 --seconds 1 --dir "$out" | tee "$out/record"
+"$bench/record/bench_record" --rate 10000 --seconds 1 --dir "$out" | tee "$out/record"
 grep -Eq 'with recording: .*\([1-9][0-9]* packets, 0 dropped' "$out/record" ||
     fail "bench_record did not record every packet (see above)"
 echo "bench.sh --smoke: ok"

@@ -12,6 +12,10 @@ packages=(
   libmosquitto-dev mosquitto mosquitto-clients python3-paho-mqtt openssl
   dpkg-dev lintian
   tshark prometheus chromium
+  libgdal-dev proj-data gdal-bin python3-gdal
+  libavformat-dev libavcodec-dev libavutil-dev ffmpeg
+  gstreamer1.0-tools gstreamer1.0-plugins-base gstreamer1.0-plugins-good
+  gstreamer1.0-plugins-bad gstreamer1.0-plugins-ugly python3-gi gir1.2-gst-rtsp-server-1.0
 )
 
 # --cross ARCH (scripts/package.sh --arch arm64): the cross compiler, QEMU and the ARCH
@@ -27,6 +31,7 @@ if [ "${1:-}" = "--cross" ]; then
     "libsystemd-dev:$cross_arch" "libgeographiclib23:$cross_arch"
     "libssl-dev:$cross_arch"
     "libmosquitto-dev:$cross_arch"
+    "libavformat-dev:$cross_arch" "libavcodec-dev:$cross_arch" "libavutil-dev:$cross_arch"
   )
 fi
 

@@ -37,8 +37,9 @@
   }
 
   // ---- what to draw for a gimbal -------------------------------------------------------
-  // Orion: telemetry (position, heading = mount yaw, target, footprint). Viewpro: the UAV and
-  // target the gimbal reports in `output`; the vehicle feed's position when it has one.
+  // What STATE holds, whatever the protocol: `telemetry` (position, heading = mount yaw,
+  // target, footprint), else the UAV and target a gimbal reports in `output`, else the
+  // vehicle feed's position.
   function viewOf(name) {
     const s = app.states[name];
     if (!s) return null;
@@ -65,7 +66,7 @@
       alt = vpos.alt_msl;
     }
     if (out) {
-      // The target 0,0 means "no target" in the Viewpro protocol.
+      // An `output` target at 0,0 means "no target".
       if (out.target && Number.isFinite(out.target.lat) && (out.target.lat !== 0 || out.target.lon !== 0)) {
         target = target || out.target;
       }
@@ -121,14 +122,23 @@
   }
 
   // ---- side panels ---------------------------------------------------------------------
+  // The commands the gimbal takes (STATE `capabilities.commands`): which controls to show.
+  function takes(s, cmd) {
+    const caps = s && s.capabilities;
+    return !!(caps && Array.isArray(caps.commands) && caps.commands.includes(cmd));
+  }
+
   function renderPanels(view) {
     const s = app.selected && app.states[app.selected];
     const proto = s ? s.protocol : app.info && (app.info.gimbals.find((g) => g.name === app.selected) || {}).protocol;
     setBadge($('protocol'), proto || '-', 'neutral');
-    $('viewpro-panel').hidden = proto !== 'viewpro';
-    $('orion-controls').hidden = proto === 'viewpro';
-    $('viewpro-controls').hidden = proto !== 'viewpro';
-    $('map-hint').textContent = proto === 'viewpro' ? 'geopoint: Orion only' : 'click the map: geopoint';
+    $('viewpro-panel').hidden = !(s && s.output);
+    $('pointing-controls').hidden = !(takes(s, 'position') || takes(s, 'rate') || takes(s, 'camera_zoom'));
+    $('position-form').hidden = !takes(s, 'position');
+    $('rate-controls').hidden = !takes(s, 'rate');
+    $('zoom-form').hidden = !takes(s, 'camera_zoom');
+    $('shift-controls').hidden = !takes(s, 'viewpro_adjust');
+    $('map-hint').textContent = !s || takes(s, 'geopoint') ? 'click the map: geopoint' : 'geopoint: not a command of this gimbal';
     if (!s) return;
     const t = s.telemetry;
     const out = s.output;
@@ -183,7 +193,7 @@
     const box = $('lasers');
     const lasers = Array.isArray(s.lasers) ? s.lasers : null;
     if (!lasers || lasers.length === 0) {
-      box.textContent = s.protocol === 'viewpro' ? 'not reported by this protocol' : 'no laser state';
+      box.textContent = takes(s, 'laser') ? 'no laser state' : 'not reported by this protocol';
       box.className = 'dim';
       return;
     }
@@ -191,7 +201,7 @@
     box.replaceChildren(...lasers.map((l, i) => {
       const row = document.createElement('div');
       row.className = 'laser-row';
-      const firing = !!l.active; // OrionLaserStates "Active": emitting
+      const firing = !!l.active; // "active": emitting
       const flags = [['enabled', 'enabled'], ['armed', 'armed'], ['active', 'FIRING']]
         .filter(([k]) => l[k]).map(([, label]) => label).join(' ') || 'off';
       const locks = Object.keys(l).filter((k) => k.endsWith('_lock') && l[k] === true);
@@ -472,10 +482,10 @@
       centre: { lat: p.lat0, lon: p.lon0, system_time_ms: map.drawn && map.drawn.system_time_ms },
       px_per_m: p.px_per_m, cx: p.cx, cy: p.cy };
     publishHook();
-    if (s && s.protocol === 'viewpro') {
+    if (s && !takes(s, 'geopoint')) {
       const box = $('last-command');
       box.className = 'reply err';
-      box.textContent = 'geopoint is an Orion command; a Viewpro gimbal points by itself';
+      box.textContent = `geopoint is not a command of ${s.protocol} gimbals (an Orion command); this gimbal points by itself`;
       return;
     }
     app.clicks[app.selected] = { lat, lon };

@@ -133,7 +133,7 @@
         delete n.target.dataset.lat;
       }
 
-      // Viewpro: the UAV position the gimbal itself reports (output.uav), when it differs
+      // The UAV position a gimbal reports in STATE `output` (output.uav), when it differs
       // from the position the aircraft symbol is drawn at (e.g. the vehicle feed's).
       n['uav-output'].replaceChildren();
       if (view.uav) {

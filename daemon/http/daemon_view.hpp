@@ -26,7 +26,7 @@ struct DaemonView {
 struct HttpStats {
     std::uint64_t connections_total = 0;    // accepted and served
     std::uint64_t refused_total = 0;        // source not in command.allow
-    std::uint64_t over_capacity_total = 0;  // closed at once: http.max_connections reached
+    std::uint64_t over_capacity_total = 0;  // closed at once: a connection cap reached
     std::uint64_t cross_site_total = 0;     // refused by the Host/Origin checks (403)
     std::size_t open_connections = 0;       // HTTP (WebSocket clients not included)
     std::size_t websocket_clients = 0;

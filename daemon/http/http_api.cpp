@@ -134,6 +134,17 @@ Response HttpApi::command(const Request& request, const std::string& source) {
     return res;
 }
 
+Response HttpApi::too_large(unsigned version, const std::string& source,
+                            std::optional<std::size_t> size) {
+    const RequestSource from{"http", source, std::nullopt};
+    auto reply = daemon_.path->refuse_too_large(size, from);
+    if (!reply)
+        return error(status::too_many_requests, version, "rate limited (command.rate_limit)");
+    auto res = make(status::payload_too_large, version, "application/json", std::move(*reply));
+    res.set(field::cache_control, "no-store");
+    return res;
+}
+
 Response HttpApi::static_file(const Request& request) {
     const auto file = resolve_static(options_.web_root, std::string(request.target()));
     if (!file) return error(status::not_found, request.version(), "no such path");

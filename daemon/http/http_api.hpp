@@ -36,6 +36,11 @@ class HttpApi {
     // `source`: "http:IP:PORT", the request path's `src`.
     Response handle(const Request& request, const std::string& source);
 
+    // POST /api/command with a body over the request limit (`size` when declared): the
+    // request path's too_large reply, unread, as a 413 (429 when rate-limited).
+    Response too_large(unsigned version, const std::string& source,
+                       std::optional<std::size_t> size);
+
     // A response for an HTTP-level problem (bad request, too large...): a JSON error body.
     static Response error(boost::beast::http::status status, unsigned version, std::string text);
 

@@ -1,14 +1,17 @@
 #include "http_connection.hpp"
 
+#include <algorithm>
 #include <boost/asio/write.hpp>
 #include <boost/beast/core/string.hpp>
 #include <boost/beast/http/error.hpp>
 #include <boost/beast/http/read.hpp>
 #include <boost/beast/http/write.hpp>
 #include <boost/beast/websocket/rfc6455.hpp>
+#include <charconv>
 #include <chrono>
 
 #include "command/envelope.hpp"
+#include "frame_policy.hpp"
 #include "http_server.hpp"
 #include "logging.hpp"
 #include "static_files.hpp"
@@ -26,6 +29,9 @@ namespace {
 // Contract section 11 limits: a request's header, and its body (the datagram limit).
 constexpr std::uint32_t header_limit = 8192;
 constexpr std::uint64_t body_limit = gimbal::command::max_datagram;
+// Contract section 14: once a request has begun, its header must be complete within this
+// (slowloris); before its first byte only the idle timeout applies (keep-alive).
+constexpr double header_time_s = 10.0;
 // After a refusal: how much more of the client's request is read and thrown away, and for
 // how long, before the connection closes.
 constexpr std::size_t drain_limit = 65536;
@@ -36,6 +42,13 @@ std::chrono::steady_clock::duration idle(double seconds) {
         std::chrono::duration<double>(seconds));
 }
 
+std::optional<std::size_t> declared_length(beast::string_view text) {
+    std::size_t n = 0;
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), n);
+    if (ec != std::errc() || end != text.data() + text.size() || text.empty()) return std::nullopt;
+    return n;
+}
+
 bool is_http_error(const boost::system::error_code& ec) {
     return ec.category() == beast::http::make_error_code(beast::http::error::bad_target).category();
 }
@@ -43,8 +56,11 @@ bool is_http_error(const boost::system::error_code& ec) {
 }  // namespace
 
 HttpConnection::HttpConnection(asio::ip::tcp::socket socket, HttpServer& server,
-                               std::string address)
-    : stream_(std::move(socket)), server_(server), address_(std::move(address)) {
+                               std::string address, ClientSlots::Slot slot)
+    : stream_(std::move(socket)),
+      server_(server),
+      address_(std::move(address)),
+      slot_(std::move(slot)) {
     server_.add(this);
 }
 
@@ -66,9 +82,28 @@ void HttpConnection::do_read() {
     parser_.emplace();
     parser_->header_limit(header_limit);
     parser_->body_limit(body_limit);
-    // One deadline for the whole request, header and body: a client that trickles bytes
-    // cannot hold the connection longer than that.
+    if (buffer_.size() > 0) return read_header();  // pipelined: the next request has begun
+    // Waiting for a request (a kept-alive connection between requests): the idle timeout.
     stream_.expires_after(idle(server_.idle_timeout_s()));
+    stream_.async_read_some(
+        buffer_.prepare(header_limit),
+        [self = shared_from_this()](const boost::system::error_code& ec, std::size_t n) {
+            self->on_first_bytes(ec, n);
+        });
+}
+
+void HttpConnection::on_first_bytes(const boost::system::error_code& ec, std::size_t n) {
+    if (closed_) return;
+    if (ec == asio::error::eof) return on_read(beast::http::error::end_of_stream, 0);
+    if (ec) return fail(ec, "read");
+    buffer_.commit(n);
+    read_header();
+}
+
+void HttpConnection::read_header() {
+    // One deadline for the header from its first byte, then one for the body: a client that
+    // trickles bytes cannot hold the connection longer than that.
+    stream_.expires_after(idle(std::min(header_time_s, server_.idle_timeout_s())));
     beast::http::async_read_header(
         stream_, buffer_, *parser_,
         [self = shared_from_this()](const boost::system::error_code& ec, std::size_t n) {
@@ -79,6 +114,7 @@ void HttpConnection::do_read() {
 void HttpConnection::on_header(const boost::system::error_code& ec, std::size_t n) {
     if (ec || closed_ || parser_->is_done()) return on_read(ec, n);
     auto read_body = [self = shared_from_this()] {
+        self->stream_.expires_after(idle(self->server_.idle_timeout_s()));
         beast::http::async_read(
             self->stream_, self->buffer_, *self->parser_,
             [self](const boost::system::error_code& e, std::size_t m) { self->on_read(e, m); });
@@ -110,9 +146,19 @@ void HttpConnection::on_read(const boost::system::error_code& ec, std::size_t) {
     if (ec == beast::http::error::header_limit)
         return refuse(HttpApi::error(status::request_header_fields_too_large, version,
                                      "request header larger than 8192 bytes"));
-    if (ec == beast::http::error::body_limit)
+    if (ec == beast::http::error::body_limit) {
+        // A command over the limit is answered by the request path, unread (too_large).
+        const auto& header = parser_->get();
+        if (target_path(std::string(header.target())) == "/api/command" &&
+            !server_.api().cross_site_problem(header)) {
+            // Beast stops at a Content-Length over the limit before it calls the header
+            // done: the field is read as text.
+            return refuse(server_.api().too_large(
+                version, address_, declared_length(header[beast::http::field::content_length])));
+        }
         return refuse(HttpApi::error(status::payload_too_large, version,
                                      "request body larger than 8192 bytes"));
+    }
     if (ec && is_http_error(ec) && ec != beast::http::error::partial_message)
         return refuse(HttpApi::error(status::bad_request, version,
                                      "malformed HTTP request: " + ec.message()));
@@ -127,7 +173,7 @@ void HttpConnection::on_read(const boost::system::error_code& ec, std::size_t) {
     if (target_path(target) == "/api/stream" && beast::websocket::is_upgrade(request)) {
         // The stream continues as a WebSocket; this connection object ends here.
         stream_.expires_never();
-        std::make_shared<WsClient>(std::move(stream_), server_.hub(), address_)
+        std::make_shared<WsClient>(std::move(stream_), server_.hub(), address_, std::move(slot_))
             ->start(std::move(request));
         closed_ = true;
         return;
@@ -142,6 +188,7 @@ void HttpConnection::on_read(const boost::system::error_code& ec, std::size_t) {
 void HttpConnection::do_write(Response response) {
     server_.count_response(response.result_int());
     response_ = std::move(response);
+    add_frame_policy(response_.base());
     close_after_write_ = close_after_write_ || response_.need_eof();
     stream_.expires_after(idle(server_.idle_timeout_s()));
     beast::http::async_write(stream_, response_,

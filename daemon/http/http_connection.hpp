@@ -1,7 +1,7 @@
-// One HTTP/1.1 connection: read a request (bounded header and body, under the idle
-// deadline), answer it through HttpApi, keep the connection alive when the client asks, hand
-// a WebSocket upgrade of /api/stream to a WsClient. Every error ends in fail(); a request
-// the parser refuses gets its status (400, 413, 431) and the connection closes.
+// One HTTP/1.1 connection: read a request (bounded header and body; the idle deadline until
+// its first byte, then 10 s for the header), answer it through HttpApi, keep the connection alive
+// when the client asks, hand a WebSocket upgrade of /api/stream to a WsClient. Every error ends in
+// fail(); a request the parser refuses gets its status (400, 413, 431) and the connection closes.
 #pragma once
 
 #include <array>
@@ -14,6 +14,7 @@
 #include <optional>
 #include <string>
 
+#include "client_slots.hpp"
 #include "http_api.hpp"
 
 namespace gimbald::http {
@@ -22,7 +23,9 @@ class HttpServer;
 
 class HttpConnection : public std::enable_shared_from_this<HttpConnection> {
   public:
-    HttpConnection(boost::asio::ip::tcp::socket socket, HttpServer& server, std::string address);
+    // `slot`: this client address's share of http.max_connections_per_client.
+    HttpConnection(boost::asio::ip::tcp::socket socket, HttpServer& server, std::string address,
+                   ClientSlots::Slot slot);
     ~HttpConnection();
 
     void start();
@@ -30,6 +33,8 @@ class HttpConnection : public std::enable_shared_from_this<HttpConnection> {
 
   private:
     void do_read();
+    void on_first_bytes(const boost::system::error_code& ec, std::size_t n);
+    void read_header();
     void on_header(const boost::system::error_code& ec, std::size_t n);
     void on_read(const boost::system::error_code& ec, std::size_t n);
     void do_write(Response response);
@@ -43,6 +48,7 @@ class HttpConnection : public std::enable_shared_from_this<HttpConnection> {
     boost::beast::tcp_stream stream_;
     HttpServer& server_;
     std::string address_;  // "http:IP:PORT"
+    ClientSlots::Slot slot_;
     boost::beast::flat_buffer buffer_;
     std::optional<boost::beast::http::request_parser<boost::beast::http::string_body>> parser_;
     Response response_;

@@ -29,10 +29,12 @@ HttpServer::HttpServer(asio::io_context& io, HttpServerOptions options, DaemonVi
       api_(daemon, options_.api, stats_),
       hub_(io, *daemon.path, stats_, options_.ws_queue_max, options_.idle_timeout_s),
       acceptor_(io),
+      slots_(options_.max_connections_per_client),
       refused_(log::Level::warn, "dropped_source",
                "HTTP connections from sources not in command.allow"),
       over_capacity_(log::Level::warn, "http_over_capacity",
-                     "HTTP connections refused at http.max_connections"),
+                     "HTTP connections refused at http.max_connections or "
+                     "http.max_connections_per_client"),
       cross_site_(log::Level::warn, "http_cross_site",
                   "HTTP requests refused by the Host/Origin checks") {
     const tcp::endpoint local(asio::ip::make_address(options_.bind), options_.port);
@@ -101,8 +103,18 @@ void HttpServer::on_accept(const boost::system::error_code& ec, tcp::socket sock
         socket.close(peer_ec);
         return do_accept();
     }
+    auto slot = slots_.take(peer.address());
+    if (!slot) {
+        ++stats_.over_capacity_total;
+        over_capacity_.hit(
+            "HTTP connection closed: http.max_connections_per_client are open from its address",
+            {{"src", http_source(peer)}, {"max_per_client", options_.max_connections_per_client}});
+        socket.close(peer_ec);
+        return do_accept();
+    }
     ++stats_.connections_total;
-    std::make_shared<HttpConnection>(std::move(socket), *this, http_source(peer))->start();
+    std::make_shared<HttpConnection>(std::move(socket), *this, http_source(peer), std::move(*slot))
+        ->start();
     do_accept();
 }
 

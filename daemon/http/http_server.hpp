@@ -1,6 +1,7 @@
 // The HTTP server of contract section 11: one acceptor on the daemon's io_context. A
 // connection from outside command.allow is closed at once (counted, logged like a dropped
-// datagram); so is one over http.max_connections. Connections and WebSocket clients are
+// datagram); so is one over http.max_connections, or over http.max_connections_per_client
+// from its address (section 14). Connections and WebSocket clients are
 // tracked so stop() closes them all and io_context::run() returns.
 #pragma once
 
@@ -11,6 +12,7 @@
 #include <set>
 #include <string>
 
+#include "client_slots.hpp"
 #include "daemon_view.hpp"
 #include "http_api.hpp"
 #include "logging.hpp"
@@ -25,6 +27,7 @@ struct HttpServerOptions {
     std::string bind = "127.0.0.1";
     std::uint16_t port = 8761;
     std::size_t max_connections = 64;
+    std::size_t max_connections_per_client = 16;  // HTTP and WebSocket together
     double idle_timeout_s = 30;
     std::size_t ws_queue_max = 64;
     ApiOptions api;
@@ -69,6 +72,7 @@ class HttpServer {
     StreamHub hub_;
     boost::asio::ip::tcp::acceptor acceptor_;
     std::set<HttpConnection*> connections_;
+    ClientSlots slots_;
     gimbal::log::RateLimitedLog refused_;
     gimbal::log::RateLimitedLog over_capacity_;
     gimbal::log::RateLimitedLog cross_site_;

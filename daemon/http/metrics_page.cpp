@@ -77,7 +77,7 @@ std::string render_metrics(const DaemonView& daemon, const CommandMetrics& comma
     e.family("gimbald_laser_firing", Type::gauge,
              "1 while the daemon last commanded this laser to fire (dead-man pending).");
     for (const auto& g : gimbals) {
-        if (g.session->protocol() != "orion") continue;  // Viewpro has no laser commands
+        if (!g.session->supports("laser")) continue;  // a protocol without laser commands
         for (std::uint8_t index = 0; index < 2; ++index)
             e.sample({{"gimbal", g.session->name()}, {"index", std::to_string(index)}},
                      g.session->laser_firing(index) ? 1.0 : 0.0);
@@ -118,7 +118,8 @@ std::string render_metrics(const DaemonView& daemon, const CommandMetrics& comma
     e.family("gimbald_http_connections_total", Type::counter, "HTTP connections accepted.");
     e.sample({}, static_cast<double>(http.connections_total));
     e.family("gimbald_http_connections_rejected_total", Type::counter,
-             "HTTP connections closed at once because http.max_connections were open.");
+             "HTTP connections closed at once because http.max_connections were open, or "
+             "http.max_connections_per_client from that address.");
     e.sample({}, static_cast<double>(http.over_capacity_total));
     e.family("gimbald_http_cross_site_refused_total", Type::counter,
              "HTTP requests refused (403) because their Host or Origin names another site.");

@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "command/catalogue.hpp"
 #include "command/envelope.hpp"
-#include "command/orion_commands.hpp"
 #include "command/params.hpp"
-#include "command/viewpro_commands.hpp"
+#include "command/request_limits.hpp"
 #include "logging.hpp"
 #include "state/messages.hpp"
 #include "state/state_push.hpp"
@@ -31,8 +31,7 @@ std::string dump(const json& j) {
 }
 
 bool known_command(std::string_view cmd) {
-    return cmdns::is_common_command(cmd) || cmdns::is_orion_command(cmd) ||
-           cmdns::is_viewpro_command(cmd);
+    return cmdns::is_known_command(cmd);
 }
 
 bool covers(const StreamSubscription& s, const std::string& gimbal) {
@@ -149,6 +148,9 @@ void StreamHub::tick() {
 }
 
 StreamHub::Answer StreamHub::on_message(WsClient& client, std::string_view text) {
+    const RequestSource source{"http", client.address(), std::nullopt};
+    // Over the request limits: the request path answers (too_large, bad_json) unparsed.
+    if (cmdns::check_request_limits(text)) return {path_.handle(text, source), std::nullopt, {}};
     const json request = json::parse(text, nullptr, false);
     if (request.is_discarded() || !request.is_object())
         return {std::nullopt, boost::beast::websocket::close_code::policy_error,
@@ -157,8 +159,11 @@ StreamHub::Answer StreamHub::on_message(WsClient& client, std::string_view text)
     if (cmd != request.end() && cmd->is_string() &&
         (*cmd == "subscribe" || *cmd == "unsubscribe") && !request.contains("signed"))
         return {subscribe(client, request, *cmd == "unsubscribe"), std::nullopt, {}};
-    const RequestSource source{"http", client.address(), std::nullopt};
     return {path_.handle(text, source), std::nullopt, {}};
+}
+
+std::optional<std::string> StreamHub::too_large(WsClient& client) {
+    return path_.refuse_too_large(std::nullopt, {"http", client.address(), std::nullopt});
 }
 
 // The UDP `subscribe` parameters with the UDP validation; ttl_s is accepted and ignored (the

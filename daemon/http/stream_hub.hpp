@@ -43,6 +43,8 @@ class StreamHub {
         std::string reason;
     };
     Answer on_message(WsClient& client, std::string_view text);
+    // A message over the request limit, not read to its end: the too_large reply, if any.
+    std::optional<std::string> too_large(WsClient& client);
 
     std::size_t queue_max() const { return queue_max_; }
     double idle_timeout_s() const { return idle_timeout_s_; }

@@ -6,6 +6,7 @@
 #include <chrono>
 
 #include "command/envelope.hpp"
+#include "frame_policy.hpp"
 #include "logging.hpp"
 #include "stream_hub.hpp"
 
@@ -15,8 +16,9 @@ namespace beast = boost::beast;
 namespace websocket = beast::websocket;
 namespace log = gimbal::log;
 
-WsClient::WsClient(beast::tcp_stream&& stream, StreamHub& hub, std::string address)
-    : ws_(std::move(stream)), hub_(hub), address_(std::move(address)) {}
+WsClient::WsClient(beast::tcp_stream&& stream, StreamHub& hub, std::string address,
+                   ClientSlots::Slot slot)
+    : ws_(std::move(stream)), hub_(hub), address_(std::move(address)), slot_(std::move(slot)) {}
 
 WsClient::~WsClient() {
     hub_.remove(*this);
@@ -32,11 +34,14 @@ void WsClient::start(beast::http::request<beast::http::string_body> request) {
         std::chrono::duration<double>(hub_.idle_timeout_s()));
     timeout.keep_alive_pings = true;
     ws_.set_option(timeout);
+    // Also decorates the handshake's refusals (Beast answers a bad upgrade itself).
     ws_.set_option(websocket::stream_base::decorator([](websocket::response_type& res) {
         res.set(beast::http::field::server, "gimbald/" GIMBALD_VERSION);
+        add_frame_policy(res);
     }));
-    // A request has the datagram limit here too; a longer message is closed with 1009.
-    ws_.read_message_max(gimbal::command::max_datagram);
+    // A request has the datagram limit here too, enforced by do_read() as the message
+    // arrives: Beast's own limit would close with 1009 before the too_large reply.
+    ws_.read_message_max(0);
     ws_.text(true);
     // One frame per message: a STATE is one write, not a train of 4 KiB fragments.
     ws_.auto_fragment(false);
@@ -53,18 +58,32 @@ void WsClient::on_accept(const boost::system::error_code& ec) {
 }
 
 void WsClient::do_read() {
-    ws_.async_read(buffer_, [self = shared_from_this()](const boost::system::error_code& ec,
-                                                        std::size_t n) { self->on_read(ec, n); });
+    // At most one byte past the limit is kept: that byte says the message is over it.
+    const std::size_t room = gimbal::command::max_request_bytes + 1 - buffer_.size();
+    ws_.async_read_some(buffer_, room,
+                        [self = shared_from_this()](const boost::system::error_code& ec,
+                                                    std::size_t n) { self->on_read(ec, n); });
 }
 
 void WsClient::on_read(const boost::system::error_code& ec, std::size_t) {
-    // message_too_big: Beast has already sent close 1009; protocol errors: 1002.
+    // Protocol errors: Beast has already sent close 1002.
     if (ec) return fail(ec, "read");
     if (closed_) return;
     if (!ws_.got_text()) {
         buffer_.consume(buffer_.size());
         return close_with(websocket::close_code::unknown_data, "binary messages are not accepted");
     }
+    if (buffer_.size() > gimbal::command::max_request_bytes) {
+        // Answered unread, like an oversize datagram; the rest of it is not read but
+        // discarded by the closing handshake.
+        buffer_.consume(buffer_.size());
+        if (auto reply = hub_.too_large(*this))
+            send(std::make_shared<const std::string>(std::move(*reply)));
+        return close_with(
+            websocket::close_code::too_big,
+            "message larger than " + std::to_string(gimbal::command::max_request_bytes) + " bytes");
+    }
+    if (!ws_.is_message_done()) return do_read();
     const std::string text = beast::buffers_to_string(buffer_.data());
     buffer_.consume(buffer_.size());
     auto answer = hub_.on_message(*this, text);

@@ -1,5 +1,7 @@
 // One WebSocket client of GET /api/stream: the handshake, a read loop that hands each text
-// message to the StreamHub, and a bounded send queue. A client whose queue is full is not
+// message to the StreamHub (a message over the request limit is answered too_large and the
+// stream closed with 1009, having read no more of it than the limit), and a bounded send
+// queue. A client whose queue is full is not
 // reading: it is dropped (logged) so it cannot hold memory or slow anyone else.
 #pragma once
 
@@ -15,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "client_slots.hpp"
 #include "state/state_push.hpp"
 
 namespace gimbald::http {
@@ -37,7 +40,9 @@ struct StreamSubscription {
 
 class WsClient : public std::enable_shared_from_this<WsClient> {
   public:
-    WsClient(boost::beast::tcp_stream&& stream, StreamHub& hub, std::string address);
+    // `slot`: the HTTP connection's share of http.max_connections_per_client, kept.
+    WsClient(boost::beast::tcp_stream&& stream, StreamHub& hub, std::string address,
+             ClientSlots::Slot slot);
     ~WsClient();
 
     // Completes the handshake of the upgrade request read by the HTTP connection.
@@ -62,6 +67,7 @@ class WsClient : public std::enable_shared_from_this<WsClient> {
     boost::beast::websocket::stream<boost::beast::tcp_stream> ws_;
     StreamHub& hub_;
     std::string address_;
+    ClientSlots::Slot slot_;
     boost::beast::flat_buffer buffer_;
     std::deque<std::shared_ptr<const std::string>> queue_;
     StreamSubscription subscription_;

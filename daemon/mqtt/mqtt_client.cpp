@@ -16,6 +16,12 @@ namespace {
 
 // Messages handed to libmosquitto at a time; the rest wait in our bounded queue.
 constexpr std::size_t window = 64;
+// MQTT 5 Maximum Packet Size in CONNECT (contract section 14): the broker does not deliver
+// a packet larger than this to us, so a huge P/cmd message is never buffered here
+// (libmosquitto reads a whole packet into memory before handing it over). Room for a request
+// a little over the 8192-byte limit, its topic and properties: that one is answered
+// too_large; a larger one is dropped by the broker unanswered.
+constexpr std::uint32_t max_packet_bytes = 65536;
 constexpr auto tick = std::chrono::milliseconds(500);
 constexpr auto stop_wait = std::chrono::seconds(1);
 
@@ -104,6 +110,23 @@ void Client::configure(struct mosquitto* m) {
     }
 }
 
+bool Client::set_connect_properties(struct mosquitto* m) {
+    // libmosquitto 2.0 takes CONNECT properties only through the blocking
+    // mosquitto_connect_bind_v5(), which keeps them on the instance for every later connect
+    // (mosquitto_connect_bind_async() included) and checks its arguments before it
+    // connects: called with an invalid port it stores the properties and returns
+    // MOSQ_ERR_INVAL without touching the network. The integration test
+    // (test_gimbald_mqtt_limits) checks on the wire that CONNECT carries them.
+    mosquitto_property* props = nullptr;
+    if (mosquitto_property_add_int32(&props, MQTT_PROP_MAXIMUM_PACKET_SIZE, max_packet_bytes) !=
+        MOSQ_ERR_SUCCESS)
+        return false;
+    const int rc = mosquitto_connect_bind_v5(m, options_.host.c_str(), -1, options_.keepalive_s,
+                                             nullptr, props);
+    mosquitto_property_free_all(&props);
+    return rc == MOSQ_ERR_INVAL;
+}
+
 void Client::connect() {
     if (stopping_) return;
     close_instance();
@@ -117,6 +140,10 @@ void Client::connect() {
     configure(mosq_);
     if (!last_error_.empty()) {
         lost(last_error_);
+        return;
+    }
+    if (!v311_ && !set_connect_properties(mosq_)) {
+        lost("cannot set the MQTT 5 CONNECT properties");
         return;
     }
     // Non-blocking: the TCP connect completes later; CONNECT waits in libmosquitto's queue.

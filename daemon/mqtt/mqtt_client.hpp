@@ -92,6 +92,7 @@ class Client {
   private:
     void connect();
     void configure(struct mosquitto* m);
+    bool set_connect_properties(struct mosquitto* m);
     void watch();
     void on_readable(const boost::system::error_code& ec);
     void on_writable(const boost::system::error_code& ec);

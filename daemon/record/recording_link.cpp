@@ -1,7 +1,6 @@
 #include "record/recording_link.hpp"
 
-#include "orion/framer.hpp"
-#include "viewpro/output_framer.hpp"
+#include "protocols/registry.hpp"
 
 namespace gimbald::record {
 
@@ -9,72 +8,26 @@ namespace {
 
 constexpr std::string_view junk_dissector = "data";
 
-std::size_t frame_size(const gimbal::orion::Frame& f) {
-    return gimbal::orion::header_size + f.payload.size + gimbal::orion::checksum_size;
-}
-
-std::size_t frame_size(const gimbal::viewpro::OutputFrame& f) {
-    return f.size;
-}
-
-// Runs its own copy of the session's framer over the same bytes. The framer counts every
-// byte it discards (dropped_bytes) before it delivers the frame that follows them, and frames
-// are contiguous, so the counter's growth at each frame is the junk run just before it.
-template <class Framer>
-class FramedSplitter : public InboundSplitter {
+// The registry's splitter of the protocol's frames, recording each piece.
+class RecordingSplitter : public InboundSplitter {
   public:
-    FramedSplitter(Recorder& recorder, std::uint32_t interface_id, std::string_view dissector)
-        : recorder_(recorder), interface_id_(interface_id), dissector_(dissector) {}
+    RecordingSplitter(const gimbal::protocols::Entry& protocol, Recorder& recorder,
+                      std::uint32_t interface_id)
+        : splitter_(protocol.make_splitter()),
+          dissector_(protocol.dissector),
+          piece_(
+              [&recorder, interface_id, this](std::span<const std::uint8_t> bytes, bool is_frame) {
+                  recorder.record(interface_id, Direction::inbound,
+                                  is_frame ? dissector_ : junk_dissector, bytes);
+              }) {}
 
-    void push(std::span<const std::uint8_t> bytes) override {
-        held_.insert(held_.end(), bytes.begin(), bytes.end());
-        std::size_t at = 0;
-        framer_.push(bytes, [&](const auto& frame) {
-            at = emit_junk(at);
-            const std::size_t size = std::min(frame_size(frame), held_.size() - at);
-            recorder_.record(interface_id_, Direction::inbound, dissector_,
-                             std::span(held_).subspan(at, size));
-            at += size;
-        });
-        at = emit_junk(at);
-        // What the framer still holds is an unfinished frame; anything else beyond it would
-        // mean the two views disagree - record it as junk rather than lose or repeat bytes.
-        const std::size_t pending = framer_.pending_bytes();
-        if (held_.size() - at > pending) {
-            const std::size_t extra = held_.size() - at - pending;
-            recorder_.record(interface_id_, Direction::inbound, junk_dissector,
-                             std::span(held_).subspan(at, extra));
-            at += extra;
-        }
-        held_.erase(held_.begin(), held_.begin() + static_cast<long>(at));
-    }
-
-    void flush() override {
-        framer_.reset();
-        dropped_seen_ = framer_.stats().dropped_bytes;
-        if (!held_.empty())
-            recorder_.record(interface_id_, Direction::inbound, junk_dissector, held_);
-        held_.clear();
-    }
+    void push(std::span<const std::uint8_t> bytes) override { splitter_->push(bytes, piece_); }
+    void flush() override { splitter_->flush(piece_); }
 
   private:
-    std::size_t emit_junk(std::size_t at) {
-        const std::uint64_t dropped = framer_.stats().dropped_bytes;
-        auto junk = static_cast<std::size_t>(dropped - dropped_seen_);
-        dropped_seen_ = dropped;
-        junk = std::min(junk, held_.size() - at);
-        if (junk == 0) return at;
-        recorder_.record(interface_id_, Direction::inbound, junk_dissector,
-                         std::span(held_).subspan(at, junk));
-        return at + junk;
-    }
-
-    Recorder& recorder_;
-    std::uint32_t interface_id_;
+    std::unique_ptr<gimbal::framing::StreamSplitter> splitter_;
     std::string_view dissector_;
-    Framer framer_;
-    std::uint64_t dropped_seen_ = 0;
-    std::vector<std::uint8_t> held_;  // received bytes not recorded yet
+    gimbal::framing::StreamSplitter::Piece piece_;
 };
 
 }  // namespace
@@ -82,19 +35,19 @@ class FramedSplitter : public InboundSplitter {
 std::unique_ptr<InboundSplitter> make_inbound_splitter(std::string_view protocol,
                                                        Recorder& recorder,
                                                        std::uint32_t interface_id) {
-    if (protocol == "viewpro")
-        return std::make_unique<FramedSplitter<gimbal::viewpro::OutputFramer>>(
-            recorder, interface_id, "viewpro");
-    return std::make_unique<FramedSplitter<gimbal::orion::Framer>>(recorder, interface_id, "orion");
+    const auto* entry = gimbal::protocols::find(protocol);
+    if (!entry) return nullptr;
+    return std::make_unique<RecordingSplitter>(*entry, recorder, interface_id);
 }
 
+// `protocol` is a configured one, so the registry has it and splitter_ is never null.
 RecordingLink::RecordingLink(std::unique_ptr<Link> inner, Recorder& recorder,
                              std::uint32_t interface_id, std::string protocol)
     : inner_(std::move(inner)),
       recorder_(recorder),
       interface_id_(interface_id),
-      protocol_(std::move(protocol)),
-      splitter_(make_inbound_splitter(protocol_, recorder, interface_id)) {}
+      dissector_(gimbal::protocols::find(protocol)->dissector),
+      splitter_(make_inbound_splitter(protocol, recorder, interface_id)) {}
 
 RecordingLink::~RecordingLink() = default;
 
@@ -119,12 +72,12 @@ void RecordingLink::stop() {
 bool RecordingLink::send(std::vector<std::uint8_t> packet) {
     outgoing_.assign(packet.begin(), packet.end());
     if (!inner_->send(std::move(packet))) return false;
-    recorder_.record(interface_id_, Direction::outbound, protocol_, outgoing_);
+    recorder_.record(interface_id_, Direction::outbound, dissector_, outgoing_);
     return true;
 }
 
 void RecordingLink::send_now(std::span<const std::uint8_t> packet) {
-    recorder_.record(interface_id_, Direction::outbound, protocol_, packet);
+    recorder_.record(interface_id_, Direction::outbound, dissector_, packet);
     inner_->send_now(packet);
 }
 

@@ -22,13 +22,15 @@ class InboundSplitter {
     virtual void flush() = 0;
 };
 
-// "orion" or "viewpro": a splitter running that protocol's framer.
+// A splitter running the framer of `protocol` (a registry name); frames are recorded with its
+// dissector, junk as "data".
 std::unique_ptr<InboundSplitter> make_inbound_splitter(std::string_view protocol,
                                                        Recorder& recorder,
                                                        std::uint32_t interface_id);
 
 class RecordingLink : public Link {
   public:
+    // `protocol`: a registry name.
     RecordingLink(std::unique_ptr<Link> inner, Recorder& recorder, std::uint32_t interface_id,
                   std::string protocol);
     ~RecordingLink() override;
@@ -46,7 +48,7 @@ class RecordingLink : public Link {
     std::unique_ptr<Link> inner_;
     Recorder& recorder_;
     std::uint32_t interface_id_;
-    std::string protocol_;
+    std::string_view dissector_;  // the registry's, of this link's protocol
     std::unique_ptr<InboundSplitter> splitter_;
     std::vector<std::uint8_t> outgoing_;  // copy of the packet being sent (capacity reused)
 };

@@ -4,19 +4,19 @@
 
 namespace gimbal::auth {
 
-std::optional<std::variant<SignedEnvelope, std::string>> read_signed(
-    const nlohmann::json& datagram) {
-    if (!datagram.is_object()) return std::nullopt;
+command::Result<std::optional<SignedEnvelope>> parse_signed(const nlohmann::json& datagram) {
+    namespace code = command::code;
+    if (!datagram.is_object()) return std::optional<SignedEnvelope>{};
     const auto it = datagram.find("signed");
-    if (it == datagram.end()) return std::nullopt;
-    using Result = std::variant<SignedEnvelope, std::string>;
+    if (it == datagram.end()) return std::optional<SignedEnvelope>{};
     if (datagram.size() != 1)
-        return Result{std::string("a signed datagram holds only the \"signed\" object")};
+        return {code::bad_request, "a signed datagram holds only the \"signed\" object"};
     const auto& s = *it;
-    if (!s.is_object()) return Result{std::string("\"signed\" must be an object")};
+    if (!s.is_object()) return {code::bad_request, "\"signed\" must be an object"};
     SignedEnvelope env;
     for (const auto& [name, value] : s.items()) {
-        if (!value.is_string()) return Result{"\"signed\"." + name + " must be a string"};
+        if (!value.is_string())
+            return {code::bad_request, "\"signed\"." + name + " must be a string"};
         if (name == "key")
             env.key = value.get<std::string>();
         else if (name == "payload")
@@ -24,11 +24,19 @@ std::optional<std::variant<SignedEnvelope, std::string>> read_signed(
         else if (name == "mac")
             env.mac = value.get<std::string>();
         else
-            return Result{"\"signed\" has an unknown member '" + name + "'"};
+            return {code::bad_request, "\"signed\" has an unknown member '" + name + "'"};
     }
     if (!s.contains("key") || !s.contains("payload") || !s.contains("mac"))
-        return Result{std::string("\"signed\" needs \"key\", \"payload\" and \"mac\"")};
-    return Result{std::move(env)};
+        return {code::bad_request, "\"signed\" needs \"key\", \"payload\" and \"mac\""};
+    return std::optional<SignedEnvelope>{std::move(env)};
+}
+
+std::optional<std::variant<SignedEnvelope, std::string>> read_signed(
+    const nlohmann::json& datagram) {
+    auto parsed = parse_signed(datagram);
+    if (!parsed) return std::variant<SignedEnvelope, std::string>{parsed.error().message};
+    if (!*parsed) return std::nullopt;
+    return std::variant<SignedEnvelope, std::string>{std::move(**parsed)};
 }
 
 bool mac_matches(const SignedEnvelope& envelope, std::span<const std::uint8_t> secret) {

@@ -12,6 +12,8 @@
 #include <string_view>
 #include <variant>
 
+#include "command/result.hpp"
+
 namespace gimbal::auth {
 
 struct SignedEnvelope {
@@ -20,8 +22,12 @@ struct SignedEnvelope {
     std::string mac;  // hex as received
 };
 
-// nullopt when `datagram` is not a signed envelope at all (no "signed" member); otherwise
-// the envelope, or a message saying how it is malformed.
+// A value of nullopt when `datagram` is not a signed envelope at all (no "signed" member);
+// the envelope; or bad_request saying how it is malformed.
+command::Result<std::optional<SignedEnvelope>> parse_signed(const nlohmann::json& datagram);
+
+// parse_signed in the shape daemon/request_path.cpp reads until it moves to parse_signed:
+// nullopt, the envelope, or the problem's message.
 std::optional<std::variant<SignedEnvelope, std::string>> read_signed(
     const nlohmann::json& datagram);
 

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "command/request_limits.hpp"
+
 namespace gimbal::auth {
 
 Verifier::Verifier(std::vector<Key> keys, double max_skew_s, std::size_t nonces_per_key)
@@ -18,17 +20,35 @@ const Key* Verifier::find(const std::string& id) const {
 
 std::variant<Verified, Rejected> Verifier::verify(const SignedEnvelope& envelope,
                                                   std::int64_t now_unix_ms) {
+    auto key = authenticate(envelope);
+    if (auto* rejected = std::get_if<Rejected>(&key)) return std::move(*rejected);
+    return accept(*std::get<const Key*>(key), envelope, now_unix_ms);
+}
+
+std::variant<const Key*, Rejected> Verifier::authenticate(const SignedEnvelope& envelope) const {
+    const Key* key = find(envelope.key);
+    if (key == nullptr)
+        return Rejected{Rejected::Kind::forbidden, "unknown key '" + envelope.key + "'"};
+    // Nothing of the payload is looked at before its MAC is known to be right.
+    if (!mac_matches(envelope, key->secret))
+        return Rejected{Rejected::Kind::forbidden,
+                        "bad MAC: the payload was not signed with key '" + key->id + "'"};
+    return key;
+}
+
+std::variant<Verified, Rejected> Verifier::accept(const Key& key, const SignedEnvelope& envelope,
+                                                  std::int64_t now_unix_ms) {
     auto forbid = [](std::string reason) {
         return Rejected{Rejected::Kind::forbidden, std::move(reason)};
     };
-    const Key* key = find(envelope.key);
-    if (key == nullptr) return forbid("unknown key '" + envelope.key + "'");
-    // Nothing of the payload is looked at before its MAC is known to be right.
-    if (!mac_matches(envelope, key->secret))
-        return forbid("bad MAC: the payload was not signed with key '" + key->id + "'");
-
+    // A key holder's request meets the same limits as anyone's, before it is parsed.
+    if (auto refused = gimbal::command::check_request_limits(envelope.payload))
+        return Rejected{refused->code == gimbal::command::code::too_large
+                            ? Rejected::Kind::too_large
+                            : Rejected::Kind::bad_json,
+                        "the signed payload: " + refused->message};
     Verified v;
-    v.key = key;
+    v.key = &key;
     v.request = nlohmann::json::parse(envelope.payload, nullptr, false);
     if (v.request.is_discarded() || !v.request.is_object())
         return Rejected{Rejected::Kind::bad_json, "the signed payload is not a JSON object"};
@@ -53,14 +73,14 @@ std::variant<Verified, Rejected> Verifier::verify(const SignedEnvelope& envelope
     v.nonce = nonce->get<std::string>();
     // Remembered until its ts leaves the window: a later replay fails the ts check instead.
     const std::int64_t forget_at = ts->get<std::int64_t>() + max_skew_ms_ + 1;
-    switch (nonces_.at(key->id).remember(v.nonce, forget_at, now_unix_ms)) {
+    switch (nonces_.at(key.id).remember(v.nonce, forget_at, now_unix_ms)) {
         case NonceWindow::Result::fresh:
             break;
         case NonceWindow::Result::replayed:
-            return forbid("replayed: nonce already used with key '" + key->id +
+            return forbid("replayed: nonce already used with key '" + key.id +
                           "' within the time window");
         case NonceWindow::Result::full:
-            return forbid("too many signed requests with key '" + key->id +
+            return forbid("too many signed requests with key '" + key.id +
                           "' in the time window; retry later");
     }
     return v;

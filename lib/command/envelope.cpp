@@ -1,42 +1,34 @@
 #include "command/envelope.hpp"
 
-#include <array>
+#include "command/catalogue.hpp"
 
 namespace gimbal::command {
 
+// Thin views of the catalogue, kept for their callers in daemon/.
 bool is_common_command(std::string_view cmd) {
-    static constexpr std::array<std::string_view, 6> common{"ping",  "version",   "list",
-                                                            "state", "subscribe", "unsubscribe"};
-    for (auto c : common)
-        if (c == cmd) return true;
-    return false;
+    const auto* c = find_command(cmd);
+    return c && c->scope != Scope::protocol;
 }
 
 bool is_open_command(std::string_view cmd) {
-    return cmd == "ping" || cmd == "version" || cmd == "list" || cmd == "state";
+    const auto* c = find_command(cmd);
+    return c && !c->needs_token;
 }
 
 bool is_global_command(std::string_view cmd) {
-    return cmd == "ping" || cmd == "version" || cmd == "list";
+    const auto* c = find_command(cmd);
+    return c && c->scope == Scope::daemon;
 }
 
 std::optional<EnvelopeError> parse_envelope(std::string_view datagram,
                                             bool (*known_cmd)(std::string_view), Envelope& out) {
-    if (datagram.size() > max_datagram) {
-        EnvelopeError too_large{
-            {code::too_large, "datagram is " + std::to_string(datagram.size()) +
-                                  " bytes, the limit is " + std::to_string(max_datagram)},
-            std::nullopt,
+    if (auto refused = check_request_limits(datagram)) {
+        // Not parsed, so nothing is echoed; a too_large reply says "id": null outright.
+        const bool too_large = refused->code == code::too_large;
+        return EnvelopeError{
+            std::move(*refused),
+            too_large ? std::optional<nlohmann::json>(nlohmann::json(nullptr)) : std::nullopt,
             std::nullopt};
-        // Still echo id and cmd: a client that matches replies by id (gimbalctl) then sees
-        // this error instead of a timeout. The receive buffer bounds what is parsed (64 KiB).
-        const nlohmann::json j = nlohmann::json::parse(datagram, nullptr, false);
-        if (j.is_object()) {
-            if (auto it = j.find("id"); it != j.end()) too_large.id = *it;
-            if (auto c = j.find("cmd"); c != j.end() && c->is_string())
-                too_large.cmd = c->get<std::string>();
-        }
-        return too_large;
     }
     nlohmann::json j = nlohmann::json::parse(datagram, nullptr, false);
     if (j.is_discarded() || !j.is_object())
@@ -44,7 +36,7 @@ std::optional<EnvelopeError> parse_envelope(std::string_view datagram,
             {code::bad_json, "the datagram is not a JSON object"}, std::nullopt, std::nullopt};
 
     EnvelopeError failure{{}, std::nullopt, std::nullopt};
-    auto fail = [&failure](const char* c, std::string message) {
+    auto fail = [&failure](ErrorCode c, std::string message) {
         failure.error = Error{c, std::move(message)};
         return failure;
     };

@@ -8,11 +8,12 @@
 #include <string>
 #include <string_view>
 
+#include "command/request_limits.hpp"
 #include "command/result.hpp"
 
 namespace gimbal::command {
 
-inline constexpr std::size_t max_datagram = 8192;
+inline constexpr std::size_t max_datagram = max_request_bytes;
 
 struct Envelope {
     nlohmann::json request;  // the whole object
@@ -37,7 +38,9 @@ bool is_open_command(std::string_view cmd);
 bool is_global_command(std::string_view cmd);
 
 // Parses one datagram. `known_cmd` decides whether a command name exists at all.
-// On success returns nullopt and fills `out`.
+// On success returns nullopt and fills `out`. A datagram over the limits of
+// request_limits.hpp is refused before it is parsed: nothing of it is echoed (a too_large
+// reply's id is null).
 std::optional<EnvelopeError> parse_envelope(std::string_view datagram,
                                             bool (*known_cmd)(std::string_view), Envelope& out);
 

@@ -22,8 +22,8 @@ std::string format_number(double v) {
 
 Params::Params(const nlohmann::json& params) : params_(params) {}
 
-void Params::fail(std::string c, std::string message) {
-    if (!error_) error_ = Error{std::move(c), std::move(message)};
+void Params::fail(ErrorCode c, std::string message) {
+    if (!error_) error_ = Error{c, std::move(message)};
 }
 
 void Params::reject_unknown() {

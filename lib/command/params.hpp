@@ -53,7 +53,7 @@ class Params {
     // Raw access for structured parameters (path points); marks the key as used.
     const nlohmann::json* raw(std::string_view key);
 
-    void fail(std::string code, std::string message);
+    void fail(ErrorCode code, std::string message);
 
   private:
     const nlohmann::json* take(std::string_view key, bool required);

@@ -1,6 +1,6 @@
-// A flight as the export formats see it: one point per telemetry packet (Orion
-// GeolocateTelemetry, Viewpro OUT1..OUT4) with the aircraft position, the target and the
-// camera footprint, decoded from the gimbal side of a recording. Pure.
+// A flight as the export formats see it: one point per telemetry frame with the aircraft
+// position, the target and the camera footprint, decoded from the gimbal side of a recording
+// by its protocol's export hook (the registry's TrackDecoder). Pure.
 #pragma once
 
 #include <array>
@@ -10,28 +10,14 @@
 #include <string>
 #include <vector>
 
+#include "protocols/track.hpp"
 #include "record/gimbal_stream.hpp"
 
 namespace gimbal::flight_export {
 
-struct Position {
-    double lat = 0;  // degrees
-    double lon = 0;
-    std::optional<double> alt;      // metres above the WGS84 ellipsoid
-    std::optional<double> alt_msl;  // metres above mean sea level
-};
-
-struct TrackPoint {
-    std::int64_t time_us = 0;  // receive time, microseconds since the Unix epoch
-    // Property name -> JSON number, string or null (the CSV columns after "time"), in the
-    // units of the interface contract: gimbal_time, system_time_ms, lat, lon, alt, pan, ...
-    nlohmann::json values = nlohmann::json::object();
-    std::optional<Position> aircraft;
-    std::optional<Position> target;
-    // Image corners on the ground (top-left, top-right, bottom-right, bottom-left), at the
-    // target's altitude; Orion only (Viewpro frames carry no field of view).
-    std::optional<std::array<Position, 4>> footprint;
-};
+// The registry's track points (protocols/track.hpp): each protocol's export hook makes them.
+using Position = protocols::TrackPosition;
+using TrackPoint = protocols::TrackPoint;
 
 struct Flight {
     std::string gimbal;
@@ -41,7 +27,7 @@ struct Flight {
     std::uint64_t decode_errors = 0;  // valid frames that did not decode
 };
 
-// Decodes the stream with the framer and codec of its protocol. False with `error` when the
+// Decodes the stream with its protocol's track decoder. False with `error` when the
 // protocol is unknown.
 bool build_flight(const record::GimbalStream& stream, Flight& out, std::string& error);
 

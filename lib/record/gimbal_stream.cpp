@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "protocols/registry.hpp"
+
 namespace gimbal::record {
 
 namespace {
@@ -13,7 +15,7 @@ GimbalInterfaceInfo describe(const RecordedInterface& itf) {
     info.name = itf.name.substr(gimbal_prefix.size());
     info.description = itf.description;
     const std::string first_word = itf.description.substr(0, itf.description.find(' '));
-    if (first_word == "orion" || first_word == "viewpro") info.protocol = first_word;
+    if (protocols::find(first_word)) info.protocol = first_word;
     return info;
 }
 
@@ -96,8 +98,9 @@ bool load_gimbal_stream(std::span<const std::uint8_t> file, const std::string& n
             ++out.bad_pdus;
             continue;
         }
-        if (out.gimbal.protocol.empty() && (p.dissector == "orion" || p.dissector == "viewpro"))
-            out.gimbal.protocol = p.dissector;
+        if (out.gimbal.protocol.empty())
+            if (const auto* protocol = protocols::find_by_dissector(p.dissector))
+                out.gimbal.protocol = protocol->name;
         out.bytes += p.pdu.size();
         out.chunks.push_back({p.timestamp_us, {p.pdu.begin(), p.pdu.end()}});
     }

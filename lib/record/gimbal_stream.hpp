@@ -14,7 +14,7 @@ namespace gimbal::record {
 
 struct GimbalInterfaceInfo {
     std::string name;         // the gimbal's name (if_name without "gimbal:")
-    std::string protocol;     // "orion", "viewpro", or "" when the recording does not say
+    std::string protocol;     // a registry name, or "" when the recording does not say
     std::string description;  // if_description
 };
 

@@ -1,6 +1,7 @@
 // Everything protocol-specific about one gimbal, behind one interface, so the daemon has a
-// single session, command and subscription path for Orion and Viewpro alike:
+// single session, command and subscription path for every protocol:
 // bytes in -> framer -> state (+ events); JSON command -> packets out. Pure: time is passed in.
+// Each protocol's implementation is made by its registry entry (protocols/registry.hpp).
 #pragma once
 
 #include <cstdint>
@@ -11,6 +12,7 @@
 #include <vector>
 
 #include "command/result.hpp"
+#include "session/capabilities.hpp"
 #include "state/event.hpp"
 
 namespace gimbal::session {
@@ -35,7 +37,7 @@ class Protocol {
   public:
     virtual ~Protocol() = default;
 
-    virtual std::string_view name() const = 0;  // "orion" / "viewpro"
+    virtual std::string_view name() const = 0;  // the registry entry's name
 
     // Bytes from the gimbal at now_s. Appends the events they cause and the packets the
     // daemon answers with by itself (e.g. StareAck when stare.auto_ack is set).
@@ -46,13 +48,15 @@ class Protocol {
     virtual std::vector<Bytes> on_connect() = 0;
 
     virtual bool stale(double now_s) const = 0;
-    // Position telemetry received so far (Orion GeolocateTelemetry, Viewpro OUTx frames).
+    // Position telemetry frames received so far.
     virtual std::uint64_t telemetry_count() const = 0;
     // The protocol's keys of STATE (section 5), without protocol/link/stale.
     virtual nlohmann::json snapshot(double now_s) const = 0;
     virtual FrameCounters counters() const = 0;
 
     virtual bool supports(std::string_view cmd) const = 0;
+    // What the gimbal can do, from its STATE (session/capabilities.hpp).
+    virtual const Capabilities& capabilities() const = 0;
     // Plans a command; on error returns it and plans nothing.
     virtual std::optional<command::Error> plan(std::string_view cmd, const nlohmann::json& request,
                                                const Now& now, command::Plan& plan) = 0;

@@ -36,7 +36,8 @@ constexpr std::string_view known_keys[] = {"protocol",
                                            "command",
                                            "mavlink",
                                            "mqtt",
-                                           "record"};
+                                           "record",
+                                           "capabilities"};
 
 bool always_kept(std::string_view key) {
     return key == "protocol" || key == "link" || key == "stale";
@@ -66,16 +67,25 @@ nlohmann::json select_keys(const nlohmann::json& state, const std::vector<std::s
     return out;
 }
 
-std::string parse_state_keys(const nlohmann::json& value, std::vector<std::string>& out) {
-    if (!value.is_array()) return "'keys' must be an array of STATE key names";
+command::Result<std::vector<std::string>> read_state_keys(const nlohmann::json& value) {
+    namespace code = command::code;
+    if (!value.is_array()) return {code::bad_request, "'keys' must be an array of STATE key names"};
     std::vector<std::string> names;
     for (const auto& k : value) {
-        if (!k.is_string()) return "'keys' must be an array of STATE key names";
+        if (!k.is_string())
+            return {code::bad_request, "'keys' must be an array of STATE key names"};
         const auto& name = k.get_ref<const std::string&>();
-        if (!is_state_key(name)) return "'keys': unknown STATE key '" + name + "'";
+        if (!is_state_key(name))
+            return {code::bad_request, "'keys': unknown STATE key '" + name + "'"};
         if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
     }
-    out = std::move(names);
+    return names;
+}
+
+std::string parse_state_keys(const nlohmann::json& value, std::vector<std::string>& out) {
+    auto keys = read_state_keys(value);
+    if (!keys) return keys.error().message;
+    out = std::move(keys).value();
     return {};
 }
 

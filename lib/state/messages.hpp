@@ -7,6 +7,7 @@
 #include <string_view>
 #include <vector>
 
+#include "command/result.hpp"
 #include "state/event.hpp"
 
 namespace gimbal::state {
@@ -23,8 +24,12 @@ bool is_state_key(std::string_view key);
 // keeps everything.
 nlohmann::json select_keys(const nlohmann::json& state, const std::vector<std::string>& keys);
 
-// Reads a `keys` parameter: an array of known STATE key names. Returns an error message, or
-// an empty string when `value` is valid (then `out` holds the names).
+// Reads a `keys` parameter: an array of known STATE key names (repeats dropped), or
+// bad_request naming the problem.
+command::Result<std::vector<std::string>> read_state_keys(const nlohmann::json& value);
+
+// read_state_keys in the shape its callers in daemon/ (request_path, stream_hub, config) use
+// until they move to it: the error message, or "" with `out` set.
 std::string parse_state_keys(const nlohmann::json& value, std::vector<std::string>& out);
 
 }  // namespace gimbal::state

@@ -8,7 +8,7 @@ namespace gimbal::viewpro {
 
 namespace {
 
-using detail::Probe;
+using framing::Probe;
 using Verdict = Probe::Verdict;
 
 Probe probe_command(std::span<const std::uint8_t> d, InputFrame& out) {
@@ -59,7 +59,7 @@ Probe probe_in(std::span<const std::uint8_t> d, InputFrame& out) {
 
 }  // namespace
 
-detail::Probe InputFrameRules::probe(std::span<const std::uint8_t> data, InputFrame& out) {
+framing::Probe InputFrameRules::probe(std::span<const std::uint8_t> data, InputFrame& out) {
     return data[0] == input_header ? probe_in(data, out) : probe_command(data, out);
 }
 

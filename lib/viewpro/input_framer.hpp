@@ -4,18 +4,21 @@
 // checksum: that end byte is its only integrity check.
 #pragma once
 
+#include "framing/scan_framer.hpp"
+#include "viewpro/framer_stats.hpp"
 #include "viewpro/input.hpp"
-#include "viewpro/scan_framer.hpp"
 
 namespace gimbal::viewpro {
 
 struct InputFrameRules {
     using Frame = InputFrame;
+    using Stats = FramerStats;
+    static constexpr auto frames = &FramerStats::frames;
     static constexpr std::size_t max_frame = max_input_frame_size;
     static bool is_start(std::uint8_t b) { return b == input_header || b == command_header0; }
-    static detail::Probe probe(std::span<const std::uint8_t> data, InputFrame& out);
+    static framing::Probe probe(std::span<const std::uint8_t> data, InputFrame& out);
 };
 
-class InputFramer : public detail::ScanFramer<InputFrameRules> {};
+class InputFramer : public framing::ScanFramer<InputFrameRules> {};
 
 }  // namespace gimbal::viewpro

@@ -6,10 +6,10 @@
 
 namespace gimbal::viewpro {
 
-using detail::Probe;
+using framing::Probe;
 using Verdict = Probe::Verdict;
 
-detail::Probe OutputFrameRules::probe(std::span<const std::uint8_t> d, OutputFrame& out) {
+framing::Probe OutputFrameRules::probe(std::span<const std::uint8_t> d, OutputFrame& out) {
     if (d.size() < 2) return {Verdict::need_more};
     OutFormat format{};
     switch (d[1]) {

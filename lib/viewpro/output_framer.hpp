@@ -2,18 +2,21 @@
 // checksum. Tells OUT3 from OUT4 by byte 3. This is what the daemon runs on a Viewpro link.
 #pragma once
 
+#include "framing/scan_framer.hpp"
+#include "viewpro/framer_stats.hpp"
 #include "viewpro/output.hpp"
-#include "viewpro/scan_framer.hpp"
 
 namespace gimbal::viewpro {
 
 struct OutputFrameRules {
     using Frame = OutputFrame;
+    using Stats = FramerStats;
+    static constexpr auto frames = &FramerStats::frames;
     static constexpr std::size_t max_frame = max_output_frame_size;
     static bool is_start(std::uint8_t b) { return b == output_header; }
-    static detail::Probe probe(std::span<const std::uint8_t> data, OutputFrame& out);
+    static framing::Probe probe(std::span<const std::uint8_t> data, OutputFrame& out);
 };
 
-class OutputFramer : public detail::ScanFramer<OutputFrameRules> {};
+class OutputFramer : public framing::ScanFramer<OutputFrameRules> {};
 
 }  // namespace gimbal::viewpro

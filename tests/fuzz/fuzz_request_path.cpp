@@ -6,7 +6,9 @@
 // The first byte chooses how the rest is sent: as a plain datagram, as the payload of a
 // correctly signed envelope (the fuzzer cannot compute MACs; this reaches the parsing behind
 // the signature check; a fresh ts and nonce are put in when the payload is an object), or
-// signed with a wrong secret.
+// signed with a wrong secret; and whether it comes over UDP or MQTT (whose rate limit reads
+// signed requests first). A request over the limits of contract section 14 gets a short
+// reply that echoes nothing of it.
 #include <boost/asio/io_context.hpp>
 #include <cstdint>
 #include <cstdlib>
@@ -15,14 +17,12 @@
 #include <string>
 
 #include "auth/signed_envelope.hpp"
+#include "command/request_limits.hpp"
 #include "gimbal_session.hpp"
 #include "link/sim_link.hpp"
 #include "logging.hpp"
+#include "protocols/registry.hpp"
 #include "request_path.hpp"
-#include "session/orion_protocol.hpp"
-#include "session/viewpro_protocol.hpp"
-#include "sim/orion_sim.hpp"
-#include "sim/viewpro_sim.hpp"
 
 namespace {
 
@@ -44,18 +44,19 @@ struct World {
         quiet.level = gimbal::log::Level::error;
         gimbal::log::configure(quiet);
 
-        gimbal::session::OrionOptions orion;
-        orion.allow_fire = true;
-        orion.allow_safety_bypass = false;
-        sessions.push_back(std::make_unique<gimbald::GimbalSession>(
-            io, "main", std::make_unique<gimbal::session::OrionProtocol>(orion),
-            std::make_unique<gimbald::SimLink>(io, gimbal::sim::make_orion_sim({})), 5.0,
-            [](const std::string&, const gimbal::state::Event&) {}));
-        sessions.push_back(std::make_unique<gimbald::GimbalSession>(
-            io, "nose",
-            std::make_unique<gimbal::session::ViewproProtocol>(gimbal::session::ViewproOptions{}),
-            std::make_unique<gimbald::SimLink>(io, gimbal::sim::make_viewpro_sim({})), 5.0,
-            [](const std::string&, const gimbal::state::Event&) {}));
+        // Every protocol of the registry, each with its in-process simulated gimbal.
+        gimbal::protocols::SessionSettings settings;
+        settings.allow_fire = true;
+        settings.allow_safety_bypass = false;
+        const char* names[] = {"main", "nose", "tail", "wing"};
+        std::size_t n = 0;
+        for (const auto* entry : gimbal::protocols::entries()) {
+            const nlohmann::json config = {{"name", names[n % 4]}, {"protocol", entry->name}};
+            sessions.push_back(std::make_unique<gimbald::GimbalSession>(
+                io, names[n++ % 4], entry->make_session(settings, config),
+                std::make_unique<gimbald::SimLink>(io, entry->simulator.make({})), 5.0,
+                [](const std::string&, const gimbal::state::Event&) {}));
+        }
         std::vector<gimbald::GimbalSession*> raw;
         for (auto& s : sessions) {
             s->start();
@@ -108,7 +109,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (size == 0) return 0;
     clock_ms += 1;  // nonces expire after max_skew_s of fuzzing time
     const std::string body(reinterpret_cast<const char*>(data + 1), size - 1);
-    const gimbald::RequestSource from{"udp", "127.0.0.1:5000", std::nullopt};
+    const bool mqtt = (data[0] / 3) % 2 == 1;
+    const gimbald::RequestSource from = mqtt ? gimbald::RequestSource{"mqtt", "mqtt:fuzz", {}}
+                                             : gimbald::RequestSource{"udp", "127.0.0.1:5000", {}};
     std::string datagram = body;
     bool signed_request = false;
     switch (data[0] % 3) {
@@ -117,7 +120,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         case 1:
         case 2: {
             std::string payload = body;
-            json j = json::parse(body, nullptr, false);
+            // Only within the limits: the harness's own dump() would recurse on deep input.
+            json j = gimbal::command::check_request_limits(body)
+                         ? json()
+                         : json::parse(body, nullptr, false);
             if (j.is_object()) {
                 j["ts"] = clock_ms;
                 j["nonce"] = "fuzz-" + std::to_string(clock_ms);
@@ -128,7 +134,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
             break;
         }
     }
-    check_reply(w.path->handle(datagram, from), signed_request);
+    const auto reply = w.path->handle(datagram, from);
+    check_reply(reply, signed_request);
+    if (gimbal::command::check_request_limits(datagram) && reply->size() > 512) std::abort();
     w.io.poll();
     return 0;
 }

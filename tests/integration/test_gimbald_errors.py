@@ -71,13 +71,15 @@ class Errors(RefusalsTestCase):
             return (head + "x" * (size - len(head) - 2) + '"}').encode()
         self.c.send_raw(padded(9000))
         reply = self.c.recv()
-        self.assertError(reply, "too_large", 9)  # the id still comes back
-        self.assertEqual(reply["cmd"], "ping")
+        # Refused unread (contract section 14): the id is not echoed, it is null.
+        self.assertError(reply, "too_large", None)
+        self.assertIn("id", reply)
+        self.assertIsNone(reply["cmd"])
         self.assertIn("8192", reply["error"]["message"])
         self.c.send_raw(b"x" * 9000)  # not even JSON: too large all the same
         reply = self.c.recv()
         self.assertError(reply, "too_large")
-        self.assertNotIn("id", reply)
+        self.assertIsNone(reply["id"])
         # The limit is 8192 bytes: exactly that is parsed (and "pad" is then unknown).
         self.c.send_raw(padded(8192))
         reply = self.c.recv()

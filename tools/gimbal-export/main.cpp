@@ -21,20 +21,21 @@ SYNOPSIS
 
 DESCRIPTION
        Reads a pcapng recording written by gimbald (docs/recording.md),
-       decodes what one gimbal sent - Orion GeolocateTelemetry packets, or
-       Viewpro OUT1..OUT4 frames - with the same codec and state code gimbald
-       uses, and writes one of:
+       decodes what one gimbal sent - its telemetry frames, with the decoder of
+       its protocol, the same codec and state code gimbald uses - and writes
+       one of:
 
        geojson  an RFC 7946 FeatureCollection: the aircraft track (LineString),
                 the target track (a LineString per run of ranged points), and
                 camera footprints (Polygon, exterior ring counter-clockwise)
                 every S seconds, each with the telemetry values as properties.
                 Positions are [lon, lat, alt], alt above the WGS84 ellipsoid
-                (Viewpro reports only MSL heights: its positions are [lon, lat]
-                and alt_msl is a property).
+                (a gimbal that reports only MSL heights has positions
+                [lon, lat] and alt_msl as a property).
        kml      a KML 2.2 Document with the same Placemarks (LineString,
                 Polygon), altitudeMode absolute with heights above mean sea
-                level (Orion: alt minus the reported geoid undulation).
+                level (alt minus the reported geoid undulation when the gimbal
+                reports heights above the ellipsoid).
        csv      a header line, then one row per telemetry packet: time (the
                 receive time, ISO-8601 UTC), gimbal_time, system_time_ms, lat,
                 lon, alt, alt_msl, roll, pitch, yaw (aircraft), pan, tilt, hfov,
@@ -43,7 +44,7 @@ DESCRIPTION
 
        Units are those of gimbald's STATE (degrees, metres). Camera footprints
        are the image corners projected onto the ground at the target's altitude
-       (Orion only: Viewpro frames carry no field of view); a footprint is drawn
+       (only for gimbals that report a field of view); a footprint is drawn
        for the first packet that has one and then every --footprint-every
        seconds of receive time. Several FILEs are read as one recording, in the
        order given (gimbald rotates files). A file cut short by a crash is read

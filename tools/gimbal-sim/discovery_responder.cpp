@@ -2,17 +2,15 @@
 
 #include <boost/asio/buffer.hpp>
 
-#include "orion/enums.hpp"
-#include "orion/framer.hpp"
-
 namespace gimbal_sim {
 
 namespace asio = boost::asio;
 using asio::ip::udp;
 
 DiscoveryResponder::DiscoveryResponder(asio::io_context& io, std::uint16_t port,
-                                       std::uint16_t reply_port, std::vector<std::uint8_t> reply)
-    : socket_(io), reply_port_(reply_port), reply_(std::move(reply)) {
+                                       std::uint16_t reply_port, IsRequest is_request,
+                                       std::vector<std::uint8_t> reply)
+    : socket_(io), reply_port_(reply_port), is_request_(is_request), reply_(std::move(reply)) {
     socket_.open(udp::v4());
     socket_.set_option(asio::socket_base::reuse_address(true));
     socket_.bind(udp::endpoint(asio::ip::address_v4::any(), port));
@@ -33,20 +31,12 @@ void DiscoveryResponder::stop() {
 }
 
 void DiscoveryResponder::do_receive() {
-    socket_.async_receive_from(
-        asio::buffer(buffer_), sender_, [this](const boost::system::error_code& ec, std::size_t n) {
-            if (stopped_) return;
-            if (!ec) {
-                // Each datagram stands alone: a fresh framer, so no partial frame carries over.
-                gimbal::orion::Framer framer;
-                bool asked = false;
-                framer.push({buffer_.data(), n}, [&](const gimbal::orion::Frame& f) {
-                    asked |= f.id == gimbal::orion::pkt::crown_version && f.payload.size == 0;
-                });
-                if (asked) answer(sender_);
-            }
-            do_receive();
-        });
+    socket_.async_receive_from(asio::buffer(buffer_), sender_,
+                               [this](const boost::system::error_code& ec, std::size_t n) {
+                                   if (stopped_) return;
+                                   if (!ec && is_request_({buffer_.data(), n})) answer(sender_);
+                                   do_receive();
+                               });
 }
 
 void DiscoveryResponder::answer(const udp::endpoint& requester) {

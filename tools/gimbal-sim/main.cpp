@@ -1,5 +1,5 @@
-// gimbal-sim: a simulated Orion or Viewpro gimbal over TCP and/or a pseudo-terminal, for tests,
-// demos and operator training. See `gimbal-sim --help` and docs/simulator.md.
+// gimbal-sim: a simulated gimbal of any registered protocol over TCP and/or a
+// pseudo-terminal, for tests, demos and operator training. See `gimbal-sim --help` and docs/simulator.md.
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/signal_set.hpp>
 #include <csignal>

@@ -1,18 +1,17 @@
 // gimbal-sim's command line: what to serve, where, which faults to inject, and the simulated
-// gimbal's own settings.
+// gimbal's own settings (the shared ones, and each protocol's flags from its registry entry).
 #pragma once
 
 #include <cstdint>
 #include <optional>
 #include <string>
 
-#include "sim/orion_sim.hpp"
-#include "sim/viewpro_sim.hpp"
+#include "protocols/registry.hpp"
 
 namespace gimbal_sim {
 
 struct ToolOptions {
-    std::string protocol = "orion";  // or "viewpro"
+    std::string protocol;  // a registry name; the first protocol when not given
 
     bool tcp = true;
     std::string bind = "127.0.0.1";
@@ -21,7 +20,7 @@ struct ToolOptions {
     bool pty = false;
     std::string pty_link;  // symlink to the pty device, if set
 
-    bool discovery = true;  // Orion only
+    bool discovery = true;  // only for a protocol with discovery
     std::uint16_t discovery_port = 8745;
     std::uint16_t discovery_reply_port = 8746;  // 0: the request's source port
 
@@ -35,8 +34,9 @@ struct ToolOptions {
     std::string rx_log;  // JSON lines of every valid packet received
     double tick_s = 0.01;
 
-    gimbal::sim::OrionSimOptions model;            // --protocol orion
-    gimbal::sim::ViewproSimOptions viewpro_model;  // --protocol viewpro
+    gimbal::protocols::SimScenario scenario;  // the model: clock, seed, settings, own flags
+
+    const gimbal::protocols::Entry& entry() const { return *gimbal::protocols::find(protocol); }
 };
 
 // Parses argv. Returns the options, or the exit status when the program should stop now

@@ -1,22 +1,23 @@
-// --rx-log: one JSON line per checksum-valid packet (Orion) or frame (Viewpro) the controller
-// sent, flushed at once, so a test can check the exact bytes the daemon put on the wire.
+// --rx-log: one JSON line per valid frame the controller sent, decoded by the protocol's
+// registry entry (Simulator::make_rx_decoder), flushed at once, so a test can check the exact
+// bytes the daemon put on the wire.
 #pragma once
 
 #include <cstdint>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <span>
 #include <string>
 
-#include "orion/framer.hpp"
-#include "viewpro/input_framer.hpp"
+#include "protocols/registry.hpp"
 
 namespace gimbal_sim {
 
 class RxLog {
   public:
-    // Opens (truncates) the file; throws on failure. `protocol`: "orion" or "viewpro".
-    RxLog(const std::string& path, const std::string& protocol);
+    // Opens (truncates) the file; throws on failure.
+    RxLog(const std::string& path, const gimbal::protocols::Entry& protocol);
 
     // Bytes received from source `src` ("tcp" or "pty") at t seconds since start.
     void received(const std::string& src, std::span<const std::uint8_t> bytes, double t);
@@ -24,13 +25,11 @@ class RxLog {
     void reset(const std::string& src);
 
   private:
-    void write_line(const std::string& src, const gimbal::orion::Frame& frame, double t);
-    void write_line(const std::string& src, const gimbal::viewpro::InputFrame& frame, double t);
+    gimbal::protocols::RxDecoder& decoder(const std::string& src);
 
     std::ofstream out_;
-    bool viewpro_ = false;
-    std::map<std::string, gimbal::orion::Framer> framers_;
-    std::map<std::string, gimbal::viewpro::InputFramer> viewpro_framers_;
+    const gimbal::protocols::Entry& protocol_;
+    std::map<std::string, std::unique_ptr<gimbal::protocols::RxDecoder>> decoders_;
 };
 
 }  // namespace gimbal_sim

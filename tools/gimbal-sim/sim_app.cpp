@@ -3,9 +3,6 @@
 #include <iostream>
 #include <vector>
 
-#include "sim/orion_sim.hpp"
-#include "sim/viewpro_sim.hpp"
-
 namespace gimbal_sim {
 
 namespace asio = boost::asio;
@@ -16,17 +13,8 @@ gimbal::sim::FaultOptions fault_options(const ToolOptions& o) {
     gimbal::sim::FaultOptions f;
     f.corrupt_fraction = o.corrupt_fraction;
     f.junk_every = o.junk_every;
-    f.seed = o.model.seed;
+    f.seed = o.scenario.seed;
     return f;
-}
-
-bool is_viewpro(const ToolOptions& o) {
-    return o.protocol == "viewpro";
-}
-
-std::unique_ptr<gimbal::sim::Device> make_device(const ToolOptions& o) {
-    if (is_viewpro(o)) return gimbal::sim::make_viewpro_sim(o.viewpro_model);
-    return gimbal::sim::make_orion_sim(o.model);
 }
 
 void note(const std::string& text) {
@@ -40,10 +28,9 @@ SimApp::SimApp(asio::io_context& io, const ToolOptions& options)
       options_(options),
       epoch_(std::chrono::steady_clock::now()),
       tick_timer_(io),
-      device_(make_device(options)),
-      faults_(fault_options(options)),
-      viewpro_faults_(fault_options(options), gimbal::sim::viewpro_output_frames()) {
-    if (!options_.rx_log.empty()) rx_log_.emplace(options_.rx_log, options_.protocol);
+      device_(options.entry().simulator.make(options.scenario)),
+      faults_(fault_options(options), options.entry().simulator.fault_frames()) {
+    if (!options_.rx_log.empty()) rx_log_.emplace(options_.rx_log, options_.entry());
 
     if (options_.tcp) {
         tcp_.emplace(
@@ -71,10 +58,11 @@ SimApp::SimApp(asio::io_context& io, const ToolOptions& options)
             });
         std::cout << "pty: " << pty_->device() << std::endl;
     }
-    if (options_.discovery && !is_viewpro(options_)) {
+    if (options_.discovery) {
+        const auto& simulator = options_.entry().simulator;
         try {
             discovery_.emplace(io, options_.discovery_port, options_.discovery_reply_port,
-                               gimbal::sim::orion_sim_crown_version_frame());
+                               simulator.is_discovery_request, simulator.discovery_reply());
             std::cout << "discovery: 0.0.0.0:" << discovery_->port() << std::endl;
         } catch (const std::exception& e) {
             // Another simulator may hold the port; serving without discovery beats not at all.
@@ -143,9 +131,7 @@ void SimApp::deliver(double now) {
     device_->advance(now, out);
     if (out.empty() || stalled(now)) return;  // a stalled gimbal says nothing; the model runs on
     std::vector<std::uint8_t> wire;
-    if (is_viewpro(options_) && viewpro_faults_.active()) {
-        viewpro_faults_.apply(out, wire);
-    } else if (!is_viewpro(options_) && faults_.active()) {
+    if (faults_.active()) {
         faults_.apply(out, wire);
     } else {
         wire.swap(out);
@@ -158,7 +144,7 @@ void SimApp::on_input(const std::string& src, std::span<const std::uint8_t> byte
     const double now = now_s();
     if (rx_log_) rx_log_->received(src, bytes, now);
     device_->receive(bytes, now);
-    deliver(now);  // answers (the OrionCmd echo, requested packets) go out now, not next tick
+    deliver(now);  // answers (command echoes, requested packets) go out now, not next tick
 }
 
 }  // namespace gimbal_sim

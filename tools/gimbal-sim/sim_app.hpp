@@ -1,5 +1,6 @@
-// gimbal-sim's running parts: the model (Orion or Viewpro) on a 10 ms tick, the TCP server,
-// the pty, discovery (Orion), fault injection and the rx log, all on one io_context.
+// gimbal-sim's running parts: the model (the protocol's, from the registry) on a 10 ms tick,
+// the TCP server, the pty, discovery (for a protocol that has one), fault injection and the
+// rx log, all on one io_context.
 #pragma once
 
 #include <boost/asio/io_context.hpp>
@@ -43,8 +44,7 @@ class SimApp {
     std::chrono::steady_clock::time_point next_tick_;
     boost::asio::steady_timer tick_timer_;
     std::unique_ptr<gimbal::sim::Device> device_;
-    gimbal::sim::FaultInjector faults_;          // Orion frames
-    gimbal::sim::FaultInjector viewpro_faults_;  // Viewpro frames
+    gimbal::sim::FaultInjector faults_;  // of the protocol's frame shape
     std::optional<RxLog> rx_log_;
     std::optional<TcpServer> tcp_;
     std::optional<PtyPort> pty_;

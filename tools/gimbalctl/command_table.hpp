@@ -28,11 +28,13 @@ struct Command {
     Action action = Action::exchange;
 };
 
-// Groups shown under COMMANDS in --help, in this order.
+// Groups shown under COMMANDS in --help: the catalogue's commands for every gimbal, one group
+// per set of protocols that plan a command ("<Display name> commands"), then gimbalctl's own.
 inline constexpr const char* group_any = "Commands for every gimbal";
-inline constexpr const char* group_orion = "Orion commands";
-inline constexpr const char* group_viewpro = "Viewpro commands";
 inline constexpr const char* group_client = "Client commands";
+
+// The help group of catalogue command `cmd`, from the catalogue and the protocol registry.
+std::string command_group(const std::string& cmd);
 
 class CommandTable {
   public:
@@ -41,6 +43,9 @@ class CommandTable {
     // Adds sub-command `name` sending cmd `cmd`; fill in params (and flags) on the result.
     Command& add(const std::string& name, const std::string& cmd, const std::string& group,
                  const std::string& description);
+    // The same for catalogue command `cmd`: its group and summary (plus `note`) come from the
+    // catalogue.
+    Command& add(const std::string& name, const std::string& cmd, const std::string& note = "");
 
     // The sub-command given on the command line, or nullptr.
     const Command* selected() const;
@@ -51,11 +56,10 @@ class CommandTable {
 };
 
 // Registration of the sub-commands, one function per section of the interface contract.
-void add_common_commands(CommandTable& table);   // 4.1: ping, version, list, state
-void add_orion_commands(CommandTable& table);    // 4.2
-void add_viewpro_commands(CommandTable& table);  // 4.3
-void add_send_command(CommandTable& table);      // raw JSON
-void add_keygen_command(CommandTable& table);    // keygen FILE
+void add_common_commands(CommandTable& table);  // 4.1: ping, version, list, state
+void add_gimbal_commands(CommandTable& table);  // the protocols' commands
+void add_send_command(CommandTable& table);     // raw JSON
+void add_keygen_command(CommandTable& table);   // keygen FILE
 // subscribe/unsubscribe; `count` receives --count (0 when not given).
 void add_watch_command(CommandTable& table, std::int64_t& count);
 

@@ -58,9 +58,9 @@ std::string Sealer::seal(const Json& request) {
 }
 
 Sealer::Opened Sealer::open(Json& datagram) const {
-    const auto envelope = gimbal::auth::read_signed(datagram);
-    if (!envelope) return Opened::plain;
-    const auto* signed_envelope = std::get_if<gimbal::auth::SignedEnvelope>(&*envelope);
+    const auto envelope = gimbal::auth::parse_signed(datagram);
+    if (envelope && !*envelope) return Opened::plain;
+    const gimbal::auth::SignedEnvelope* signed_envelope = envelope ? &**envelope : nullptr;
     if (!key_ || signed_envelope == nullptr || signed_envelope->key != key_->id ||
         !gimbal::auth::mac_matches(*signed_envelope, key_->secret))
         return Opened::forged;

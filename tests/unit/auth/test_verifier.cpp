@@ -162,3 +162,42 @@ TEST_CASE("roles: observe, control, laser only when firing") {
     CHECK(parse_role("laser") == Role::laser);
     CHECK_FALSE(parse_role("admin"));
 }
+
+TEST_CASE("authenticate checks key and MAC only; accept spends the nonce") {
+    const Key ops = make_key("ops", 1);
+    Verifier v({ops}, 30);
+    const auto good = envelope_of(
+        signed_request(ops, {{"cmd", "state"}, {"ts", now_ms}, {"nonce", "nonce-0001"}}));
+    // Authenticating again and again changes nothing: the nonce is still fresh after.
+    for (int i = 0; i < 3; ++i) {
+        auto key = v.authenticate(good);
+        REQUIRE(std::holds_alternative<const Key*>(key));
+        CHECK(std::get<const Key*>(key)->id == "ops");
+    }
+    auto forged = good;
+    forged.mac[0] = forged.mac[0] == '0' ? '1' : '0';
+    auto refused = v.authenticate(forged);
+    REQUIRE(std::holds_alternative<Rejected>(refused));
+    CHECK_THAT(std::get<Rejected>(refused).reason, Catch::Contains("bad MAC"));
+
+    CHECK(std::holds_alternative<Verified>(v.accept(ops, good, now_ms)));
+    CHECK_THAT(reason(v.accept(ops, good, now_ms)), Catch::Contains("replayed"));
+}
+
+TEST_CASE("a signed payload meets the request limits before it is parsed") {
+    const Key ops = make_key("ops", 1);
+    Verifier v({ops}, 30);
+    const std::string deep = R"({"cmd":"state","ts":)" + std::to_string(now_ms) +
+                             R"(,"nonce":"nonce-0002","id":)" + std::string(40, '[') +
+                             std::string(40, ']') + "}";
+    auto r = v.verify(envelope_of(sign(ops.id, ops.secret, deep)), now_ms);
+    REQUIRE(std::holds_alternative<Rejected>(r));
+    CHECK(std::get<Rejected>(r).kind == Rejected::Kind::bad_json);
+    CHECK_THAT(std::get<Rejected>(r).reason, Catch::Contains("nested deeper than 32"));
+
+    const std::string big = R"({"cmd":"state","ts":)" + std::to_string(now_ms) +
+                            R"(,"nonce":"nonce-0003","pad":")" + std::string(9000, 'x') + "\"}";
+    r = v.verify(envelope_of(sign(ops.id, ops.secret, big)), now_ms);
+    REQUIRE(std::holds_alternative<Rejected>(r));
+    CHECK(std::get<Rejected>(r).kind == Rejected::Kind::too_large);
+}

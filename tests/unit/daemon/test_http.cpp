@@ -9,7 +9,9 @@
 #include <vector>
 
 #include "config.hpp"
+#include "http/client_slots.hpp"
 #include "http/command_metrics.hpp"
+#include "http/frame_policy.hpp"
 #include "http/static_files.hpp"
 
 using namespace gimbal::daemon;
@@ -55,15 +57,18 @@ TEST_CASE("http is off unless the section is set; its defaults", "[http][config]
     CHECK_FALSE(h.tiles_url.has_value());
     CHECK_FALSE(h.web_root.has_value());
     CHECK(h.max_connections == 64);
+    CHECK(h.max_connections_per_client == 16);
     CHECK(h.idle_timeout_s == 30);
     CHECK(h.ws_queue_max == 64);
     CHECK(to_json(on.config)["http"]["port"] == 8761);
+    CHECK(to_json(on.config)["http"]["max_connections_per_client"] == 16);
 }
 
 TEST_CASE("http values are read", "[http][config]") {
     const auto r = with_http(
         R"({"bind":"::1","port":0,"console":false,"tiles_url":"https://t/{z}/{x}/{y}.png",)"
-        R"("web_root":"/srv/web","max_connections":5,"idle_timeout_s":2.5,"ws_queue_max":8})");
+        R"("web_root":"/srv/web","max_connections":5,"idle_timeout_s":2.5,"ws_queue_max":8,)"
+        R"("max_connections_per_client":3})");
     INFO(problems_of(r).size());
     REQUIRE(r.ok());
     const auto& h = *r.config.http;
@@ -73,6 +78,7 @@ TEST_CASE("http values are read", "[http][config]") {
     CHECK(*h.tiles_url == "https://t/{z}/{x}/{y}.png");
     CHECK(*h.web_root == "/srv/web");
     CHECK(h.max_connections == 5);
+    CHECK(h.max_connections_per_client == 3);
     CHECK(h.idle_timeout_s == 2.5);
     CHECK(h.ws_queue_max == 8);
 }
@@ -92,6 +98,8 @@ TEST_CASE("bad http values are reported with their paths", "[http][config]") {
     CHECK(only(with_http(R"({"web_root":"web"})")) == "http.web_root: must be an absolute path");
     CHECK(only(with_http(R"({"max_connections":0})")) ==
           "http.max_connections: must be between 1 and 10000");
+    CHECK(only(with_http(R"({"max_connections_per_client":0})")) ==
+          "http.max_connections_per_client: must be between 1 and 10000");
     CHECK(only(with_http(R"({"idle_timeout_s":0})")) ==
           "http.idle_timeout_s: must be between 1 and 3600");
     CHECK(only(with_http(R"({"ws_queue_max":1})")) ==
@@ -175,4 +183,50 @@ TEST_CASE("command metrics: counts by cmd and result, unknown names folded", "[h
     CHECK(t.size() == 4);
     CHECK(m.durations().count() == 6);
     CHECK(m.durations().sum() == Approx(0.00333));
+}
+
+TEST_CASE("frame policy: frame-ancestors 'none' merged into any policy", "[http]") {
+    using gimbald::http::deny_framing;
+    CHECK(deny_framing("") == "frame-ancestors 'none'");
+    CHECK(deny_framing("default-src 'self'") == "default-src 'self'; frame-ancestors 'none'");
+    CHECK(deny_framing(" default-src 'self' ; img-src * ;") ==
+          "default-src 'self'; img-src *; frame-ancestors 'none'");
+    // A page's own frame-ancestors gives way, whatever its case.
+    CHECK(deny_framing("Frame-Ancestors https://a.example; script-src 'self'") ==
+          "script-src 'self'; frame-ancestors 'none'");
+    CHECK(deny_framing("frame-ancestors-x 1") == "frame-ancestors-x 1; frame-ancestors 'none'");
+
+    boost::beast::http::fields fields;
+    gimbald::http::add_frame_policy(fields);
+    CHECK(fields["X-Frame-Options"] == "DENY");
+    CHECK(fields["Content-Security-Policy"] == "frame-ancestors 'none'");
+    fields.set("Content-Security-Policy", "default-src 'self'");
+    gimbald::http::add_frame_policy(fields);
+    CHECK(fields["Content-Security-Policy"] == "default-src 'self'; frame-ancestors 'none'");
+    CHECK(fields.count("X-Frame-Options") == 1);
+}
+
+TEST_CASE("client slots: per address, given back when the holder goes", "[http]") {
+    using gimbald::http::ClientSlots;
+    const auto a = boost::asio::ip::make_address("127.0.0.1");
+    const auto b = boost::asio::ip::make_address("127.0.0.2");
+    ClientSlots slots(2);
+    auto first = slots.take(a);
+    auto second = slots.take(a);
+    REQUIRE(first);
+    REQUIRE(second);
+    CHECK_FALSE(slots.take(a));  // the third from a
+    CHECK(slots.take(b));        // taken and given back at once
+    CHECK(slots.open(b) == 0);
+    CHECK(slots.open(a) == 2);
+    {
+        // Moved from the connection to its WebSocket client: still one slot.
+        ClientSlots::Slot moved = std::move(*first);
+        CHECK(slots.open(a) == 2);
+        CHECK_FALSE(slots.take(a));
+    }
+    CHECK(slots.open(a) == 1);
+    auto again = slots.take(a);
+    CHECK(again);
+    CHECK(slots.open(a) == 2);
 }

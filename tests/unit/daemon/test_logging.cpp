@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "journal.hpp"
 #include "logging.hpp"
 
 // A named namespace: an alias `log` at global scope would clash with ::log() of <cmath>.
@@ -132,6 +133,109 @@ TEST_CASE("a text record reads well at a terminal", "[logging]") {
 
     const log::Record warn{example_time(), log::Level::warn, "stop", "bye", nullptr};
     CHECK(log::format_text(warn) == "2026-11-21 06:41:50.123 WARN  stop: bye");
+}
+
+TEST_CASE("text records escape control characters: no request starts a line", "[logging]") {
+    // The forgery: an unknown command whose name carries a newline and a fake line.
+    const std::string forged = "nosuch\n2026-11-21 06:41:50.123 WARN  audit fire=true: ok";
+    const json fields = {{"cmd", forged}, {"src", "127.0.0.1:5000"}};
+    const std::string msg = "unknown command '" + forged + "'";
+    const log::Record record{example_time(), log::Level::info, "command", msg, &fields};
+    const std::string line = log::format_text(record);
+    CHECK(line.find('\n') == std::string::npos);
+    CHECK(line ==
+          "2026-11-21 06:41:50.123 INFO  command "
+          "cmd=\"nosuch\\n2026-11-21 06:41:50.123 WARN  audit fire=true: ok\" src=127.0.0.1:5000: "
+          "unknown command 'nosuch\\n2026-11-21 06:41:50.123 WARN  audit fire=true: ok'");
+
+    // Every control character, DEL and C1 (U+0085 NEXT LINE) in message, keys and values.
+    const std::string nasty = std::string("a\rb\tc") + '\0' + "d\x1b[31me\x7f" + "f\xc2\x85g\\h";
+    const json odd = {{"k\ney", nasty}};
+    const log::Record r{example_time(), log::Level::warn, "ev\nent", nasty, &odd};
+    const std::string text = log::format_text(r);
+    for (const char c : text) {
+        const auto byte = static_cast<unsigned char>(c);
+        CHECK((byte >= 0x20 && byte != 0x7f));
+    }
+    CHECK(text.find("\xc2\x85") == std::string::npos);
+    CHECK(text ==
+          "2026-11-21 06:41:50.123 WARN  ev\\nent "
+          "k\\ney=\"a\\rb\\tc\\u0000d\\u001b[31me\\x7ff\\u0085g\\\\h\": "
+          "a\\rb\\tc\\x00d\\x1b[31me\\x7ff\\u0085g\\\\h");
+    // Plain words stay as they were.
+    const json plain = {{"gimbal", "main"}};
+    const log::Record p{example_time(), log::Level::info, "link_up", "link connected", &plain};
+    CHECK(log::format_text(p) ==
+          "2026-11-21 06:41:50.123 INFO  link_up gimbal=main: link connected");
+}
+
+TEST_CASE("journal: priorities, field names and fields of a record", "[logging][journal]") {
+    CHECK(log::journal_priority(log::Level::error) == 3);
+    CHECK(log::journal_priority(log::Level::warn) == 4);
+    CHECK(log::journal_priority(log::Level::info) == 6);
+    CHECK(log::journal_priority(log::Level::debug) == 7);
+    CHECK(log::journal_priority(log::Level::trace) == 7);
+
+    CHECK(log::journal_field_name("event") == "EVENT");
+    CHECK(log::journal_field_name("max_per_client") == "MAX_PER_CLIENT");
+    CHECK(log::journal_field_name("a.b-c") == "A_B_C");
+    CHECK(log::journal_field_name("message") == "GIMBALD_MESSAGE");  // the journal's own
+    CHECK(log::journal_field_name("priority") == "GIMBALD_PRIORITY");
+    CHECK(log::journal_field_name("_pid") == "GIMBALD__PID");  // trusted fields start with _
+    CHECK(log::journal_field_name("1st") == "GIMBALD_1ST");
+    CHECK(log::journal_field_name("") == "GIMBALD_");
+    CHECK(log::journal_field_name(std::string(64, 'k')) == std::string(64, 'K'));
+    CHECK(log::journal_field_name(std::string(65, 'k')).empty());  // over journald's limit
+
+    const json fields = {{"gimbal", "main"},
+                         {"src", "10.0.0.7:4000"},
+                         {"ok", true},
+                         {"index", 0},
+                         {"id", nullptr},
+                         {"keys", {1, 2}},
+                         {"error", {{"code", "x"}}},
+                         {"msg", "shadowed"},
+                         {"text", "two\nlines"}};
+    const log::Record record{example_time(), log::Level::warn, "laser_fire", "laser fire commanded",
+                             &fields};
+    const std::string line = log::format_json(record);
+    const auto got = log::journal_fields(record, line);
+    const std::vector<std::string> want = {"MESSAGE=" + line,
+                                           "PRIORITY=4",
+                                           "SYSLOG_IDENTIFIER=gimbald",
+                                           "TS=2026-11-21T06:41:50.123456Z",
+                                           "LEVEL=warn",
+                                           "EVENT=laser_fire",
+                                           "MSG=laser fire commanded",
+                                           "GIMBAL=main",
+                                           "INDEX=0",
+                                           "FIELD_MSG=shadowed",
+                                           "OK=true",
+                                           "SRC=10.0.0.7:4000",
+                                           "TEXT=two\nlines"};
+    CHECK(got == want);
+}
+
+TEST_CASE("journal: JOURNAL_STREAM names a device and an inode", "[logging][journal]") {
+    CHECK(log::journal_stream_matches("8:12345", 8, 12345));
+    CHECK_FALSE(log::journal_stream_matches("8:12345", 8, 12346));
+    CHECK_FALSE(log::journal_stream_matches("9:12345", 8, 12345));
+    CHECK_FALSE(log::journal_stream_matches("8:", 8, 0));
+    CHECK_FALSE(log::journal_stream_matches(":1", 0, 1));
+    CHECK_FALSE(log::journal_stream_matches("8-12345", 8, 12345));
+    CHECK_FALSE(log::journal_stream_matches("8:12345x", 8, 12345));
+    CHECK_FALSE(log::journal_stream_matches("", 0, 0));
+    // Not set, or naming another file than standard output: not the journal.
+    const char* saved = std::getenv("JOURNAL_STREAM");
+    const std::string keep = saved != nullptr ? saved : "";
+    ::unsetenv("JOURNAL_STREAM");
+    CHECK_FALSE(log::stdout_is_journal());
+    ::setenv("JOURNAL_STREAM", "1:1", 1);
+    CHECK_FALSE(log::stdout_is_journal());
+    if (saved != nullptr)
+        ::setenv("JOURNAL_STREAM", keep.c_str(), 1);
+    else
+        ::unsetenv("JOURNAL_STREAM");
 }
 
 TEST_CASE("level and format names", "[logging]") {

@@ -1,0 +1,262 @@
+#include "video/rtsp_input.hpp"
+
+extern "C" {
+#include <libavformat/avformat.h>
+#include <libavutil/avutil.h>
+#include <libavutil/error.h>
+}
+
+#include <boost/asio/post.hpp>
+
+#include "logging.hpp"
+#include "video/nal.hpp"
+
+namespace gimbald::video {
+
+namespace asio = boost::asio;
+namespace gv = gimbal::video;
+
+struct RtspInput::Shared {
+    std::atomic<bool> stop{false};
+    std::atomic<std::int64_t> deadline_ns{0};  // steady clock; blocking calls give up after
+    std::mutex mutex;
+    std::condition_variable wake;
+    std::atomic<std::size_t> queued{0};
+    std::atomic<std::uint64_t> dropped{0};
+    std::atomic<std::uint64_t> reconnects{0};
+    std::weak_ptr<const char> alive;
+
+    void set_deadline(double from_now_s) {
+        const auto at = Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                           std::chrono::duration<double>(from_now_s));
+        deadline_ns =
+            std::chrono::duration_cast<std::chrono::nanoseconds>(at.time_since_epoch()).count();
+    }
+    bool expired() const {
+        const auto now =
+            std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now().time_since_epoch())
+                .count();
+        return stop.load() || now > deadline_ns.load();
+    }
+};
+
+namespace {
+
+std::string av_error(int code) {
+    char text[AV_ERROR_MAX_STRING_SIZE] = {};
+    av_strerror(code, text, sizeof text);
+    return text;
+}
+
+void init_libav() {
+    static std::once_flag once;
+    std::call_once(once, [] {
+        avformat_network_init();
+        // Errors reach our own structured log lines; libav's stderr chatter would not.
+        av_log_set_level(AV_LOG_FATAL);
+    });
+}
+
+struct FormatCloser {
+    void operator()(AVFormatContext* f) const { avformat_close_input(&f); }
+};
+struct PacketFree {
+    void operator()(AVPacket* p) const { av_packet_free(&p); }
+};
+
+}  // namespace
+
+RtspInput::RtspInput(asio::io_context& io, gv::VideoUrl url, VideoInputOptions options,
+                     VideoInputHandlers handlers)
+    : io_(io), url_(std::move(url)), options_(std::move(options)), handlers_(std::move(handlers)) {
+    if (url_.scheme != gv::UrlScheme::rtsp) throw std::invalid_argument("not an rtsp:// URL");
+    if (url_.timeout_s) options_.timeout_s = *url_.timeout_s;
+    options_.log_fields["input"] = url_.text;
+    init_libav();
+}
+
+RtspInput::~RtspInput() {
+    stop();
+}
+
+void RtspInput::start() {
+    if (thread_.joinable()) return;
+    shared_ = std::make_shared<Shared>();
+    alive_ = std::make_shared<const char>('\0');
+    shared_->alive = alive_;
+    thread_ = std::thread([this, shared = shared_] { run(shared); });
+}
+
+void RtspInput::stop() {
+    if (!thread_.joinable()) return;
+    {
+        std::lock_guard lock(shared_->mutex);
+        shared_->stop = true;
+    }
+    shared_->wake.notify_all();
+    thread_.join();
+    alive_.reset();  // handlers already posted do nothing now
+    connected_ = false;
+}
+
+void RtspInput::post_connected(bool connected, std::string error) {
+    asio::post(io_, [this, alive = shared_->alive, connected, error = std::move(error)] {
+        if (alive.expired()) return;
+        if (!error.empty()) last_error_ = error;
+        if (connected == connected_) return;
+        connected_ = connected;
+        nlohmann::json fields = options_.log_fields;
+        if (connected) {
+            gimbal::log::info("video_up", "video input receiving", fields);
+        } else {
+            fields["error"] = last_error_;
+            gimbal::log::warn("video_down", "video input lost: " + last_error_, fields);
+        }
+        if (handlers_.connection) handlers_.connection(connected);
+    });
+}
+
+void RtspInput::run(std::shared_ptr<Shared> shared) {
+    Backoff backoff(options_.backoff);
+    bool first = true;
+    while (!shared->stop) {
+        if (!first) ++shared->reconnects;
+        first = false;
+        if (read_session(*shared)) backoff.reset();
+        if (shared->stop) break;
+        std::unique_lock lock(shared->mutex);
+        shared->wake.wait_for(lock, std::chrono::duration<double>(backoff.next()),
+                              [&] { return shared->stop.load(); });
+    }
+}
+
+// One connection: open, find the video stream, read until an error, the timeout or stop.
+// Returns whether any video came (then the next attempt starts from the shortest delay).
+bool RtspInput::read_session(Shared& shared) {
+    AVFormatContext* raw = avformat_alloc_context();
+    if (!raw) return false;
+    // libavformat polls this during every blocking call; non-zero makes the call return.
+    raw->interrupt_callback.callback = [](void* opaque) {
+        return static_cast<Shared*>(opaque)->expired() ? 1 : 0;
+    };
+    raw->interrupt_callback.opaque = &shared;
+    AVDictionary* opts = nullptr;
+    if (url_.transport == gv::RtspTransport::tcp) av_dict_set(&opts, "rtsp_transport", "tcp", 0);
+    if (url_.transport == gv::RtspTransport::udp) av_dict_set(&opts, "rtsp_transport", "udp", 0);
+    const auto timeout_us = static_cast<std::int64_t>(options_.timeout_s * 1e6);
+    av_dict_set_int(&opts, "timeout", timeout_us, 0);  // socket I/O timeout
+    av_dict_set(&opts, "allowed_media_types", "video", 0);
+    av_dict_set(&opts, "fflags", "nobuffer", 0);
+    av_dict_set_int(&opts, "max_delay", 200'000, 0);  // RTP reordering over UDP, microseconds
+    shared.set_deadline(options_.timeout_s * 2);      // connect + DESCRIBE + SETUP + PLAY
+    const int opened = avformat_open_input(&raw, url_.rtsp_url.c_str(), nullptr, &opts);
+    av_dict_free(&opts);
+    if (opened < 0) {
+        if (!shared.stop) post_connected(false, "rtsp open: " + av_error(opened));
+        return false;
+    }
+    std::unique_ptr<AVFormatContext, FormatCloser> fmt(raw);
+
+    int index = -1;
+    gv::Codec codec = gv::Codec::h264;
+    for (unsigned i = 0; i < fmt->nb_streams; ++i) {
+        const AVCodecParameters* par = fmt->streams[i]->codecpar;
+        if (par->codec_id == AV_CODEC_ID_H264 || par->codec_id == AV_CODEC_ID_HEVC) {
+            index = static_cast<int>(i);
+            codec = par->codec_id == AV_CODEC_ID_H264 ? gv::Codec::h264 : gv::Codec::h265;
+            break;
+        }
+    }
+    if (index < 0) {
+        post_connected(false, "rtsp: no H.264 or H.265 video stream");
+        return false;
+    }
+    const AVStream* stream = fmt->streams[index];
+    gv::Extradata extra;
+    if (stream->codecpar->extradata && stream->codecpar->extradata_size > 0) {
+        if (auto e = gv::parse_extradata(
+                codec, {stream->codecpar->extradata,
+                        static_cast<std::size_t>(stream->codecpar->extradata_size)})) {
+            extra = std::move(*e);
+        }
+    }
+
+    std::unique_ptr<AVPacket, PacketFree> pkt(av_packet_alloc());
+    bool got_video = false;
+    std::string error;
+    const AVRational ts90k{1, 90'000};
+    std::optional<std::uint64_t> last_pts;
+    std::uint64_t last_step = 0;
+    while (!shared.stop) {
+        shared.set_deadline(options_.timeout_s);
+        const int r = av_read_frame(fmt.get(), pkt.get());
+        if (r < 0) {
+            error = r == AVERROR_EXIT ? "no data for " + std::to_string(options_.timeout_s) + " s"
+                                      : "rtsp read: " + av_error(r);
+            break;
+        }
+        if (pkt->stream_index != index || pkt->size <= 0) {
+            av_packet_unref(pkt.get());
+            continue;
+        }
+        const auto arrival = Clock::now();
+        const std::span<const std::uint8_t> data(pkt->data, static_cast<std::size_t>(pkt->size));
+        gv::AccessUnitBuffer au;
+        au.codec = codec;
+        std::optional<gv::Bytes> converted;
+        if (extra.length_size > 0)
+            converted = gv::length_prefixed_to_annexb(data, extra.length_size);
+        const std::span<const std::uint8_t> annexb = converted ? std::span(*converted) : data;
+        for (const auto nal : gv::split_annexb(annexb)) extra.sets.update(codec, nal);
+        au.data = gv::with_parameter_sets(codec, annexb, extra.sets);
+        au.key_frame = gv::is_key_frame(codec, au.data);
+        if (pkt->pts != AV_NOPTS_VALUE) {
+            au.pts = static_cast<std::uint64_t>(av_rescale_q(pkt->pts, stream->time_base, ts90k)) &
+                     (gv::pts_modulus - 1);
+        } else {
+            // libavformat leaves the session's first frame without one; its RTP clock counts
+            // from that frame, so it is 0; a later gap gets the last step again.
+            au.pts = last_pts ? (*last_pts + last_step) & (gv::pts_modulus - 1) : 0;
+        }
+        if (last_pts) last_step = (*au.pts - *last_pts) & (gv::pts_modulus - 1);
+        last_pts = au.pts;
+        if (pkt->dts != AV_NOPTS_VALUE && pkt->dts != pkt->pts) {
+            au.dts = static_cast<std::uint64_t>(av_rescale_q(pkt->dts, stream->time_base, ts90k)) &
+                     (gv::pts_modulus - 1);
+        }
+        const std::size_t bytes = data.size();
+        av_packet_unref(pkt.get());
+        if (!got_video) post_connected(true, {});
+        got_video = true;
+        if (shared.queued.load() >= options_.max_queued_units) {
+            ++shared.dropped;
+            continue;
+        }
+        ++shared.queued;
+        asio::post(io_, [this, alive = shared.alive, queued = &shared.queued, keep = shared_,
+                         au = std::move(au), arrival, bytes] {
+            --*queued;
+            if (alive.expired()) return;
+            info_.on_bytes(bytes, std::chrono::duration<double>(arrival - epoch_).count());
+            info_.on_access_unit(au.view());
+            if (handlers_.access_unit) handlers_.access_unit(au.view(), arrival);
+        });
+    }
+    if (!shared.stop) post_connected(false, error);
+    return got_video;
+}
+
+VideoInputStatus RtspInput::status() const {
+    VideoInputStatus s;
+    s.input = url_.text;
+    s.connected = connected_;
+    s.stream = info_.info(std::chrono::duration<double>(Clock::now() - epoch_).count());
+    s.last_error = last_error_;
+    if (shared_) {
+        s.reconnects = shared_->reconnects;
+        s.dropped_units = shared_->dropped;
+    }
+    return s;
+}
+
+}  // namespace gimbald::video

@@ -1,0 +1,30 @@
+// What an Orion can do, read from its STATE: pan/tilt positions and rates (OrionCmd),
+// geopoints, zoom as a ratio of the first camera's focal lengths, the line of sight from the
+// mount quaternion and pan/tilt, limits from LIMITS, identity from the version packets.
+#pragma once
+
+#include "session/capabilities.hpp"
+
+namespace gimbal::protocols {
+
+class OrionCapabilities final : public session::Capabilities {
+  public:
+    session::Features features() const override;
+    session::Request point_angles(const nlohmann::json& state,
+                                  const session::AnglesTarget& t) const override;
+    session::Request rate(const nlohmann::json& state, const session::RateTarget& t) const override;
+    session::Request geopoint(const nlohmann::json& state,
+                              const session::GeoTarget& t) const override;
+    session::Request stop(const nlohmann::json& state) const override;
+    session::Request zoom(const nlohmann::json& state, const session::ZoomTarget& t) const override;
+    std::optional<geo::Quat> line_of_sight(const nlohmann::json& state) const override;
+    session::View view(const nlohmann::json& state) const override;
+    session::Identity identity(const nlohmann::json& state) const override;
+    session::Limits limits(const nlohmann::json& state) const override;
+    session::Camera camera(const nlohmann::json& state) const override;
+};
+
+// The one instance (capabilities hold no state).
+const OrionCapabilities& orion_capabilities();
+
+}  // namespace gimbal::protocols

@@ -1,0 +1,73 @@
+// The protocol registry: everything gimbald knows about each gimbal protocol, in one entry
+// per protocol (lib/protocols/<name>/<name>_entry.cpp). The daemon, the recorder, the vehicle
+// feed, gimbal-sim, gimbal-replay, gimbal-export, gimbalctl and the docs generator ask the
+// registry; none of them names a protocol. Adding a protocol: docs/architecture.md.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "framing/stream_splitter.hpp"
+#include "protocols/protocol_id.hpp"
+#include "protocols/simulator.hpp"
+#include "protocols/track.hpp"
+#include "protocols/vehicle_feeder.hpp"
+#include "session/capabilities.hpp"
+#include "session/protocol.hpp"
+
+namespace gimbal::protocols {
+
+// The daemon-wide settings a session may use (contract section 3: telemetry, stare, laser).
+struct SessionSettings {
+    double stale_after_s = 1.0;
+    bool auto_ack_stare = false;
+    bool allow_fire = false;
+    bool allow_safety_bypass = false;
+};
+
+// A catalogue command (lib/command/catalogue.hpp) this protocol plans, and what it sends.
+struct PlannedCommand {
+    std::string_view name;
+    std::string_view wire;  // for the docs: "GeopointCmd, id 213, 21 bytes"
+};
+
+struct Entry {
+    ProtocolId id{};
+    std::string_view name;          // lower case: configuration, STATE `protocol`, recordings
+    std::string_view display_name;  // capitalised: help groups, docs headings
+    std::string_view dissector;     // the recordings' exported-PDU dissector of its frames
+    std::span<const PlannedCommand> commands;
+    const session::Capabilities* capabilities = nullptr;
+
+    // `gimbal` is the gimbal's configuration object as config.cpp writes it (to_json): the
+    // protocol reads its own keys (`feed`, and its options section) from it.
+    std::unique_ptr<session::Protocol> (*make_session)(const SessionSettings& settings,
+                                                       const nlohmann::json& gimbal) = nullptr;
+    std::unique_ptr<VehicleFeeder> (*make_feeder)(const nlohmann::json& gimbal) = nullptr;
+    // The gimbal-to-ground stream split as its framer splits it (the flight recorder).
+    std::unique_ptr<framing::StreamSplitter> (*make_splitter)() = nullptr;
+    // The gimbal-to-ground stream as track points (gimbal-export).
+    std::unique_ptr<TrackDecoder> (*make_track_decoder)() = nullptr;
+    Simulator simulator;
+
+    bool plans(std::string_view cmd) const;
+};
+
+const Entry& entry(ProtocolId id);
+// Every protocol's entry, in all_protocol_ids order.
+std::vector<const Entry*> entries();
+const Entry* find(std::string_view name);
+const Entry* find_by_dissector(std::string_view dissector);
+// The protocols' names, in all_protocol_ids order.
+std::vector<std::string> names();
+// The names joined by ", " (for messages and help texts).
+std::string names_text();
+// The protocols that plan `cmd`, in order.
+std::vector<const Entry*> planners_of(std::string_view cmd);
+
+}  // namespace gimbal::protocols

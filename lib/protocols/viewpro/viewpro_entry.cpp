@@ -1,0 +1,74 @@
+#include "protocols/viewpro/viewpro_entry.hpp"
+
+#include "protocols/viewpro/viewpro_capabilities.hpp"
+#include "protocols/viewpro/viewpro_feed.hpp"
+#include "protocols/viewpro/viewpro_protocol.hpp"
+#include "protocols/viewpro/viewpro_track.hpp"
+
+namespace gimbal::protocols {
+
+namespace {
+
+// The catalogue commands a Viewpro plans (command/viewpro_commands.cpp), with their frames.
+constexpr PlannedCommand commands[] = {
+    {"viewpro_output", "`AA 55 0F MM FF`, `sent: [{\"frame\":\"mode\",\"len\":5}]`"},
+    {"viewpro_adjust",
+     "`AA 55 06 XX FF` / `AA 55 36 XX FF`, steps of at most 1.00 degree, yaw first; the reply "
+     "adds `steps`"},
+    {"vehicle", "IN2 (40 bytes) with `vel_ned`, else IN1 (34 bytes)"},
+};
+
+std::size_t frame_size(const viewpro::OutputFrame& f) {
+    return f.size;
+}
+
+// gimbals[].viewpro.output: the mode command sent on every (re)connect.
+viewpro::Mode output_mode(const nlohmann::json& gimbal) {
+    viewpro::Mode mode;
+    const auto section = gimbal.find("viewpro");
+    if (section == gimbal.end() || !section->is_object()) return mode;
+    const auto out = section->find("output");
+    if (out == section->end() || !out->is_object()) return mode;
+    if (auto osd = viewpro::parse_osd(out->value("osd", std::string("target")))) mode.osd = *osd;
+    mode.serial = out->value("serial", mode.serial);
+    mode.network = out->value("network", mode.network);
+    if (auto format = viewpro::parse_out_format(out->value("format", std::string("out3"))))
+        mode.format = *format;
+    return mode;
+}
+
+std::unique_ptr<session::Protocol> make_session(const SessionSettings& s,
+                                                const nlohmann::json& gimbal) {
+    ViewproOptions options;
+    options.stale_after_s = s.stale_after_s;
+    options.output = output_mode(gimbal);
+    return std::make_unique<ViewproProtocol>(options);
+}
+
+Entry make_entry() {
+    Entry e;
+    e.id = ProtocolId::viewpro;
+    e.name = "viewpro";
+    e.display_name = "Viewpro";
+    e.dissector = "viewpro";
+    e.commands = commands;
+    e.capabilities = &viewpro_capabilities();
+    e.make_session = make_session;
+    e.make_feeder = make_viewpro_feeder;
+    e.make_splitter = [] {
+        return std::unique_ptr<framing::StreamSplitter>(
+            std::make_unique<framing::FramerSplitter<viewpro::OutputFramer, frame_size>>());
+    };
+    e.make_track_decoder = make_viewpro_track_decoder;
+    e.simulator = viewpro_simulator();
+    return e;
+}
+
+}  // namespace
+
+const Entry& viewpro_entry() {
+    static const Entry entry = make_entry();
+    return entry;
+}
+
+}  // namespace gimbal::protocols

@@ -1,0 +1,211 @@
+// The protocol registry: every entry complete and consistent with the command catalogue, and
+// each entry's parts working together end to end: its session configures its simulator, the
+// simulator's bytes come back as telemetry, the recorder's splitter and the export's track
+// decoder see the same frames.
+#include <catch2/catch.hpp>
+#include <set>
+
+#include "command/catalogue.hpp"
+#include "protocols/registry.hpp"
+#include "state/messages.hpp"
+
+using namespace gimbal;
+using nlohmann::json;
+using protocols::Entry;
+
+namespace {
+
+// A gimbal configuration object as config.cpp writes it, for protocol `name`.
+json gimbal_config(const Entry& e) {
+    return {{"name", "g"}, {"protocol", e.name}, {"link", {{"type", "sim"}}}};
+}
+
+struct Run {
+    std::vector<std::uint8_t> stream;  // everything the simulated gimbal sent
+    std::uint64_t telemetry = 0;
+    session::FrameCounters counters;
+    json state;
+};
+
+// The session asks the simulated gimbal for what it needs (on_connect), then listens for
+// `seconds`.
+Run run(const Entry& e, double seconds) {
+    auto session = e.make_session(protocols::SessionSettings{}, gimbal_config(e));
+    protocols::SimScenario scenario;
+    scenario.unix_time_s = 1'790'000'000.0;
+    auto device = e.simulator.make(scenario);
+    for (const auto& bytes : session->on_connect()) device->receive(bytes, 0.0);
+    Run r;
+    std::vector<state::Event> events;
+    std::vector<session::Bytes> replies;
+    for (double t = 0.01; t <= seconds; t += 0.01) {
+        std::vector<std::uint8_t> out;
+        device->advance(t, out);
+        session->receive(out, t, events, replies);
+        r.stream.insert(r.stream.end(), out.begin(), out.end());
+    }
+    r.telemetry = session->telemetry_count();
+    r.counters = session->counters();
+    r.state = session->snapshot(seconds);
+    r.state["protocol"] = std::string(session->name());
+    return r;
+}
+
+}  // namespace
+
+TEST_CASE("every protocol has one complete entry", "[registry]") {
+    std::set<std::string_view> names, dissectors;
+    std::set<protocols::ProtocolId> ids;
+    for (const auto id : protocols::all_protocol_ids) {
+        const Entry& e = protocols::entry(id);
+        INFO(e.name);
+        CHECK(e.id == id);
+        CHECK(names.insert(e.name).second);
+        CHECK(dissectors.insert(e.dissector).second);
+        CHECK(ids.insert(e.id).second);
+        CHECK_FALSE(e.display_name.empty());
+        CHECK(protocols::to_string(id) == e.name);
+        CHECK(protocols::parse_protocol(e.name) == id);
+        CHECK(protocols::find(e.name) == &e);
+        CHECK(protocols::find_by_dissector(e.dissector) == &e);
+        CHECK(e.capabilities != nullptr);
+        CHECK(e.make_session != nullptr);
+        CHECK(e.make_feeder != nullptr);
+        CHECK(e.make_splitter != nullptr);
+        CHECK(e.make_track_decoder != nullptr);
+        CHECK(e.simulator.make != nullptr);
+        CHECK(e.simulator.defaults != nullptr);
+        CHECK(e.simulator.fault_frames != nullptr);
+        CHECK(e.simulator.make_rx_decoder != nullptr);
+        CHECK_FALSE(e.simulator.manual.empty());
+        CHECK_FALSE(e.simulator.rx_log_manual.empty());
+        CHECK((e.simulator.is_discovery_request == nullptr) ==
+              (e.simulator.discovery_reply == nullptr));
+    }
+    CHECK(protocols::names().size() == protocols::all_protocol_ids.size());
+    CHECK_FALSE(protocols::parse_protocol("gopro"));
+    CHECK(protocols::find("gopro") == nullptr);
+    CHECK(protocols::find_by_dissector("data") == nullptr);
+    CHECK(state::is_state_key("capabilities"));  // the key the daemon adds from the entry
+}
+
+TEST_CASE("a protocol plans exactly the catalogue commands its entry lists", "[registry]") {
+    for (const auto* e : protocols::entries()) {
+        auto session = e->make_session(protocols::SessionSettings{}, gimbal_config(*e));
+        CHECK(session->name() == e->name);
+        CHECK(&session->capabilities() == e->capabilities);
+        for (const auto& planned : e->commands) {
+            INFO(e->name << " lists " << planned.name);
+            const auto* spec = command::find_command(planned.name);
+            REQUIRE(spec != nullptr);
+            CHECK(spec->scope == command::Scope::protocol);
+            CHECK_FALSE(planned.wire.empty());
+        }
+        for (const auto& c : command::catalogue()) {
+            INFO(e->name << ": " << c.name);
+            CHECK(session->supports(c.name) == e->plans(c.name));
+        }
+    }
+    // Every protocol command has a protocol that plans it.
+    for (const auto& c : command::catalogue()) {
+        INFO(c.name);
+        if (c.scope == command::Scope::protocol)
+            CHECK_FALSE(protocols::planners_of(c.name).empty());
+        else
+            CHECK(protocols::planners_of(c.name).empty());
+    }
+}
+
+TEST_CASE("each entry's session, simulator, splitter and track decoder work together",
+          "[registry]") {
+    for (const auto* e : protocols::entries()) {
+        INFO(e->name);
+        const Run r = run(*e, 3.0);
+        CHECK(r.telemetry > 10);
+        CHECK(r.counters.bad_checksums == 0);
+        CHECK(r.counters.dropped_bytes == 0);
+        CHECK(r.state["protocol"] == e->name);
+
+        // The recorder's splitter: the pieces are the stream, and the frames the session's.
+        auto splitter = e->make_splitter();
+        std::vector<std::uint8_t> joined;
+        std::uint64_t frames = 0;
+        const framing::StreamSplitter::Piece piece = [&](std::span<const std::uint8_t> b,
+                                                         bool is_frame) {
+            joined.insert(joined.end(), b.begin(), b.end());
+            if (is_frame) ++frames;
+        };
+        for (std::size_t at = 0; at < r.stream.size(); at += 97)
+            splitter->push(
+                std::span(r.stream).subspan(at, std::min<std::size_t>(97, r.stream.size() - at)),
+                piece);
+        splitter->flush(piece);
+        CHECK(joined == r.stream);
+        CHECK(frames == r.counters.rx_packets);
+
+        // The export hook: one track point per telemetry frame, each with the aircraft.
+        auto decoder = e->make_track_decoder();
+        std::vector<protocols::TrackPoint> points;
+        decoder->push(r.stream, 1'790'000'000'000'000, points);
+        CHECK(decoder->frames() == r.counters.rx_packets);
+        CHECK(decoder->decode_errors() == 0);
+        CHECK(points.size() == r.telemetry);
+        REQUIRE_FALSE(points.empty());
+        CHECK(points.back().aircraft.has_value());
+
+        // The capabilities read that STATE.
+        CHECK(e->capabilities->line_of_sight(r.state).has_value());
+        const auto view = e->capabilities->view(r.state);
+        CHECK(view.lat_deg.has_value());
+        CHECK(view.lon_deg.has_value());
+        CHECK_FALSE(e->capabilities->identity(r.state).vendor.empty());
+    }
+}
+
+TEST_CASE("the rx-log decoder reads what the session sends", "[registry]") {
+    for (const auto* e : protocols::entries()) {
+        INFO(e->name);
+        auto session = e->make_session(protocols::SessionSettings{}, gimbal_config(*e));
+        auto decoder = e->simulator.make_rx_decoder();
+        std::vector<json> lines;
+        std::size_t sent = 0;
+        for (const auto& bytes : session->on_connect()) {
+            decoder->push(bytes, lines);
+            ++sent;
+        }
+        CHECK(lines.size() == sent);
+        for (const auto& line : lines) {
+            CHECK(line.contains("hex"));
+            CHECK(line.contains("len"));
+        }
+    }
+}
+
+TEST_CASE("sim flags: every key has a default, and given options reach the model", "[registry]") {
+    for (const auto* e : protocols::entries()) {
+        INFO(e->name);
+        const json defaults = e->simulator.defaults();
+        for (const auto& f : e->simulator.flags) {
+            INFO(f.name);
+            CHECK(f.name.starts_with("--"));
+            CHECK(defaults.contains(std::string(f.key)));
+        }
+    }
+}
+
+TEST_CASE("discovery: only the protocol that has it answers", "[registry]") {
+    for (const auto* e : protocols::entries()) {
+        if (!e->simulator.is_discovery_request) continue;
+        const auto reply = e->simulator.discovery_reply();
+        CHECK_FALSE(reply.empty());
+        CHECK_FALSE(e->simulator.is_discovery_request(reply));  // a reply is not a request
+        CHECK_FALSE(e->simulator.is_discovery_request(std::vector<std::uint8_t>{1, 2, 3}));
+    }
+}
+
+TEST_CASE("feeders: kinds from the gimbal's feed configuration", "[registry]") {
+    for (const auto* e : protocols::entries()) {
+        auto feeder = e->make_feeder(gimbal_config(*e));
+        CHECK_FALSE(feeder->kind().empty());
+    }
+}
