@@ -78,6 +78,7 @@ App::App(const cfg::Config& config)
     options.bind = config_.command.bind.to_string();
     options.port = config_.command.port;
     options.max_subscribers = config_.command.max_subscribers;
+    options.max_subscribers_per_host = config_.command.max_subscribers_per_host;
     options.allowed = [this](const boost::asio::ip::address& a) {
         return config_.command.allowed(a);
     };

@@ -2,9 +2,9 @@
 
 #include <boost/asio/ip/address.hpp>
 #include <boost/asio/post.hpp>
-#include <map>
 
 #include "state/messages.hpp"
+#include "state/state_push.hpp"
 
 namespace gimbald {
 
@@ -35,7 +35,7 @@ CommandServer::CommandServer(boost::asio::io_context& io, CommandServerOptions o
       path_(path),
       socket_(io),
       publish_timer_(io),
-      subscriptions_(options_.max_subscribers),
+      subscriptions_(options_.max_subscribers, options_.max_subscribers_per_host),
       dropped_(log::Level::warn, "dropped_source", "datagrams from sources not in command.allow") {
     const Endpoint local(boost::asio::ip::make_address(options_.bind), options_.port);
     socket_.open(local.protocol());
@@ -91,9 +91,14 @@ void CommandServer::on_receive(const boost::system::error_code& ec, std::size_t 
 }
 
 void CommandServer::send(const Endpoint& to, std::string payload) {
-    auto data = std::make_shared<std::string>(std::move(payload));
-    socket_.async_send_to(boost::asio::buffer(*data), to,
-                          [data](const boost::system::error_code&, std::size_t) {});
+    send(to, std::make_shared<const std::string>(std::move(payload)));
+}
+
+void CommandServer::send(const Endpoint& to, std::shared_ptr<const std::string> payload) {
+    const auto& bytes = *payload;
+    socket_.async_send_to(
+        boost::asio::buffer(bytes), to,
+        [payload = std::move(payload)](const boost::system::error_code&, std::size_t) {});
 }
 
 std::string CommandServer::payload_for(const Endpoint& to, const json& message) const {
@@ -131,28 +136,19 @@ void CommandServer::publish_states() {
     for (auto* session : path_.sessions()) {
         const auto due = subscriptions_.due_state(session->name(), horizon);
         if (due.empty()) continue;
-        // One snapshot per gimbal per tick, and one dump per distinct key selection, shared
-        // by every plain subscriber due now; signed subscribers get their own signature.
-        const json state = session->snapshot();
-        std::map<std::vector<std::string>, std::string> plain;
+        // One snapshot per gimbal per tick; one message (and one dump) per distinct key
+        // selection and kind, and per previous push for delta streams, shared by every plain
+        // subscriber due now (state_push.hpp); signed subscribers get their own signature.
+        gimbal::state::PushBatch batch(session->name(), session->snapshot());
         for (const auto& to : due) {
-            const Subscription* s = subscriptions_.find(to);
-            static const std::vector<std::string> all;
-            const auto& keys = s ? s->keys : all;
-            if (s && s->key_id) {
-                send(to, payload_for(
-                             to, gimbal::state::state_message(
-                                     session->name(), gimbal::state::select_keys(state, keys))));
+            Subscription* s = subscriptions_.find(to);
+            if (!s) continue;
+            const auto& message = batch.next(s->stream, s->cursors[session->name()], horizon);
+            if (s->key_id && options_.sign) {
+                send(to, options_.sign(*s->key_id, message.json()));
                 continue;
             }
-            auto it = plain.find(keys);
-            if (it == plain.end())
-                it = plain
-                         .emplace(keys,
-                                  dump(gimbal::state::state_message(
-                                      session->name(), gimbal::state::select_keys(state, keys))))
-                         .first;
-            send(to, it->second);
+            send(to, message.text());
         }
     }
     subscriptions_.mark_sent(horizon);

@@ -25,6 +25,7 @@ struct CommandServerOptions {
     std::string bind = "127.0.0.1";
     std::uint16_t port = 8760;
     std::size_t max_subscribers = 64;
+    std::size_t max_subscribers_per_host = 16;
     // command.allow: true when a datagram from this address may be answered.
     std::function<bool(const boost::asio::ip::address&)> allowed;
     // Signs a push to a signed subscription with its key; empty: pushes go out plain.
@@ -50,6 +51,8 @@ class CommandServer {
     void do_receive();
     void on_receive(const boost::system::error_code& ec, std::size_t n);
     void send(const Endpoint& to, std::string payload);
+    // A datagram shared by several subscribers: sent without a copy.
+    void send(const Endpoint& to, std::shared_ptr<const std::string> payload);
     void schedule_publish();
     void publish_states();
     std::string payload_for(const Endpoint& to, const nlohmann::json& message) const;

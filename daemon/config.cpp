@@ -606,6 +606,7 @@ void read_command(Fields& f, CommandConfig& command) {
         }
     }
     f.integer("max_subscribers", command.max_subscribers, {1, 1024});
+    f.integer("max_subscribers_per_host", command.max_subscribers_per_host, {1, 1024});
     read_auth(f, command);
 }
 
@@ -805,6 +806,8 @@ MqttConfig read_mqtt(Fields& f) {
         else
             mqtt.state_keys = std::move(names);
     }
+    f.boolean("state_changes", mqtt.state_changes);
+    f.number("state_full_every_s", mqtt.state_full_every_s, {1, 3600});
     f.boolean("commands", mqtt.commands);
     f.integer("queue_max", mqtt.queue_max, {10, 1000000});
     return mqtt;
@@ -849,6 +852,8 @@ json mqtt_to_json(const MqttConfig& m) {
             {"keepalive_s", m.keepalive_s},
             {"state_rate_hz", m.state_rate_hz},
             {"state_keys", m.state_keys ? json(*m.state_keys) : json(nullptr)},
+            {"state_changes", m.state_changes},
+            {"state_full_every_s", m.state_full_every_s},
             {"commands", m.commands},
             {"queue_max", m.queue_max}};
 }
@@ -1238,6 +1243,7 @@ json to_json(const Config& config, bool show_token) {
           {"allow", allow},
           {"token", token},
           {"max_subscribers", config.command.max_subscribers},
+          {"max_subscribers_per_host", config.command.max_subscribers_per_host},
           {"auth", config.command.auth == AuthMode::signed_requests ? "signed" : "none"},
           {"keys", keys},
           {"max_skew_s", config.command.max_skew_s},

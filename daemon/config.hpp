@@ -136,6 +136,7 @@ struct CommandConfig {
     std::vector<Cidr> allow = default_allow();
     std::optional<std::string> token;
     unsigned max_subscribers = 64;
+    unsigned max_subscribers_per_host = 16;  // one source address may not fill the table
     AuthMode auth = AuthMode::none;
     std::vector<CommandKey> keys;
     double max_skew_s = 30;
@@ -227,6 +228,8 @@ struct MqttConfig {
     double keepalive_s = 10;
     double state_rate_hz = 2;
     std::optional<std::vector<std::string>> state_keys;
+    bool state_changes = false;      // delta stream: merge patches between full STATEs
+    double state_full_every_s = 10;  // with state_changes: a full STATE this often
     bool commands = false;
     unsigned queue_max = 1000;
     bool operator==(const MqttConfig&) const = default;

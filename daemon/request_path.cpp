@@ -12,6 +12,7 @@
 #include "logging.hpp"
 #include "protocols/registry.hpp"
 #include "state/messages.hpp"
+#include "stream_params.hpp"
 
 namespace gimbald {
 
@@ -482,16 +483,18 @@ json RequestPath::subscription(Outcome& o, const RequestSource& from) {
     s.rate_hz = params.number_or("rate_hz", 0.1, 50.0, 10.0);
     s.ttl_s = params.number_or("ttl_s", 1.0, 3600.0, 60.0);
     s.events = params.boolean_or("events", true);
-    if (const json* k = params.raw("keys")) {
-        if (auto problem = gimbal::state::parse_state_keys(*k, s.keys); !problem.empty())
-            return o.fail(Error{code::bad_request, problem});
-    }
+    read_stream_options(params, s.stream);
     params.reject_unknown();
     if (!params.ok()) return o.fail(params.error());
     const auto outcome = subscriptions_->subscribe(*from.udp, s, steady_seconds());
     if (outcome == Subscriptions::Result::full)
         return o.fail(Error{code::busy, "subscriber table full (command.max_subscribers = " +
                                             std::to_string(subscriptions_->capacity()) + ")"});
+    if (outcome == Subscriptions::Result::host_full)
+        return o.fail(
+            Error{code::busy, "too many subscriptions from " + from.udp->address().to_string() +
+                                  " (command.max_subscribers_per_host = " +
+                                  std::to_string(subscriptions_->per_host_capacity()) + ")"});
     if (outcome == Subscriptions::Result::added)
         log::info("subscriber", "subscriber added",
                   {{"src", from.address},
@@ -501,7 +504,7 @@ json RequestPath::subscription(Outcome& o, const RequestSource& from) {
     results["rate_hz"] = s.rate_hz;
     results["ttl_s"] = s.ttl_s;
     results["events"] = s.events;
-    if (!s.keys.empty()) results["keys"] = s.keys;
+    describe_stream_options(s.stream, results);
     if (subscriptions_changed_) subscriptions_changed_();
     return results;
 }

@@ -15,9 +15,17 @@ Subscriptions::Result Subscriptions::subscribe(const Endpoint& who, Subscription
         return Result::renewed;
     }
     if (subs_.size() >= max_) return Result::full;
+    if (host_count(who.address()) >= max_per_host_) return Result::host_full;
     s.next_state_s = now_s;  // the first STATE goes out at once
     subs_.emplace(who, s);
     return Result::added;
+}
+
+std::size_t Subscriptions::host_count(const boost::asio::ip::address& address) const {
+    std::size_t n = 0;
+    for (const auto& [who, s] : subs_)
+        if (who.address() == address) ++n;
+    return n;
 }
 
 bool Subscriptions::unsubscribe(const Endpoint& who) {
@@ -58,6 +66,11 @@ void Subscriptions::mark_sent(double now_s) {
         const double period = 1.0 / s.rate_hz;
         s.next_state_s = (std::floor(now_s / period + 1e-6) + 1.0) * period;
     }
+}
+
+Subscription* Subscriptions::find(const Endpoint& who) {
+    const auto it = subs_.find(who);
+    return it == subs_.end() ? nullptr : &it->second;
 }
 
 std::vector<Subscriptions::Endpoint> Subscriptions::event_targets(const std::string& gimbal) const {

@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "state/state_push.hpp"
+
 namespace gimbald {
 
 // The clock of the subscriber table: steady seconds, the same for every caller.
@@ -24,8 +26,11 @@ struct Subscription {
     double rate_hz = 10.0;
     double ttl_s = 60.0;
     bool events = true;
-    std::vector<std::string> keys;      // STATE keys to send; empty: all (subscribe.keys)
-    std::optional<std::string> key_id;  // signed subscription: pushes are signed with this key
+    gimbal::state::StreamOptions stream;  // keys, changes, full_every_s
+    std::optional<std::string> key_id;    // signed subscription: pushes are signed with this key
+    // With stream.changes: what this subscriber last got of each gimbal. A renewal starts
+    // afresh, so the first push after every subscribe is a full STATE.
+    std::map<std::string, gimbal::state::DeltaCursor> cursors;
     double expires_s = 0;
     double next_state_s = 0;
 };
@@ -34,10 +39,14 @@ class Subscriptions {
   public:
     using Endpoint = boost::asio::ip::udp::endpoint;
 
-    explicit Subscriptions(std::size_t max_subscribers) : max_(max_subscribers) {}
+    // At most `max_subscribers` in all and `max_per_host` from one source address
+    // (command.max_subscribers, command.max_subscribers_per_host).
+    explicit Subscriptions(std::size_t max_subscribers, std::size_t max_per_host = 16)
+        : max_(max_subscribers), max_per_host_(max_per_host) {}
 
-    enum class Result { added, renewed, full };
-    // Adds or renews (replacing its parameters) the subscription of `who`.
+    enum class Result { added, renewed, full, host_full };
+    // Adds or renews (replacing its parameters) the subscription of `who`. A new one is
+    // refused when the table is full, or when `who`'s address already holds max_per_host.
     Result subscribe(const Endpoint& who, Subscription s, double now_s);
     bool unsubscribe(const Endpoint& who);
     // Drops subscriptions whose TTL passed; returns who was dropped.
@@ -47,6 +56,7 @@ class Subscriptions {
     // mark_sent() once per tick.
     std::vector<Endpoint> due_state(const std::string& gimbal, double now_s) const;
     const Subscription* find(const Endpoint& who) const;
+    Subscription* find(const Endpoint& who);
     void mark_sent(double now_s);
     // Subscribers that want events of `gimbal`.
     std::vector<Endpoint> event_targets(const std::string& gimbal) const;
@@ -55,12 +65,16 @@ class Subscriptions {
 
     std::size_t size() const { return subs_.size(); }
     std::size_t capacity() const { return max_; }
+    std::size_t per_host_capacity() const { return max_per_host_; }
 
   private:
     static bool covers(const Subscription& s, const std::string& gimbal) {
         return !s.gimbal || *s.gimbal == gimbal;
     }
+    std::size_t host_count(const boost::asio::ip::address& address) const;
+
     std::size_t max_;
+    std::size_t max_per_host_;
     std::map<Endpoint, Subscription> subs_;
 };
 

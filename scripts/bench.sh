@@ -1,36 +1,90 @@
 #!/usr/bin/env bash
 # Builds the benchmarks with the `release` preset and runs them: the Orion codec (bench_orion),
-# MISB ST 0601 KLV generation and decoding (bench_klv), one ray-terrain intersection on a
-# 1 arc-second model (bench_terrain, docs/terrain.md "Cost"), the video relay: a 1080p30
-# 8 Mbit/s H.264 TS with KLV from a UDP input to two UDP outputs (bench_video_relay, CPU and
-# latency, docs/video.md "Relay budget"; VIDEO_SECONDS sets its length, default 10), then the
+# MISB ST 0601 KLV generation and decoding (bench_klv), the video relay: a 1080p30 8 Mbit/s
+# H.264 TS with KLV from a UDP input to two UDP outputs (bench_video_relay, CPU and latency,
+# docs/video.md "Relay budget"; VIDEO_SECONDS sets its length, default 10), one ray-terrain
+# intersection on a 1 arc-second model (bench_terrain, docs/terrain.md "Cost"), then the
 # simulated camera's render + encode at 640x360 15 fps (bench_sim_video, docs/simulator.md
 # "Cost"). Extra arguments go to each Google Benchmark program, bench_terrain and
 # bench_sim_video, e.g.
 #   scripts/bench.sh --benchmark_filter=Decode --benchmark_repetitions=5
-#   scripts/bench.sh --smoke     a few seconds: every benchmark briefly (the small terrain
-#                                model), a check for CI that they build and run; its timings
-#                                mean nothing.
+#
+#   --smoke     a few seconds: every codec benchmark once, briefly, the video relay, terrain
+#               and simulated-camera benchmarks in their smoke modes, the recorder for one
+#               second; fails when one does not run or loses something (timings are not
+#               checked). ctest runs it as "bench: bench.sh --smoke".
+#   --no-build  use the programs already built in BUILD_DIR
+#
+# Environment: BUILD_DIR, an already configured build directory instead of build/release;
+# JOBS, parallel build jobs (default: nproc).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-smoke=()
+smoke=false
+build_it=true
 args=()
-for a in "$@"; do
-  if [ "$a" = "--smoke" ]; then smoke=(--smoke); else args+=("$a"); fi
+for arg in "$@"; do
+    case "$arg" in
+        --smoke) smoke=true ;;
+        --no-build) build_it=false ;;
+        *) args+=("$arg") ;;
+    esac
 done
-google_smoke=()
-[ ${#smoke[@]} -gt 0 ] && google_smoke=(--benchmark_min_time=0.01)
-jobs=$(nproc 2>/dev/null || echo 2)
-cmake --preset release >/dev/null
-cmake --build --preset release --target bench_orion bench_klv bench_terrain bench_video_relay \
-  bench_sim_video -j "$jobs"
-build/release/tests/bench/bench_orion ${google_smoke[@]+"${google_smoke[@]}"} ${args[@]+"${args[@]}"}
-build/release/tests/bench/bench_klv ${google_smoke[@]+"${google_smoke[@]}"} ${args[@]+"${args[@]}"}
-build/release/tests/bench/terrain/bench_terrain ${smoke[@]+"${smoke[@]}"} ${args[@]+"${args[@]}"}
-video_dir=build/release/tests/bench/video
-if [ ${#smoke[@]} -gt 0 ]; then
-  "$video_dir/bench_video_relay" --smoke --dir "$video_dir"
+jobs=${JOBS:-$(nproc 2>/dev/null || echo 2)}
+if [[ -n "${BUILD_DIR:-}" ]]; then
+    build=$BUILD_DIR
 else
-  "$video_dir/bench_video_relay" --seconds "${VIDEO_SECONDS:-10}" --dir "$video_dir"
+    cmake --preset release >/dev/null
+    build=build/release
 fi
-exec build/release/tests/bench/sim_video/bench_sim_video ${smoke[@]+"${smoke[@]}"} ${args[@]+"${args[@]}"}
+targets=(bench_orion bench_klv bench_terrain bench_video_relay bench_sim_video)
+$smoke && targets+=(bench_record)
+$build_it && cmake --build "$build" --target "${targets[@]}" -j "$jobs"
+bench=$build/tests/bench
+
+if ! $smoke; then
+    "$bench/bench_orion" ${args[@]+"${args[@]}"}
+    "$bench/bench_klv" ${args[@]+"${args[@]}"}
+    "$bench/video/bench_video_relay" --seconds "${VIDEO_SECONDS:-10}" --dir "$bench/video"
+    "$bench/terrain/bench_terrain" ${args[@]+"${args[@]}"}
+    exec "$bench/sim_video/bench_sim_video" ${args[@]+"${args[@]}"}
+fi
+
+out=$(mktemp -d)
+trap 'rm -rf "$out"' EXIT
+fail() { echo "bench.sh --smoke: FAILED: $*" >&2; exit 1; }
+
+# Every registered Google benchmark must run and report; none may flag an error.
+for program in bench_orion bench_klv; do
+    expected=$("$bench/$program" --benchmark_list_tests | wc -l)
+    "$bench/$program" --benchmark_min_time=0.01 --benchmark_format=json \
+        >"$out/$program.json" 2>"$out/$program.err" ||
+        fail "$program exited $?: $(cat "$out/$program.err")"
+    python3 - "$out/$program.json" "$expected" "$program" <<'PY' ||
+import json, sys
+runs = json.load(open(sys.argv[1]))["benchmarks"]
+bad = [b["name"] for b in runs if b.get("error_occurred") or not b.get("iterations")]
+print("%s: %d of %s benchmarks ran" % (sys.argv[3], len(runs), sys.argv[2]))
+sys.exit(1 if bad or len(runs) != int(sys.argv[2]) else 0)
+PY
+        fail "$program did not report every benchmark"
+done
+
+# The video relay exits non-zero when it loses a unit.
+"$bench/video/bench_video_relay" --smoke --dir "$bench/video" >"$out/video" 2>&1 ||
+    fail "bench_video_relay --smoke: $(tail -5 "$out/video")"
+echo "bench_video_relay --smoke: ran, nothing lost"
+
+# The terrain benchmark on its small model.
+"$bench/terrain/bench_terrain" --smoke >"$out/terrain" 2>&1 || fail "bench_terrain --smoke: $(tail -5 "$out/terrain")"
+echo "bench_terrain --smoke: ran"
+
+# The simulated camera: a few frames rendered and encoded.
+"$bench/sim_video/bench_sim_video" --smoke >"$out/sim_video" 2>&1 ||
+    fail "bench_sim_video --smoke: $(tail -5 "$out/sim_video")"
+echo "bench_sim_video --smoke: ran"
+
+# The recorder: one second at 10,000 packets/s, every packet written.
+"$bench/record/bench_record" --rate 10000 --seconds 1 --dir "$out" | tee "$out/record"
+grep -Eq 'with recording: .*\([1-9][0-9]* packets, 0 dropped' "$out/record" ||
+    fail "bench_record did not record every packet (see above)"
+echo "bench.sh --smoke: ok"

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 
 #include "command/catalogue.hpp"
 #include "command/envelope.hpp"
@@ -10,6 +9,8 @@
 #include "command/request_limits.hpp"
 #include "logging.hpp"
 #include "state/messages.hpp"
+#include "state/state_push.hpp"
+#include "stream_params.hpp"
 #include "subscriptions.hpp"
 #include "ws_client.hpp"
 
@@ -124,18 +125,14 @@ void StreamHub::tick() {
     const double horizon = now + batch_s;
     const auto clients = clients_;  // a send may drop a client
     for (auto* session : path_.sessions()) {
-        std::optional<json> state;
-        std::map<std::vector<std::string>, std::shared_ptr<const std::string>> texts;
+        // One snapshot, and one message per key list, kind and previous push (state_push.hpp).
+        std::optional<gimbal::state::PushBatch> batch;
         for (auto* client : clients) {
-            const auto& s = client->subscription();
+            auto& s = client->subscription();
             if (!s.open || !s.state || s.next_state_s > horizon || !covers(s, session->name()))
                 continue;
-            if (!state) state = session->snapshot();
-            auto& text = texts[s.keys];
-            if (!text)
-                text = std::make_shared<const std::string>(dump(gimbal::state::state_message(
-                    session->name(), gimbal::state::select_keys(*state, s.keys))));
-            client->send(text);
+            if (!batch) batch.emplace(session->name(), session->snapshot());
+            client->send(batch->next(s.stream, s.cursors[session->name()], horizon).text());
         }
     }
     for (auto* client : clients) {
@@ -196,10 +193,7 @@ std::string StreamHub::subscribe(WsClient& client, const json& request, bool uns
     next.rate_hz = params.number_or("rate_hz", 0.1, 50.0, 2.0);
     params.number_or("ttl_s", 1.0, 3600.0, 60.0);
     next.events = params.boolean_or("events", true);
-    if (const json* k = params.raw("keys")) {
-        if (auto problem = gimbal::state::parse_state_keys(*k, next.keys); !problem.empty())
-            return fail({code::bad_request, problem});
-    }
+    read_stream_options(params, next.stream);
     params.reject_unknown();
     if (!params.ok()) return fail(params.error());
     next.next_state_s = steady_seconds();
@@ -207,7 +201,7 @@ std::string StreamHub::subscribe(WsClient& client, const json& request, bool uns
     s = next;
     results["rate_hz"] = s.rate_hz;
     results["events"] = s.events;
-    if (!s.keys.empty()) results["keys"] = s.keys;
+    describe_stream_options(s.stream, results);
     schedule();
     return dump(cmdns::ok_reply(env.id, env.cmd, env.gimbal, std::move(results)));
 }

@@ -11,12 +11,14 @@
 #include <boost/beast/http/string_body.hpp>
 #include <boost/beast/websocket/stream.hpp>
 #include <deque>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "client_slots.hpp"
+#include "state/state_push.hpp"
 
 namespace gimbald::http {
 
@@ -28,9 +30,12 @@ struct StreamSubscription {
     std::optional<std::string> gimbal;  // nullopt: every gimbal
     double rate_hz = 2.0;
     bool events = true;
-    bool state = true;              // false after unsubscribe
-    std::vector<std::string> keys;  // empty: all
-    double next_state_s = 0;        // steady seconds
+    bool state = true;                    // false after unsubscribe
+    gimbal::state::StreamOptions stream;  // keys, changes, full_every_s
+    // With stream.changes: what this client last got of each gimbal (a subscribe starts
+    // afresh: its first push is a full STATE).
+    std::map<std::string, gimbal::state::DeltaCursor> cursors;
+    double next_state_s = 0;  // steady seconds
 };
 
 class WsClient : public std::enable_shared_from_this<WsClient> {

@@ -3,6 +3,7 @@
 #include <chrono>
 
 #include "state/messages.hpp"
+#include "subscriptions.hpp"
 
 namespace gimbald::mqtt {
 
@@ -97,7 +98,9 @@ void Bridge::on_connected() {
          {}});
     for (auto* s : path_.sessions()) {
         publish_link(s->name(), s->connected());
-        streams_.at(s->name()).pacer->publish_now();
+        auto& stream = streams_.at(s->name());
+        stream.cursor.restart();  // the broker may have lost what was in flight
+        stream.pacer->publish_now();
     }
 }
 
@@ -111,6 +114,10 @@ void Bridge::publish_link(const std::string& gimbal, bool connected) {
 }
 
 void Bridge::publish_state(GimbalSession& session) {
+    if (config_.state_changes) {
+        publish_delta(session);
+        return;
+    }
     json state = session.snapshot();
     if (config_.state_keys) state = gimbal::state::select_keys(state, *config_.state_keys);
     client_->publish({Kind::state,
@@ -119,6 +126,23 @@ void Bridge::publish_state(GimbalSession& session) {
                       0,
                       true,
                       {}});
+}
+
+// mqtt.state_changes (contract section 14): the delta-stream message of section 4.1. Full
+// STATEs are retained (what a newcomer gets first), patches are not.
+void Bridge::publish_delta(GimbalSession& session) {
+    auto& stream = streams_.at(session.name());
+    const auto dropped = client_->counters().dropped;
+    if (!client_->connected() || dropped != stream.dropped_seen) stream.cursor.restart();
+    stream.dropped_seen = dropped;
+    gimbal::state::StreamOptions options;
+    if (config_.state_keys) options.keys = *config_.state_keys;
+    options.changes = true;
+    options.full_every_s = config_.state_full_every_s;
+    gimbal::state::PushBatch batch(session.name(), session.snapshot());
+    const auto& message = batch.next(options, stream.cursor, steady_seconds());
+    const bool full = message.full().value_or(true);
+    client_->publish({Kind::state, topic(session.name() + "/state"), *message.text(), 0, full, {}});
 }
 
 void Bridge::on_message(const Incoming& in) {

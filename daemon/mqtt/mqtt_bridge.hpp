@@ -16,6 +16,7 @@
 #include "event_hub.hpp"
 #include "mqtt_client.hpp"
 #include "request_path.hpp"
+#include "state/state_push.hpp"
 #include "state_pacer.hpp"
 
 namespace gimbald::mqtt {
@@ -39,6 +40,7 @@ class Bridge {
     void on_connected();
     void on_message(const Incoming& in);
     void publish_state(GimbalSession& session);
+    void publish_delta(GimbalSession& session);
     void publish_link(const std::string& gimbal, bool connected);
     std::string topic(const std::string& tail) const { return base_ + "/" + tail; }
 
@@ -47,10 +49,14 @@ class Bridge {
     RequestPath& path_;
     std::string base_;  // {prefix}/{station}
     std::unique_ptr<Client> client_;
-    // Per gimbal: when its STATE goes out, and the telemetry count it last carried.
+    // Per gimbal: when its STATE goes out, and the telemetry count it last carried. With
+    // mqtt.state_changes: what the broker last got, and the client's drop count then (a
+    // dropped message breaks the chain of patches: the next one is full).
     struct Stream {
         std::unique_ptr<StatePacer> pacer;
         std::uint64_t telemetry_seen = 0;
+        gimbal::state::DeltaCursor cursor;
+        std::uint64_t dropped_seen = 0;
     };
     std::map<std::string, Stream> streams_;
     bool stopped_ = false;

@@ -31,6 +31,16 @@ constexpr std::array subscribe_params{
     P{.name = "ttl_s", .min = 1, .max = 3600, .unit = "s", .default_text = "60"},
     P{.name = "events", .type = T::boolean, .default_text = "true"},
     P{.name = "keys", .type = T::keys, .default_text = "all", .note = "as for `state`"},
+    P{.name = "changes",
+      .type = T::boolean,
+      .default_text = "false",
+      .note = "a delta stream: merge patches between full STATEs"},
+    P{.name = "full_every_s",
+      .min = 1,
+      .max = 3600,
+      .unit = "s",
+      .default_text = "10",
+      .note = "with `changes`: a full STATE this often"},
 };
 
 // ---- protocol commands --------------------------------------------------------------------
@@ -242,7 +252,8 @@ constexpr std::array commands{
       .access = Access::observe,
       .summary = "Receive STATE and event datagrams until ttl_s passes without a renewal.",
       .params = subscribe_params,
-      .reply = "echoes `rate_hz`, `ttl_s`, `events`, and `keys` when given",
+      .reply = "echoes `rate_hz`, `ttl_s`, `events`, `keys` when given, and `changes`, "
+               "`full_every_s` when `changes` is true",
       .example = "{}"},
     C{.name = "unsubscribe",
       .scope = Scope::every_gimbal,

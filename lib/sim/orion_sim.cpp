@@ -536,6 +536,10 @@ void OrionSim::store_setting(std::uint8_t id, std::span<const std::uint8_t> data
 
 // --- factory -----------------------------------------------------------------------------------
 
+std::vector<orion::LaserType> default_lasers() {
+    return {orion::LaserType::pointer, orion::LaserType::lightware};
+}
+
 std::unique_ptr<Device> make_orion_sim(const OrionSimOptions& options) {
     return std::make_unique<OrionSim>(options);
 }

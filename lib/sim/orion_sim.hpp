@@ -14,6 +14,9 @@
 
 namespace gimbal::sim {
 
+// A pointer and a LightWare rangefinder, the gimbal's usual fit.
+std::vector<orion::LaserType> default_lasers();
+
 struct OrionSimOptions {
     // The aircraft flies a level circle around this centre (WGS84, height above the ellipsoid).
     double lat_deg = 45.7;
@@ -39,8 +42,11 @@ struct OrionSimOptions {
     double step_timeout_s = 2.0;
     double on_target_deg = 0.5;
 
-    // Lasers by index; an empty password means none is needed.
-    std::vector<orion::LaserType> lasers{orion::LaserType::pointer, orion::LaserType::lightware};
+    // Lasers by index; an empty password means none is needed. The default list is made out
+    // of line: built inline from an initializer list in every caller, GCC 12 -O3 on aarch64
+    // reports its constant backing array as maybe uninitialized (a false positive that
+    // -Werror makes fatal).
+    std::vector<orion::LaserType> lasers = default_lasers();
     std::string laser_password;
     // Once OrionAutopilotData arrives, fire needs Agl at least this (and CommGood, IsFlying).
     double laser_min_agl_m = 30;

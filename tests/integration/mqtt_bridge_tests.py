@@ -11,6 +11,7 @@ import socket
 import threading
 import time
 
+import deltatest as dt
 import gimbaltest as gt
 import mqtttest as mt
 
@@ -194,6 +195,67 @@ class Commands(MqttCase):
         self.assertEqual(c.all("r/x"), [])
         self.assertEqual(c.all(P + "/reply"), [])
         self.assertFalse([e for e in daemon.events("command") if e.get("id") == 5])
+
+
+class DeltaStream(MqttCase):
+    """mqtt.state_changes (contract section 14): full STATEs (retained) every
+    state_full_every_s, merge patches (not retained) in between; merged in order they give
+    the STATE a `state` request returns."""
+
+    def test_state_changes_merge_to_the_state(self):
+        broker = self.broker()
+        sim = self.start_sim()
+        full_every_s = 1.5
+        daemon = self.mqtt_daemon(broker, [gt.orion_tcp("main", sim.port)], state_rate_hz=10,
+                                  state_changes=True, state_full_every_s=full_every_s)
+        self.wait_mqtt_up(daemon)
+        control = self.client(daemon)
+        self.wait_connected(control)
+        self.assertOk(control.request("mode", mode="disabled"))
+        topic = P + "/main/state"
+        live = self.sub(broker, topic)
+        checker = dt.Checker(self, control, full_every_s)
+        seen = 0
+        start = time.monotonic()
+        done = 0
+        while time.monotonic() - start < 6.0:
+            elapsed = time.monotonic() - start
+            if done < len(dt.ACTIONS) and elapsed >= done * 6.0 / len(dt.ACTIONS):
+                cmd, params = dt.ACTIONS[done]
+                self.assertOk(control.request(cmd, **params))
+                done += 1
+            messages = live.all(topic)
+            if len(messages) == seen:
+                time.sleep(0.005)
+                continue
+            for i in range(seen, len(messages)):
+                m = messages[i]
+                msg = json.loads(m.payload)
+                if m.retain:  # the retained full from before we subscribed: a snapshot
+                    self.assertIs(msg["full"], True)
+                    continue
+                quiet = i == len(messages) - 1 and len(live.all(topic)) == len(messages)
+                checker.on_delta(msg, len(m.payload), quiet)
+            seen = len(messages)
+        checker.verify()
+        # gimbalctl --mqtt watch prints the merged STATE, whole, on every line.
+        r = gt.run([gt.GIMBALCTL, "--mqtt", broker.url(), "--station", "st1", "watch",
+                    "--no-events", "--count", "6"], timeout=10)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        lines = [json.loads(line) for line in r.stdout.splitlines()]
+        self.assertEqual(len(lines), 6)
+        keys = set(lines[0]["state"])
+        self.assertIn("telemetry", keys)
+        for line in lines:
+            self.assertEqual((line["type"], line["gimbal"]), ("state", "main"))
+            self.assertEqual(set(line["state"]), keys)
+        # A newcomer gets the retained message: always a full STATE, never a patch.
+        late = self.sub(broker, topic)
+        m, msg = late.wait(topic)
+        self.assertTrue(m.retain)
+        self.assertIs(msg["full"], True)
+        self.assertEqual(msg["gimbal"], "main")
+        self.assertEqual(msg["state"]["protocol"], "orion")
 
 
 class Mqtt311Broker:

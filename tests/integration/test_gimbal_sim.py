@@ -535,6 +535,17 @@ class GimbalSimLifecycle(unittest.TestCase):
         for section in ("NAME", "SYNOPSIS", "DESCRIPTION", "EXIT STATUS", "--drop-after"):
             self.assertIn(section, result.stdout)
 
+    def test_help_gives_each_protocol_its_own_start_position(self):
+        # Each model's own start (docs/simulator.md): the help must not hand the Viewpro the
+        # Orion's position, nor the other way round.
+        text = " ".join(subprocess.run([SIM, "--help"], capture_output=True,
+                                       text=True).stdout.split())
+        orion = text[text.index("--protocol orion:"):text.index("--protocol viewpro:")]
+        viewpro = text[text.index("--protocol viewpro:"):]
+        self.assertIn("45.7 N, 121.5 W, 1500 m", orion)
+        self.assertIn("6.9428789 N, 79.8812446 E, 300 m", viewpro)
+        self.assertNotIn("45.7 N", viewpro.split("Options:")[0])
+
     def test_busy_port_exits_2(self):
         blocker = socket.socket()
         blocker.bind(("127.0.0.1", 0))

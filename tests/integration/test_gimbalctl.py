@@ -399,6 +399,26 @@ class GimbalctlTest(unittest.TestCase):
         time.sleep(0.2)
         self.assertEqual(self.responder.requests(), [])
 
+    def test_usage_errors_are_one_prefixed_line_naming_the_problem(self):
+        cases = [
+            (["bogus"], "gimbalctl: unknown command 'bogus'"),
+            (["bogus", "--port", "5"], "gimbalctl: unknown command 'bogus'"),
+            ([], "gimbalctl: a COMMAND is required"),
+            (["geopoint", "1", "2"], "gimbalctl: ALT is required (see gimbalctl geopoint --help)"),
+            (["ping", "--no-such-option"], "--no-such-option"),
+            (["watch", "--count", "0"], "gimbalctl: --count: '0' is not a whole number"),
+            (["--timeout", "-1", "ping"], "gimbalctl: --timeout: '-1' is not a number above 0"),
+        ]
+        for args, expected in cases:
+            with self.subTest(args=args):
+                result = self.ctl(*args)
+                self.assertEqual(result.returncode, 64, result.stderr)
+                self.assertEqual(result.stdout, "")
+                lines = result.stderr.splitlines()
+                self.assertEqual(len(lines), 1, lines)
+                self.assertTrue(lines[0].startswith("gimbalctl: "), lines)
+                self.assertIn(expected, lines[0])
+
     def test_help_reads_like_a_man_page(self):
         result = run("--help")
         self.assertEqual(result.returncode, 0)

@@ -219,6 +219,29 @@ class SignedCommands(gt.GimbaldTestCase):
         reply, _ = obs.request("unsubscribe")
         self.assertOk(reply)
 
+    def test_signed_delta_stream_pushes_are_signed(self):
+        obs = self.signer("obs")
+        reply, was_signed = obs.request("subscribe", rate_hz=10, ttl_s=5, events=False,
+                                        changes=True, keys=["telemetry"])
+        self.assertTrue(was_signed)
+        self.assertOk(reply)
+        self.assertIs(reply["changes"], True)
+        kinds = []
+        deadline = time.monotonic() + 3
+        while len(kinds) < 4 and time.monotonic() < deadline:
+            msg = obs.client.recv(0.5)
+            if msg is None:
+                continue
+            inner = open_signed(msg, obs.secret)
+            self.assertIsNotNone(inner, "an unsigned or forged push: %s" % str(msg)[:200])
+            if inner.get("type") == "state":
+                kinds.append(inner["full"])
+                if inner["full"] is False:
+                    self.assertNotIn("protocol", inner["state"])
+        self.assertEqual(kinds, [True, False, False, False])
+        reply, _ = obs.request("unsubscribe")
+        self.assertOk(reply)
+
     def test_gimbalctl_signs_and_verifies(self):
         base = [gt.GIMBALCTL, "--port", str(self.daemon.port)]
         ok = gt.run(base + ["--key-file", self.keys["obs"], "--key-id", "obs", "state"])

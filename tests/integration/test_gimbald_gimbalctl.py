@@ -75,6 +75,27 @@ class GimbalctlAgainstGimbald(gt.GimbaldTestCase):
         self.assertTrue(self.daemon.wait_log(
             lambda e: e.get("event") == "subscriber" and e.get("reason") == "unsubscribe"))
 
+    def test_watch_changes_prints_the_merged_state(self):
+        result = self.ctl("watch", "--changes", "--full-every", "3600", "--rate", "10",
+                          "--count", "8", "--no-events")
+        self.assertEqual(result.returncode, 0, result.stderr)
+        lines = [json.loads(line) for line in result.stdout.splitlines()]
+        self.assertEqual(len(lines), 8)
+        self.assertEqual([m["full"] for m in lines], [True] + [False] * 7)
+        first = lines[0]["state"]
+        times = []
+        for msg in lines:
+            # Every line holds the whole STATE although the daemon sent only changes.
+            self.assertEqual(set(msg["state"]), set(first))
+            self.assertEqual(msg["state"]["protocol"], "orion")
+            times.append(msg["state"]["telemetry"]["system_time_ms"])
+        self.assertEqual(times, sorted(times))
+        self.assertGreater(times[-1], times[0])
+        # The subscribe asked for the delta stream.
+        sub = self.daemon.wait_log(lambda e: e.get("event") == "command" and
+                                   e.get("cmd") == "subscribe")
+        self.assertTrue(sub)
+
     def test_watch_stops_on_sigterm(self):
         proc = subprocess.Popen([gt.GIMBALCTL, "--port", str(self.daemon.port), "watch",
                                  "--rate", "5", "--no-events"],

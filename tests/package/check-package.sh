@@ -58,6 +58,12 @@ expect -rw-r--r-- usr/share/man/man1/gimbalctl.1.gz
 expect -rw-r--r-- usr/share/man/man1/gimbal-sim.1.gz
 expect -rw-r--r-- usr/share/man/man5/gimbald.json.5.gz
 expect -rw-r--r-- usr/share/doc/gimbald/copyright
+# The licence (LICENSE in the source): Apache-2.0, in Debian's machine-readable format.
+copyright=$(dpkg-deb --fsys-tarfile "$deb" | tar -xOf - ./usr/share/doc/gimbald/copyright)
+echo "$copyright" | grep -qx 'Format: https://www.debian.org/doc/packaging-manuals/copyright-format/1.0/' \
+  && echo "$copyright" | grep -qx 'License: Apache-2.0' \
+  && echo "$copyright" | grep -q '/usr/share/common-licenses/Apache-2.0' \
+  && pass "copyright: machine-readable, Apache-2.0" || fail "copyright is not Apache-2.0 in DEP-5 form"
 expect -rw-r--r-- usr/share/doc/gimbald/changelog.gz
 expect -rw-r--r-- usr/share/doc/gimbald/configuration.md
 expect -rw-r--r-- usr/share/doc/gimbald/examples/gimbald.json

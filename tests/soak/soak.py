@@ -111,6 +111,7 @@ class Soak:
                          "link": {"type": "tcp", "host": "127.0.0.1", "port": p}}
                         for n, (p, _) in self.sims.items()],
             "command": {"port": self.port, "auth": "signed", "max_subscribers": 128,
+                        "max_subscribers_per_host": 128,
                         "keys": [{"id": "ops", "secret_file": key,
                                   "roles": ["observe", "control", "laser"]}],
                         "rate_limit": {"per_source_hz": 5000, "burst": 5000}},

@@ -4,6 +4,8 @@
 
 #include "exit_status.hpp"
 #include "manual.hpp"
+#include "numbers.hpp"
+#include "output.hpp"
 
 namespace gimbalctl {
 namespace {
@@ -64,7 +66,7 @@ void add_global_options(CLI::App& app, RawGlobals& raw) {
     raw.key_file_option->needs(raw.key_id_option);
     app.add_option("--timeout", raw.values.timeout_s, "seconds to wait for the reply")
         ->type_name("S")
-        ->check(CLI::PositiveNumber)
+        ->check(positive_check())
         ->default_str("2");
     raw.id_option = app.add_option("--id", raw.id,
                                    "request id (JSON \"id\"), echoed in the reply; a whole "
@@ -103,6 +105,22 @@ Json make_request(const Command& command, const GlobalOptions& globals, const Js
     return request;
 }
 
+// A usage error as one `gimbalctl: ` line naming what is wrong and where to read more: an
+// unknown command by its name, a bad argument with CLI11's message and the command's help.
+std::string usage_problem(const CLI::App& app, const CommandTable& table,
+                          const CLI::ParseError& error) {
+    if (const Command* command = table.selected())
+        return std::string(error.what()) + " (see gimbalctl " + command->app->get_name() +
+               " --help)";
+    // No command was recognised: the first word left over is what was meant as one.
+    for (const auto& word : app.remaining())
+        if (!word.empty() && word.front() != '-')
+            return "unknown command '" + word + "' (gimbalctl --help lists the commands)";
+    if (dynamic_cast<const CLI::RequiredError*>(&error) != nullptr && app.get_subcommands().empty())
+        return "a COMMAND is required (gimbalctl --help lists the commands)";
+    return std::string(error.what()) + " (see gimbalctl --help)";
+}
+
 }  // namespace
 
 ParseResult parse_command_line(int argc, char** argv) {
@@ -124,7 +142,7 @@ ParseResult parse_command_line(int argc, char** argv) {
     try {
         app.parse(argc, argv);
         const Command* command = table.selected();
-        if (command == nullptr) throw CLI::RequiredError("a COMMAND");
+        if (command == nullptr) throw CLI::RequiredError("a COMMAND is required");
         Invocation invocation;
         invocation.global = finish_globals(raw);
         invocation.global.mqtt = finish_mqtt_options(app, raw.mqtt);
@@ -135,8 +153,10 @@ ParseResult parse_command_line(int argc, char** argv) {
         invocation.watch_count = watch_count;
         return ParseResult{std::move(invocation), exit_ok};
     } catch (const CLI::ParseError& error) {
-        const int status = app.exit(error);
-        return ParseResult{std::nullopt, status == 0 ? exit_ok : exit_usage};
+        // --help and --version print to stdout and exit 0, as CLI11 does.
+        if (error.get_exit_code() == 0) return ParseResult{std::nullopt, app.exit(error)};
+        print_diagnostic(usage_problem(app, table, error));
+        return ParseResult{std::nullopt, exit_usage};
     }
 }
 

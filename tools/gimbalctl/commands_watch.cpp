@@ -5,6 +5,7 @@
 
 #include "command_table.hpp"
 #include "manual.hpp"
+#include "numbers.hpp"
 #include "params.hpp"
 
 namespace gimbalctl {
@@ -26,20 +27,31 @@ void add_watch_command(CommandTable& table, std::int64_t& count) {
         ->default_str("60");
     p->flag("--events,!--no-events", "events", "also print event datagrams, or not")
         ->default_str("events on");
+    p->flag("--changes", "changes",
+            "delta stream (subscribe changes: true): the daemon sends a full STATE every "
+            "--full-every seconds and only what changed in between; watch merges them and "
+            "prints the whole STATE each time")
+        ->default_str("off");
+    p->number("--full-every", "full_every_s",
+              "with --changes: seconds between full STATEs (1..3600)")
+        ->type_name("S")
+        ->default_str("10");
     p->names("--keys", "keys",
              "only these top-level STATE keys (protocol, link and stale always come), e.g. "
              "--keys telemetry,lasers")
         ->default_str("every key");
     command.app->add_option("--count", count, "exit 0 after printing this many datagrams")
         ->type_name("N")
-        ->check(CLI::PositiveNumber)
+        ->check(count_check())
         ->default_str("none, until interrupted");
     command.app->footer(manual_section(
         "REQUEST",
         "Sends {\"cmd\": \"subscribe\", ...} with the keys named above, again every ttl/2, "
         "and {\"cmd\": \"unsubscribe\"} when it stops. Replies to these are not printed; an "
         "error reply to the first subscribe ends watch with status 1, no reply with status "
-        "2."));
+        "2. With --changes every state line still holds the whole STATE, merged from the "
+        "pushes (JSON Merge Patch, RFC 7396); its \"full\" says whether the daemon sent it "
+        "whole. Patches that arrive before the first full STATE are not printed."));
 }
 
 }  // namespace gimbalctl

@@ -14,6 +14,7 @@
 #include "output.hpp"
 #include "signing.hpp"
 #include "state/messages.hpp"
+#include "state_merger.hpp"
 
 namespace gimbalctl {
 namespace {
@@ -293,6 +294,7 @@ int run_mqtt_watch(const GlobalOptions& globals, const Json& subscribe, std::int
     if (subscribe.contains("keys"))
         for (const auto& k : subscribe["keys"]) keys.push_back(k.get<std::string>());
     std::int64_t printed = 0;
+    StateMerger merger;
     const std::size_t prefix_levels =
         static_cast<std::size_t>(std::count(target.prefix.begin(), target.prefix.end(), '/')) + 1;
 
@@ -316,6 +318,12 @@ int run_mqtt_watch(const GlobalOptions& globals, const Json& subscribe, std::int
         if (payload.is_discarded() || !payload.is_object()) return;
         Json line;
         if (kind == "state") {
+            // mqtt.state_changes: the payload is a delta-stream message; print it merged.
+            if (payload.contains("full")) {
+                auto merged = merger.merge(station + "/" + name, std::move(payload));
+                if (!merged) return;
+                payload = std::move((*merged)["state"]);
+            }
             nlohmann::json state = nlohmann::json::parse(payload.dump());
             if (!keys.empty()) state = gimbal::state::select_keys(state, keys);
             line = {{"type", "state"},

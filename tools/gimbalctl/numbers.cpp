@@ -69,6 +69,27 @@ CLI::Validator number_check() {
         "");
 }
 
+CLI::Validator positive_check() {
+    return CLI::Validator(
+        [](const std::string& text) {
+            const auto n = parse_number(text);
+            return n && n->get<double>() > 0 ? std::string{}
+                                             : "'" + text + "' is not a number above 0";
+        },
+        "");
+}
+
+CLI::Validator count_check() {
+    return CLI::Validator(
+        [](const std::string& text) {
+            const auto n = parse_number(text);
+            return n && n->is_number_integer() && n->get<double>() >= 1
+                       ? std::string{}
+                       : "'" + text + "' is not a whole number of at least 1";
+        },
+        "");
+}
+
 CLI::Validator point_check() {
     return CLI::Validator(
         [](const std::string& text) {

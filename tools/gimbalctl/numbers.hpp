@@ -21,6 +21,10 @@ std::optional<Json> parse_point(std::string_view text);
 // CLI11 checks that reject what the parsers above reject, so bad input is a usage error.
 CLI::Validator number_check();
 CLI::Validator point_check();
+// A number above 0 (--timeout); CLI11's PositiveNumber would print the whole double range.
+CLI::Validator positive_check();
+// A whole number of at least 1 (--count).
+CLI::Validator count_check();
 
 // Converts text that passed number_check() (throws CLI::ConversionError otherwise).
 Json number_json(const std::string& text);

@@ -12,6 +12,7 @@
 #include "exit_status.hpp"
 #include "output.hpp"
 #include "signing.hpp"
+#include "state_merger.hpp"
 #include "transport.hpp"
 
 namespace gimbalctl {
@@ -107,7 +108,11 @@ class Watch {
             on_reply(*datagram);
         } else if (is_subscription_datagram(*datagram)) {
             mark_subscribed();
-            print_json(*datagram, globals_.pretty);
+            // --changes: the line holds the merged STATE, not the patch.
+            const std::string gimbal = datagram->value("gimbal", "");
+            auto line = merger_.merge(gimbal, std::move(*datagram));
+            if (!line) return;
+            print_json(*line, globals_.pretty);
             ++printed_;
             if (count_ > 0 && printed_ >= count_) finish(exit_ok);
         }
@@ -173,6 +178,7 @@ class Watch {
     bool subscribed_ = false;
     bool warned_unreachable_ = false;
     std::int64_t printed_ = 0;
+    StateMerger merger_;
     int exit_status_ = exit_ok;
 };
 

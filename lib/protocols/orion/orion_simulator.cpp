@@ -21,7 +21,8 @@ constexpr std::string_view manual =
        every 5 s, and obeys OrionCmd (echoed back), GeopointCmd, OrionPath with
        step-stare, laser, retract, camera and configuration packets. Zero-length
        packets are requests for that packet. --alt and --terrain-alt are heights
-       above the WGS84 ellipsoid.
+       above the WGS84 ellipsoid. The circle's centre is 45.7 N, 121.5 W, 1500 m,
+       unless --lat, --lon and --alt say otherwise.
 )";
 
 constexpr std::string_view rx_log_manual =

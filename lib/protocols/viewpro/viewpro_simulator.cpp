@@ -20,7 +20,9 @@ constexpr std::string_view manual =
        frame at 10 Hz. IN1/IN2/IN3 frames set the vehicle position and attitude,
        AA 55 06/36 XX FF shift the calculated point; the target is where the line
        of sight meets flat terrain at --terrain-alt, or the IN3 laser distance along
-       it. --alt and --terrain-alt are heights above mean sea level.
+       it. --alt and --terrain-alt are heights above mean sea level. Until the first
+       IN frame the vehicle is level at 6.9428789 N, 79.8812446 E, 300 m (the ICD's
+       OUT1 example), unless --lat, --lon and --alt say otherwise.
 )";
 
 constexpr std::string_view rx_log_manual =

@@ -19,6 +19,11 @@
 // Besides the latencies it prints how long gimbald (and the benchmark) waited on the run
 // queue during the run (/proc/PID/schedstat): on a loaded machine that wait, not the daemon's
 // code, makes the tail. --fifo runs both under SCHED_FIFO to measure without it.
+//
+// The daemon's command.rate_limit is set to twice the command rate, so nothing is throttled.
+// Every command must reach the gimbal and get an ok reply: anything lost, refused, unmatched
+// or duplicated makes the run fail (exit 3) - a figure of a run that lost commands describes
+// something else.
 #include <arpa/inet.h>
 #include <fcntl.h>
 #include <netinet/in.h>
@@ -385,6 +390,16 @@ class Bench {
         self_sched_ = sched_stat(getpid()) - self_before;
     }
 
+    // True when every command reached the gimbal once and got an ok reply.
+    bool complete() const {
+        std::size_t ok = 0;
+        for (std::size_t i = 0; i < sent_; ++i)
+            if (samples_[i].frame_ns != unset && samples_[i].reply_ns != unset &&
+                samples_[i].reply_ok)
+                ++ok;
+        return sent_ == opt_.count && ok == sent_ && unmatched_ == 0 && duplicates_ == 0;
+    }
+
     void report() const {
         std::vector<double> frame_us, reply_us;
         for (std::size_t i = 0; i < sent_; ++i) {
@@ -712,13 +727,17 @@ class Bench {
     SchedStat daemon_sched_, self_sched_;
 };
 
-std::string write_config(const std::filesystem::path& dir, std::uint16_t gimbal_port,
-                         std::uint16_t command_port, std::uint16_t vehicle_port) {
+std::string write_config(const std::filesystem::path& dir, const Options& opt,
+                         std::uint16_t gimbal_port, std::uint16_t command_port,
+                         std::uint16_t vehicle_port) {
     const auto path = dir / "gimbald.json";
     std::ofstream out(path);
+    // The default rate limit (200/s, burst 400) would throttle the run: allow twice its rate.
+    const double limit = std::max(200.0, 2.0 * opt.rate_hz);
     out << R"({"gimbals":[{"name":"bench","protocol":"orion","link":{"type":"tcp",)"
         << R"("host":"127.0.0.1","port":)" << gimbal_port << R"(}}],)"
-        << R"("command":{"bind":"127.0.0.1","port":)" << command_port << "}";
+        << R"("command":{"bind":"127.0.0.1","port":)" << command_port
+        << R"(,"rate_limit":{"per_source_hz":)" << limit << R"(,"burst":)" << 2.0 * limit << "}}";
     if (vehicle_port != 0)
         out << R"(,"vehicle":{"source":{"type":"udp","bind":"127.0.0.1","port":)" << vehicle_port
             << R"(}},"mavlink":{"gimbal_manager":true,"system_id":1})";
@@ -760,10 +779,12 @@ int main(int argc, char** argv) {
         setsockopt(mav, SOL_SOCKET, SO_RCVBUF, &big, sizeof big);
         vehicle_port = free_udp_port();
     }
-    const std::string config = write_config(dir, local_port(listener), command_port, vehicle_port);
+    const std::string config =
+        write_config(dir, opt, local_port(listener), command_port, vehicle_port);
     const std::string log_path =
         opt.daemon_log.empty() ? (dir / "gimbald.log").string() : opt.daemon_log;
 
+    bool complete = false;
     {
         Daemon daemon;
         daemon.start(opt, config, log_path);
@@ -773,13 +794,21 @@ int main(int argc, char** argv) {
         daemon.stop();
         bench.report();
         if (!opt.samples.empty()) bench.write_samples(opt.samples);
+        complete = bench.complete();
     }
     close(client);
     close(listener);
     if (mav >= 0) close(mav);
-    if (opt.keep)
+    if (opt.keep || !complete)
         std::printf("kept %s (config, daemon log)\n", dir.c_str());
     else
         std::filesystem::remove_all(dir);
+    if (!complete) {
+        std::fprintf(stderr,
+                     "bench_daemon_latency: FAILED: commands were lost, refused, unmatched or "
+                     "duplicated (see the frames and replies lines above); the figures do not "
+                     "describe a complete run\n");
+        return 3;
+    }
     return 0;
 }

@@ -1,16 +1,22 @@
 #!/usr/bin/env python3
-"""How large gimbald's STATE datagrams are (issue 8, "lean streams").
+"""How large gimbald's STATE datagrams are (issue 8, "lean streams"; issue 17, delta streams).
 
 Starts `gimbald --sim` (the embedded simulated Orion), asks the gimbal for every report and
 settings packet it can be asked for (so every STATE key is filled), waits for the periodic
-telemetry kinds, then measures the full STATE as a subscriber receives it and a subscription
-restricted to `keys: ["telemetry"]`.
+telemetry kinds, then measures the full STATE as a subscriber receives it, a subscription
+restricted to `keys: ["telemetry"]`, and a delta stream (`changes: true`, contract section
+14) at 10 Hz for --window seconds: how many of its patches fit one 1,472-byte UDP payload
+(Ethernet MTU 1500 - IPv4 20 - UDP 8). The patches are merged as a receiver would and the
+result compared with the full STATEs that follow.
 
-A benchmark, not a test (never run by ctest). Python 3 standard library only. Usage:
+A benchmark, not a test. Python 3 standard library only. Usage:
 
-    state_size.py --gimbald build/release/daemon/gimbald
+    state_size.py --gimbald build/release/daemon/gimbald [--window 60] [--check]
 
-Targets (issue 8): full STATE at most 6,000 bytes; telemetry-only at most 1,200 bytes.
+Targets: telemetry-only at most 1,200 bytes (issue 8); 95 % of the patches at most 1,472
+bytes (issue 17). The full STATE has no size target any more (issue 17 keeps every key).
+--check (scripts/bench-daemon.sh --smoke) fails the run when a push is missing, a patch
+does not merge, or the stream does not start with a full STATE; sizes are not checked.
 """
 
 import argparse
@@ -23,8 +29,62 @@ import subprocess
 import tempfile
 import time
 
-FULL_TARGET = 6000
 TELEMETRY_TARGET = 1200
+UDP_PAYLOAD = 1472
+PATCH_SHARE_TARGET = 0.95
+
+
+def merge_patch(target, patch):
+    """RFC 7396 section 2."""
+    if not isinstance(patch, dict):
+        return patch
+    if not isinstance(target, dict):
+        target = {}
+    for name, value in patch.items():
+        if value is None:
+            target.pop(name, None)
+        else:
+            target[name] = merge_patch(target.get(name), value)
+    return target
+
+
+def without_ages(value):
+    """A STATE without age_s members and null object members (as merged patches hold it)."""
+    if isinstance(value, dict):
+        return {k: without_ages(v) for k, v in value.items() if v is not None and k != "age_s"}
+    if isinstance(value, list):
+        return [without_ages(v) for v in value]
+    return value
+
+
+def measure_delta(port, rate_hz, window_s):
+    """Subscribes with changes: true; returns (full sizes, patch sizes, pushes, problems)."""
+    c = Client(port)
+    c.request("subscribe", rate_hz=rate_hz, ttl_s=max(60, 2 * window_s), events=False,
+              changes=True, full_every_s=10)
+    fulls, patches, problems = [], [], []
+    merged = None
+    pushes = 0
+    end = time.monotonic() + window_s
+    while time.monotonic() < end:
+        data = c.next_state()
+        msg = json.loads(data)
+        pushes += 1
+        if msg["full"]:
+            # The merged patches must have given what the next full STATE says, except what
+            # changed in the last period: compare the keys that a full and a merge both hold.
+            if merged is not None and set(without_ages(merged)) != set(without_ages(msg["state"])):
+                problems.append("merged keys differ from the full STATE's")
+            fulls.append(len(data))
+            merged = msg["state"]
+        else:
+            patches.append(len(data))
+            if merged is None:
+                problems.append("a patch before the first full STATE")
+            else:
+                merged = merge_patch(merged, msg["state"])
+    c.request("unsubscribe")
+    return fulls, patches, pushes, problems
 
 
 def free_port():
@@ -67,6 +127,11 @@ def main():
     p.add_argument("--gimbald", required=True)
     p.add_argument("--settle", type=float, default=3.0,
                    help="seconds to wait for the requested packets and periodic reports")
+    p.add_argument("--window", type=float, default=60.0,
+                   help="seconds of the delta stream measured")
+    p.add_argument("--rate", type=float, default=10.0, help="rate_hz of the delta stream")
+    p.add_argument("--check", action="store_true",
+                   help="exit 1 when the delta stream lost a push or did not merge")
     args = p.parse_args()
 
     port = free_port()
@@ -100,15 +165,41 @@ def main():
         telemetry = len(lean.next_state())
         lean.request("unsubscribe")
 
+        fulls, patches, pushes, problems = measure_delta(port, args.rate, args.window)
+
         print("asked the gimbal for %d packet kinds; STATE keys still null: %s" %
               (len(asked), ", ".join(empty) or "none"))
         print("%-34s %8s %8s  %s" % ("datagram", "bytes", "target", "met"))
-        for what, size, target in (("full STATE", full, FULL_TARGET),
-                                   ("subscribe keys=[telemetry]", telemetry, TELEMETRY_TARGET)):
-            print("%-34s %8d %8d  %s" % (what, size, target, "yes" if size <= target else "NO"))
+        print("%-34s %8d %8s  %s" % ("full STATE", full, "-", "-"))
+        print("%-34s %8d %8d  %s" % ("subscribe keys=[telemetry]", telemetry, TELEMETRY_TARGET,
+                                     "yes" if telemetry <= TELEMETRY_TARGET else "NO"))
         biggest = sorted(((len(json.dumps(v, separators=(",", ":"))), k)
                           for k, v in state.items()), reverse=True)[:6]
         print("largest keys: " + ", ".join("%s %d" % (k, n) for n, k in biggest))
+        patches.sort()
+        fit = sum(1 for n in patches if n <= UDP_PAYLOAD)
+        share = fit / len(patches) if patches else 0.0
+        expected = int(args.rate * args.window)
+        print("delta stream (changes: true, full_every_s 10) at %g Hz for %g s: %d pushes "
+              "(expected about %d), %d full (%s bytes), %d patches" %
+              (args.rate, args.window, pushes, expected, len(fulls),
+               "/".join(str(n) for n in fulls), len(patches)))
+        if patches:
+            print("  patch bytes: median %d, p95 %d, max %d; %d of %d (%.1f %%) fit one %d-byte "
+                  "UDP payload (target %.0f %%): %s" %
+                  (patches[len(patches) // 2], patches[int(0.95 * (len(patches) - 1))],
+                   patches[-1], fit, len(patches), 100 * share, UDP_PAYLOAD,
+                   100 * PATCH_SHARE_TARGET, "met" if share >= PATCH_SHARE_TARGET else "MISSED"))
+        complete = (not problems and fulls and pushes >= expected - 2)
+        print("RESULT full_bytes=%d telemetry_bytes=%d pushes=%d expected=%d fulls=%d patches=%d "
+              "patch_fit_pct=%.1f patch_median_bytes=%d patch_max_bytes=%d complete=%s" %
+              (full, telemetry, pushes, expected, len(fulls), len(patches), 100 * share,
+               patches[len(patches) // 2] if patches else 0, patches[-1] if patches else 0,
+               "yes" if complete else "no"))
+        for problem in problems:
+            print("problem: " + problem)
+        if args.check and not complete:
+            raise SystemExit("state_size: FAILED: the delta stream lost pushes or did not merge")
     finally:
         proc.send_signal(signal.SIGTERM)
         proc.wait(timeout=5)

@@ -13,7 +13,8 @@ A benchmark, not a test (never run by ctest). Python 3 standard library only. Us
     ws_bench.py --gimbald build/release/daemon/gimbald \\
                 --gimbal-sim build/release/tools/gimbal-sim [--clients 50] [--window 60]
 
-Targets (issue 11): under 3 % of one core and under 30 MB.
+Targets (issue 11): under 3 % of one core and under 30 MB. --check (scripts/bench-daemon.sh
+--smoke) makes the run fail (exit 1) unless every client got every STATE.
 """
 
 import argparse
@@ -46,6 +47,8 @@ def parse_args():
     p.add_argument("--warmup", type=float, default=5.0)
     p.add_argument("--window", type=float, default=60.0)
     p.add_argument("--keep", action="store_true", help="keep the temp dir (config, logs)")
+    p.add_argument("--check", action="store_true",
+                   help="exit 1 unless every client got every STATE (none closed or dropped)")
     return p.parse_args()
 
 
@@ -80,20 +83,24 @@ class Client:
     """One /api/stream WebSocket; parses frames as they arrive, times each STATE."""
 
     def __init__(self, port):
-        self.sock = socket.create_connection(("127.0.0.1", port))
+        # A bounded handshake: a refused upgrade (403, 503) is an error, never a hang.
+        self.sock = socket.create_connection(("127.0.0.1", port), timeout=5.0)
         key = base64.b64encode(os.urandom(16)).decode()
-        self.sock.sendall(("GET /api/stream HTTP/1.1\r\nHost: x\r\nUpgrade: websocket\r\n"
-                           "Connection: Upgrade\r\nSec-WebSocket-Key: %s\r\n"
-                           "Sec-WebSocket-Version: 13\r\n\r\n" % key).encode())
+        # Host must name gimbald (its DNS-rebinding check refuses anything else with 403).
+        self.sock.sendall(("GET /api/stream HTTP/1.1\r\nHost: 127.0.0.1:%d\r\n"
+                           "Upgrade: websocket\r\nConnection: Upgrade\r\n"
+                           "Sec-WebSocket-Key: %s\r\nSec-WebSocket-Version: 13\r\n\r\n"
+                           % (port, key)).encode())
         buf = b""
         while b"\r\n\r\n" not in buf:
             chunk = self.sock.recv(4096)
             if not chunk:
-                raise ConnectionError("handshake")
+                raise ConnectionError("closed during the WebSocket handshake")
             buf += chunk
         head, self.buf = buf.split(b"\r\n\r\n", 1)
         if not head.startswith(b"HTTP/1.1 101"):
-            raise ConnectionError(head.decode())
+            raise ConnectionError("WebSocket upgrade refused: " +
+                                  head.decode(errors="replace").splitlines()[0])
         self.sock.setblocking(False)
         self.states = []  # arrival times
         self.closed = False
@@ -141,6 +148,7 @@ def main():
     sim, sim_port = start_sim(args.gimbal_sim, workdir)
     daemon = None
     clients = []
+    complete = False
     try:
         daemon, log_path, udp, http_port = start_daemon(args, workdir, sim_port)
         wait_connected(udp, daemon)
@@ -202,6 +210,9 @@ def main():
               "hwm_kb=%d" % (args.clients, window, min(counts), max(counts), expected, worst_gap,
                              closed, dropped, "yes" if complete else "no", cpu_pct, max(rss),
                              mem["VmHWM"]))
+    except ConnectionError as e:
+        complete = False
+        print("ws_bench: %s" % e, file=sys.stderr)
     finally:
         for c in clients:
             c.sock.close()
@@ -213,6 +224,8 @@ def main():
         else:
             import shutil
             shutil.rmtree(workdir, ignore_errors=True)
+    if args.check and not complete:
+        sys.exit("ws_bench: FAILED: a client missed STATE messages, was closed or dropped")
 
 
 if __name__ == "__main__":

@@ -73,3 +73,38 @@ TEST_CASE("gimbal filters and events", "[subscriptions]") {
     CHECK(subs.event_targets("nose") == std::vector<Endpoint>{a});
     CHECK(subs.event_targets("main").empty());
 }
+
+TEST_CASE("one host holds at most max_per_host subscriptions; others still subscribe",
+          "[subscriptions]") {
+    Subscriptions subs(64, 3);
+    for (unsigned short port = 6000; port < 6003; ++port)
+        CHECK(subs.subscribe(Endpoint(make_address("127.0.0.1"), port), sub(10, 60), 0.0) ==
+              Subscriptions::Result::added);
+    const Endpoint fourth(make_address("127.0.0.1"), 6003);
+    CHECK(subs.subscribe(fourth, sub(10, 60), 0.0) == Subscriptions::Result::host_full);
+    // A renewal of a subscription the host holds is never refused.
+    CHECK(subs.subscribe(Endpoint(make_address("127.0.0.1"), 6001), sub(5, 60), 1.0) ==
+          Subscriptions::Result::renewed);
+    CHECK(subs.subscribe(Endpoint(make_address("127.0.0.2"), 6003), sub(10, 60), 1.0) ==
+          Subscriptions::Result::added);
+    CHECK(subs.subscribe(c, sub(10, 60), 1.0) == Subscriptions::Result::added);
+    CHECK(subs.size() == 5);
+    CHECK(subs.per_host_capacity() == 3);
+    // A slot the host gives up is its own again.
+    CHECK(subs.unsubscribe(Endpoint(make_address("127.0.0.1"), 6000)));
+    CHECK(subs.subscribe(fourth, sub(10, 60), 2.0) == Subscriptions::Result::added);
+}
+
+TEST_CASE("a renewal restarts a delta stream with a full STATE", "[subscriptions]") {
+    Subscriptions subs(4);
+    Subscription s = sub(10, 60);
+    s.stream.changes = true;
+    subs.subscribe(a, s, 0.0);
+    auto* held = subs.find(a);
+    REQUIRE(held != nullptr);
+    held->cursors["g"].pushed(std::make_shared<const nlohmann::json>(nlohmann::json::object()),
+                              true, 0.0, 10.0);
+    CHECK_FALSE(subs.find(a)->cursors.at("g").full_due(1.0));
+    subs.subscribe(a, s, 1.0);
+    CHECK(subs.find(a)->cursors.empty());
+}

@@ -1,0 +1,96 @@
+// The STATE pushes of a stream (UDP subscription, WebSocket, MQTT), plain or as a delta
+// stream (contract section 14, `subscribe.changes`). A DeltaCursor is what one subscriber
+// last got of one gimbal; a PushBatch builds one tick's messages of one gimbal and shares
+// them among subscribers: one key selection per key list, one full message per key list and
+// one patch per (key list, previous push) - subscribers that got the same previous push share
+// the same patch. Time is passed in.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <tuple>
+#include <vector>
+
+namespace gimbal::state {
+
+// How a subscriber wants STATE: `keys` (empty: all) and, with `changes`, merge patches with a
+// full STATE every `full_every_s`.
+struct StreamOptions {
+    std::vector<std::string> keys;
+    bool changes = false;
+    double full_every_s = 10.0;
+};
+
+// What one subscriber last received of one gimbal's STATE.
+class DeltaCursor {
+  public:
+    // True when the next push must be a full STATE: nothing pushed yet (or restart()), or
+    // full_every_s passed since the last full one.
+    bool full_due(double now_s) const { return !last_ || now_s >= next_full_s_; }
+    const std::shared_ptr<const nlohmann::json>& last() const { return last_; }
+    void pushed(std::shared_ptr<const nlohmann::json> state, bool full, double now_s,
+                double full_every_s);
+    // The next push is full (a dropped message broke the chain of patches).
+    void restart() { last_.reset(); }
+
+  private:
+    std::shared_ptr<const nlohmann::json> last_;
+    double next_full_s_ = 0;
+};
+
+// One message of a tick: {"type":"state","gimbal":NAME,"state":BODY}, with "full" on a
+// delta stream. Its text and its JSON are made on first use, from a body that may be shared
+// with other messages (the whole STATE is never copied for a plain subscriber).
+class PushMessage {
+  public:
+    PushMessage(const std::string& gimbal, std::optional<bool> full,
+                std::shared_ptr<const nlohmann::json> body)
+        : gimbal_(gimbal), full_(full), body_(std::move(body)) {}
+    // The message as JSON (a signed subscriber signs it).
+    const nlohmann::json& json() const;
+    // Its text, as nlohmann::json would print the message (keys sorted, compact).
+    const std::shared_ptr<const std::string>& text() const;
+    // Delta stream: true for a full STATE, false for a patch; nullopt on a plain stream.
+    std::optional<bool> full() const { return full_; }
+
+  private:
+    std::string gimbal_;
+    std::optional<bool> full_;
+    std::shared_ptr<const nlohmann::json> body_;
+    mutable std::optional<nlohmann::json> json_;
+    mutable std::shared_ptr<const std::string> text_;
+};
+
+class PushBatch {
+  public:
+    PushBatch(std::string gimbal, nlohmann::json state);
+
+    // The message for one subscriber, and with `changes` its cursor moved on. `now_s` decides
+    // whether a full STATE is due.
+    const PushMessage& next(const StreamOptions& options, DeltaCursor& cursor, double now_s);
+    // The STATE restricted to `keys`, shared by every caller of this batch.
+    const std::shared_ptr<const nlohmann::json>& selected(const std::vector<std::string>& keys);
+
+  private:
+    enum class Kind { plain, full, patch };
+    using Key = std::tuple<std::vector<std::string>, Kind, const nlohmann::json*>;
+
+    std::string gimbal_;
+    std::shared_ptr<const nlohmann::json> state_;
+    std::map<std::vector<std::string>, std::shared_ptr<const nlohmann::json>> selected_;
+    std::map<Key, PushMessage> messages_;
+    // Previous pushes a patch was made against stay alive for the batch, so their addresses
+    // (part of the key) cannot be reused by a new object.
+    std::vector<std::shared_ptr<const nlohmann::json>> pinned_;
+};
+
+// {"type":"state","gimbal":NAME,"full":BOOL,"state":STATE-or-PATCH}
+nlohmann::json delta_message(const std::string& gimbal, bool full, nlohmann::json state);
+
+// JSON text as every stream sends it (invalid UTF-8 replaced, never thrown).
+std::string dump_message(const nlohmann::json& message);
+
+}  // namespace gimbal::state
