@@ -31,7 +31,8 @@ struct ToolOptions {
     double stall_after_s = 0;  // go silent this long after a client connects ...
     double stall_for_s = 0;    // ... for this long; 0 = never
 
-    std::string rx_log;  // JSON lines of every valid packet received
+    std::string rx_log;     // JSON lines of every valid packet received
+    std::string write_dem;  // write the simulator's terrain as a GeoTIFF here, then exit
     double tick_s = 0.01;
 
     gimbal::protocols::SimScenario scenario;  // the model: clock, seed, settings, own flags
