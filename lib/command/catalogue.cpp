@@ -83,7 +83,7 @@ constexpr std::array geopoint_params{
       .max = max_alt,
       .unit = "m",
       .default_text = "the terrain's height there",
-      .note = "needed without `terrain` (or where it has no data)"},
+      .note = "needed where no `terrain` covers the point"},
     P{.name = "alt_ref",
       .type = T::choice,
       .default_text = "wgs84",

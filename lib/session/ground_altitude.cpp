@@ -1,7 +1,10 @@
 #include "session/ground_altitude.hpp"
 
+#include <array>
 #include <optional>
+#include <span>
 #include <string>
+#include <string_view>
 
 #include "command/params.hpp"
 
@@ -22,17 +25,13 @@ bool present(const json& object, const char* key) {
     return it != object.end() && !it->is_null();
 }
 
-// The alt_ref of a request, when it is one of `allowed`; nullopt when absent. A malformed one
-// is left for the planner to refuse (`malformed` set).
-std::optional<std::string> alt_ref(const json& request, std::initializer_list<const char*> allowed,
-                                   bool& malformed) {
-    const auto it = request.find("alt_ref");
-    if (it == request.end() || it->is_null()) return std::nullopt;
-    if (it->is_string())
-        for (const char* a : allowed)
-            if (*it == a) return it->get<std::string>();
-    malformed = true;
-    return std::nullopt;
+// The alt_ref of a request (nullopt when absent), refused when not one of `allowed`.
+command::Result<std::optional<std::string>> alt_ref(const json& request,
+                                                    std::span<const std::string_view> allowed) {
+    command::Params p(request);
+    auto ref = p.choice("alt_ref", allowed, false);
+    if (!p.ok()) return p.error();
+    return ref;
 }
 
 // The ellipsoid altitude for one point object: the terrain's height there plus the height
@@ -58,9 +57,10 @@ command::Result<double> ground_altitude(const json& point, bool above_ground, ge
 }
 
 command::Result<json> resolve_geopoint(const json& request, geo::Surface* terrain) {
-    bool malformed = false;
-    const auto ref = alt_ref(request, {"wgs84", "msl", "terrain"}, malformed);
-    if (malformed) return request;
+    static constexpr std::array<std::string_view, 3> refs{"wgs84", "msl", "terrain"};
+    const auto read = alt_ref(request, refs);
+    if (!read) return read.error();
+    const auto& ref = *read;
     const bool above_ground = ref == "terrain";
     if (present(request, "alt") && !above_ground) return request;
     if (ref == "msl")
@@ -74,9 +74,10 @@ command::Result<json> resolve_geopoint(const json& request, geo::Surface* terrai
 }
 
 command::Result<json> resolve_path(const json& request, geo::Surface* terrain) {
-    bool malformed = false;
-    const auto ref = alt_ref(request, {"wgs84", "terrain"}, malformed);
-    if (malformed) return request;
+    static constexpr std::array<std::string_view, 2> refs{"wgs84", "terrain"};
+    const auto read = alt_ref(request, refs);
+    if (!read) return read.error();
+    const auto& ref = *read;
     const bool above_ground = ref == "terrain";
     const auto points = request.find("points");
     if (points == request.end() || !points->is_array()) return request;

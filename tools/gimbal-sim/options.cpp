@@ -60,12 +60,13 @@ DISCOVERY
        and, when different, to the request's source port.
 
 TERRAIN
-       The simulated Orion's line of sight meets an analytic terrain around
-       45.7 N 121.5 W: a plateau near 400 m, hills up to about 1000 m and a river
-       valley (heights above the WGS84 ellipsoid). --write-dem FILE writes it as a
-       Float32 GeoTIFF (1 arc-second, 45.5..45.9 N, 121.8..121.2 W) and exits: give
-       that file to gimbald's terrain section with "geoid": "none", and gimbald's
-       ground agrees with the simulated gimbal's target.
+       The simulator's ground is an analytic terrain around 45.7 N 121.5 W: a
+       plateau near 400 m, hills up to about 1000 m and a river valley (heights
+       above the WGS84 ellipsoid); the models that range on it say so above.
+       --write-dem FILE writes it as a Float32 GeoTIFF (1 arc-second, 45.5..45.9 N,
+       121.8..121.2 W) and exits: give that file to gimbald's terrain section with
+       "geoid": "none", and gimbald's ground agrees with the simulated gimbal's
+       target.
 
 RX LOG
        --rx-log FILE writes one JSON object per line for every valid frame
