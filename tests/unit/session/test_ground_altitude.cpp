@@ -53,8 +53,8 @@ TEST_CASE("ground altitudes: geopoint", "[ground_altitude]") {
     const json given = {{"lat", 45.7}, {"lon", -121.5}, {"alt", 300}, {"alt_ref", "msl"}};
     CHECK(resolved("geopoint", given, &terrain) == given);
     CHECK(resolved("geopoint", given, nullptr) == given);
-    // Malformed alt_ref or others: left for the planner to name.
-    const json odd = {{"lat", 45.7}, {"lon", -121.5}, {"alt_ref", "agl"}};
+    // Anything else malformed is left for the planner to name.
+    const json odd = {{"lat", "north"}, {"lon", -121.5}, {"alt", 3}};
     CHECK(resolved("geopoint", odd, &terrain) == odd);
     // Other commands pass unchanged.
     CHECK(resolved("position", {{"pan", 1}}, &terrain) == json{{"pan", 1}});
@@ -75,6 +75,11 @@ TEST_CASE("ground altitudes: refusals", "[ground_altitude]") {
     e = refused("geopoint", {{"lat", 45.7}, {"lon", -121.5}, {"alt_ref", "msl"}}, &terrain);
     CHECK(e.code == ErrorCode::bad_request);
     CHECK_THAT(e.message, Catch::Contains("'alt'"));
+    e = refused("geopoint", {{"lat", 45.7}, {"lon", -121.5}, {"alt_ref", "agl"}}, &terrain);
+    CHECK(e.code == ErrorCode::bad_request);
+    CHECK_THAT(e.message, Catch::Contains("'alt_ref'"));
+    e = refused("path", {{"points", json::array()}, {"alt_ref", "msl"}}, &terrain);
+    CHECK_THAT(e.message, Catch::Contains("'alt_ref'"));
     e = refused("geopoint", {{"lat", 91}, {"lon", -121.5}}, &terrain);
     CHECK(e.code == ErrorCode::out_of_range);
     CHECK_THAT(e.message, Catch::Contains("'lat'"));
