@@ -36,8 +36,11 @@ nlohmann::json capabilities_key(const protocols::Entry& protocol) {
 
 }  // namespace
 
-App::App(const cfg::Config& config)
-    : config_(config), signals_(io_, SIGINT, SIGTERM, SIGHUP), watchdog_timer_(io_) {
+App::App(const cfg::Config& config, std::unique_ptr<gimbal::terrain::ElevationModel> terrain)
+    : config_(config),
+      signals_(io_, SIGINT, SIGTERM, SIGHUP),
+      watchdog_timer_(io_),
+      terrain_(std::move(terrain)) {
     if (config_.record) start_recorder();
     // Each protocol reads its own keys (feed, options) from its gimbal's configuration object.
     const nlohmann::json gimbal_objects = cfg::to_json(config_)["gimbals"];
@@ -72,6 +75,7 @@ App::App(const cfg::Config& config)
     path_options.max_skew_s = config_.command.max_skew_s;
     path_options.rate_per_source_hz = config_.command.rate_limit.per_source_hz;
     path_options.rate_burst = config_.command.rate_limit.burst;
+    path_options.terrain = terrain_.get();
     request_path_ = std::make_unique<RequestPath>(io_, std::move(path_options), std::move(raw));
 
     CommandServerOptions options;
@@ -236,6 +240,7 @@ std::unique_ptr<gimbal::session::Protocol> App::make_protocol(const protocols::E
     settings.auto_ack_stare = config_.stare.auto_ack;
     settings.allow_fire = config_.laser.allow_fire;
     settings.allow_safety_bypass = config_.laser.allow_safety_bypass;
+    settings.terrain = terrain_.get();
     return protocol.make_session(settings, gimbal);
 }
 

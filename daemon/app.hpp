@@ -18,14 +18,17 @@
 #include "protocols/registry.hpp"
 #include "record/recorder.hpp"
 #include "request_path.hpp"
+#include "terrain/elevation_model.hpp"
 #include "vehicle_feed.hpp"
 
 namespace gimbald {
 
 class App {
   public:
-    // Builds every session and binds the command socket; throws on a bind failure.
-    explicit App(const gimbal::daemon::Config& config);
+    // Builds every session and binds the command socket; throws on a bind failure. `terrain`
+    // is the elevation model opened from the configuration (null without a terrain section).
+    explicit App(const gimbal::daemon::Config& config,
+                 std::unique_ptr<gimbal::terrain::ElevationModel> terrain = nullptr);
     ~App();
 
     // Runs until SIGTERM/SIGINT; returns the process exit code.
@@ -47,6 +50,9 @@ class App {
     boost::asio::io_context io_;
     boost::asio::signal_set signals_;
     boost::asio::steady_timer watchdog_timer_;
+    // Contract section 15: one model shared by every gimbal; declared before them so it
+    // outlives them.
+    std::unique_ptr<gimbal::terrain::ElevationModel> terrain_;
     // Declared before everything that records into it, so it outlives them.
     std::unique_ptr<record::Recorder> recorder_;  // contract section 12; null unless `record`
     std::vector<std::unique_ptr<GimbalSession>> sessions_;

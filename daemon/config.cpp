@@ -836,6 +836,31 @@ RecordConfig read_record(Fields& f) {
     return record;
 }
 
+// ---- terrain (contract section 15) ---------------------------------------------------------
+
+TerrainConfig read_terrain(Fields& f) {
+    TerrainConfig terrain;
+    if (const json* files = f.required("files")) {
+        if (!files->is_array() || files->empty()) {
+            f.problem("files", "must be a non-empty array of paths or globs");
+        } else {
+            for (std::size_t i = 0; i < files->size(); ++i) {
+                const json& file = (*files)[i];
+                if (!file.is_string() || file.get_ref<const std::string&>().empty())
+                    f.problems().add(index_path(f.path("files"), i),
+                                     "must be a path or glob, e.g. \"/var/lib/gimbald/dem/*.tif\"");
+                else
+                    terrain.files.push_back(file.get<std::string>());
+            }
+        }
+    }
+    std::string geoid = "egm96";
+    if (f.choice("geoid", geoid, {"egm96", "none"}))
+        terrain.geoid = geoid == "none" ? TerrainGeoid::none : TerrainGeoid::egm96;
+    f.integer("cache_mb", terrain.cache_mb, {1, 65536});
+    return terrain;
+}
+
 json mqtt_to_json(const MqttConfig& m) {
     auto optional = [](const std::optional<std::string>& s) {
         return s ? json(*s) : json(nullptr);
@@ -1092,6 +1117,7 @@ ConfigResult parse_config(std::string_view text, GimbalsSection gimbals) {
     section(root, "mqtt", [&](Fields& f) { config.mqtt = read_mqtt(f); });
     section(root, "http", [&](Fields& f) { config.http = read_http(f); });
     section(root, "record", [&](Fields& f) { config.record = read_record(f); });
+    section(root, "terrain", [&](Fields& f) { config.terrain = read_terrain(f); });
     root.finish();
     // POST /api/command reaches the laser like a datagram: the same start-up refusal.
     if (config.http && config.laser.allow_fire && !config.http->bind.is_loopback() &&
@@ -1278,6 +1304,10 @@ json to_json(const Config& config, bool show_token) {
         out["record"] = {{"dir", config.record->dir},
                          {"max_file_mb", config.record->max_file_mb},
                          {"max_total_mb", config.record->max_total_mb}};
+    if (config.terrain)
+        out["terrain"] = {{"files", config.terrain->files},
+                          {"geoid", config.terrain->geoid == TerrainGeoid::none ? "none" : "egm96"},
+                          {"cache_mb", config.terrain->cache_mb}};
     return out;
 }
 

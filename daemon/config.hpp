@@ -261,6 +261,16 @@ struct RecordConfig {
     bool operator==(const RecordConfig&) const = default;
 };
 
+// terrain (contract section 15, docs/terrain.md): elevation models; off unless set. The
+// files are opened at start and by --check-config (daemon/terrain_model.hpp), not here.
+enum class TerrainGeoid { egm96, none };
+struct TerrainConfig {
+    std::vector<std::string> files;  // paths or globs, as written (relative: to the working dir)
+    TerrainGeoid geoid = TerrainGeoid::egm96;
+    int cache_mb = 64;
+    bool operator==(const TerrainConfig&) const = default;
+};
+
 struct Config {
     std::vector<GimbalConfig> gimbals;
     CommandConfig command;
@@ -273,6 +283,7 @@ struct Config {
     std::optional<MqttConfig> mqtt;
     std::optional<HttpConfig> http;
     std::optional<RecordConfig> record;
+    std::optional<TerrainConfig> terrain;
     bool operator==(const Config&) const = default;
 };
 

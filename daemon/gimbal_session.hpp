@@ -45,6 +45,8 @@ class GimbalSession {
     bool laser_firing(std::uint8_t index) const { return lasers_.firing(index); }
 
     bool supports(std::string_view cmd) const { return protocol_->supports(cmd); }
+    // What the gimbal can do and how its camera sees (session/capabilities.hpp).
+    const gimbal::session::Capabilities& capabilities() const { return protocol_->capabilities(); }
     // Runs a gimbal command: validate, refuse (nothing sent) or write its packets.
     // Returns the reply results (with "sent") or the error.
     struct Outcome {

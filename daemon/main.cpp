@@ -7,6 +7,7 @@
 #include "config.hpp"
 #include "logging.hpp"
 #include "options.hpp"
+#include "terrain_model.hpp"
 
 int main(int argc, char** argv) {
     namespace cfg = gimbal::daemon;
@@ -24,6 +25,13 @@ int main(int argc, char** argv) {
         return cfg::exit_config_error;
     }
     const auto& config = resolved.config;
+    // Terrain files are configuration: one that cannot be used is exit 1, naming it.
+    auto terrain = cfg::open_terrain(config);
+    if (terrain.problem) {
+        std::cerr << "gimbald: " << cfg::config_source(options) << ": " << terrain.problem->text()
+                  << "\n";
+        return cfg::exit_config_error;
+    }
     try {
         log::configure(config.log.settings());
     } catch (const std::exception& e) {
@@ -34,7 +42,7 @@ int main(int argc, char** argv) {
               {{"source", cfg::config_source(options)}, {"config", cfg::to_json(config)}});
 
     try {
-        gimbald::App app(config);
+        gimbald::App app(config, std::move(terrain.model));
         return app.run();
     } catch (const boost::system::system_error& e) {
         log::error("runtime_failure", e.what(), {{"code", e.code().value()}});

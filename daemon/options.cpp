@@ -7,6 +7,7 @@
 #include <ostream>
 
 #include "protocols/registry.hpp"
+#include "terrain_model.hpp"
 
 #ifndef GIMBALD_VERSION
 #define GIMBALD_VERSION "0.0.0"
@@ -193,7 +194,7 @@ CommandLine parse_command_line(int argc, const char* const* argv, std::ostream& 
                     ->type_name("[PROTOCOLS]");
     app.add_flag("--check-config", options.check_config,
                  "Validate the configuration, print every problem with its JSON path, exit 0 if "
-                 "valid, 1 if not. Opens no device. Default: off.");
+                 "valid, 1 if not. Opens every terrain file, no device. Default: off.");
     app.add_option("--log-level", log_level,
                    "trace, debug, info, warn or error; overrides log.level. "
                    "Default: the file's (info).")
@@ -257,7 +258,13 @@ std::string config_source(const Options& options) {
 }
 
 int check_config(const Options& options, std::ostream& out, std::ostream& err) {
-    const auto result = resolve_config(options);
+    auto result = resolve_config(options);
+    // Terrain files are configuration, not devices: opened here too (section 15).
+    OpenedTerrain terrain;
+    if (result.ok()) {
+        terrain = open_terrain(result.config);
+        if (terrain.problem) result.problems.push_back(*terrain.problem);
+    }
     const std::string source = config_source(options);
     if (!result.ok()) {
         for (const auto& problem : result.problems) err << source << ": " << problem.text() << "\n";
@@ -272,9 +279,13 @@ int check_config(const Options& options, std::ostream& out, std::ostream& err) {
                                to_string(gimbal.protocol), link_type(gimbal.link), sim ? "" : " ",
                                sim ? "" : describe(gimbal.link));
     }
-    out << fmt::format("{}: OK, {} gimbal{}{}{}\n", source, result.config.gimbals.size(),
+    std::string dem;
+    if (terrain.model)
+        dem = fmt::format("; terrain: {} file{}", terrain.model->files().size(),
+                          terrain.model->files().size() == 1 ? "" : "s");
+    out << fmt::format("{}: OK, {} gimbal{}{}{}{}\n", source, result.config.gimbals.size(),
                        result.config.gimbals.size() == 1 ? "" : "s", gimbals.empty() ? "" : ": ",
-                       gimbals);
+                       gimbals, dem);
     return exit_ok;
 }
 

@@ -38,9 +38,11 @@ std::int64_t system_unix_ms() {
         .count();
 }
 
-// The commands that move, configure or feed a gimbal (the audit trail's subject).
+// The commands that move, configure or feed a gimbal (the audit trail's subject): those
+// the catalogue gives the control or laser role (`point` among them, not `locate`).
 bool reaches_gimbal(std::string_view cmd) {
-    return !cmdns::is_common_command(cmd);
+    const auto* spec = cmdns::find_command(cmd);
+    return !spec || (spec->access != cmdns::Access::open && spec->access != cmdns::Access::observe);
 }
 
 // The rate limit's key: a UDP client's address without its port (one host, one bucket),
@@ -102,7 +104,8 @@ RequestPath::RequestPath(boost::asio::io_context& io, RequestPathOptions options
       options_(std::move(options)),
       sessions_(std::move(sessions)),
       verifier_(options_.keys, options_.max_skew_s),
-      limiter_(options_.rate_per_source_hz, options_.rate_burst) {
+      limiter_(options_.rate_per_source_hz, options_.rate_burst),
+      ground_(options_.terrain) {
     if (!options_.unix_ms) options_.unix_ms = system_unix_ms;
 }
 
@@ -419,6 +422,11 @@ json RequestPath::dispatch(Outcome& o, const RequestSource& from) {
     }
 
     if (cmd == "subscribe" || cmd == "unsubscribe") return subscription(o, from);
+    if (GroundCommands::answers_without_gimbal(cmd)) {
+        auto answer = ground_.run(cmd, request);
+        if (!answer) return o.fail(answer.error());
+        return std::move(answer).value();
+    }
 
     // Route to the gimbal.
     GimbalSession* session = nullptr;
@@ -446,11 +454,19 @@ json RequestPath::dispatch(Outcome& o, const RequestSource& from) {
         results["state"] = gimbal::state::select_keys(session->snapshot(), keys);
         return results;
     }
+    if (GroundCommands::answers_for_gimbal(cmd)) {
+        auto outcome = ground_.run(cmd, *session, request);
+        if (outcome.error) o.error = std::move(outcome.error);
+        return std::move(outcome.results);
+    }
     if (!session->supports(cmd)) {
         return o.fail(Error{code::unsupported, "'" + cmd + "' is not a command of " +
                                                    std::string(session->protocol()) + " gimbals"});
     }
-    auto outcome = session->execute(cmd, request);
+    // Altitudes left to the terrain (geopoint, path) become plain ones before planning.
+    const auto prepared = ground_.prepare(cmd, request);
+    if (!prepared) return o.fail(prepared.error());
+    auto outcome = session->execute(cmd, *prepared);
     if (outcome.error) o.error = std::move(outcome.error);
     return std::move(outcome.results);
 }

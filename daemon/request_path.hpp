@@ -17,6 +17,7 @@
 #include "auth/verifier.hpp"
 #include "command/result.hpp"
 #include "gimbal_session.hpp"
+#include "ground_commands.hpp"
 #include "subscriptions.hpp"
 
 namespace gimbald {
@@ -47,6 +48,8 @@ struct RequestPathOptions {
     double rate_burst = 400;
     // Unix time in milliseconds (signed requests' `ts`); tests may pin it.
     std::function<std::int64_t()> unix_ms;
+    // The daemon's elevation model (contract section 15), nullptr when none is configured.
+    gimbal::terrain::ElevationModel* terrain = nullptr;
 };
 
 // STATE `command` (contract section 10): what the request path has seen since start.
@@ -125,6 +128,7 @@ class RequestPath {
     gimbal::auth::Verifier verifier_;
     gimbal::auth::RateLimiter limiter_;
     RequestCounters counters_;
+    GroundCommands ground_;
 };
 
 }  // namespace gimbald

@@ -469,6 +469,7 @@
     const q = svgPoint(ev);
     const ll = p.toLatLon(q.x, q.y);
     const t = s && s.telemetry;
+    // Without terrain the click is on the flat world: the target's altitude, else a guess.
     let alt;
     let altFrom;
     if (t && t.target && Number.isFinite(t.target.alt)) { alt = t.target.alt; altFrom = 'target'; }
@@ -478,7 +479,11 @@
     const lat = Number(ll.lat.toFixed(7));
     const lon = Number(ll.lon.toFixed(7));
     alt = Number(alt.toFixed(2));
-    app.lastClick = { gimbal: app.selected, x: q.x, y: q.y, lat, lon, alt, alt_from: altFrom,
+    // With terrain (contract section 15) gimbald takes the ground's height there itself.
+    const onTerrain = !!(app.info && app.info.terrain);
+    const flatFrom = altFrom;
+    if (onTerrain) altFrom = 'terrain';
+    app.lastClick = { gimbal: app.selected, x: q.x, y: q.y, lat, lon, alt: onTerrain ? null : alt, alt_from: altFrom,
       centre: { lat: p.lat0, lon: p.lon0, system_time_ms: map.drawn && map.drawn.system_time_ms },
       px_per_m: p.px_per_m, cx: p.cx, cy: p.cy };
     publishHook();
@@ -490,8 +495,17 @@
     }
     app.clicks[app.selected] = { lat, lon };
     render();
-    sendCommand({ cmd: 'geopoint', lat, lon, alt }).then((reply) => {
-      app.lastClick.reply = reply;
+    const click = app.lastClick;
+    sendCommand(onTerrain ? { cmd: 'geopoint', lat, lon } : { cmd: 'geopoint', lat, lon, alt }).then((reply) => {
+      // Outside the terrain's coverage: the flat world's altitude after all.
+      if (onTerrain && reply && !reply.ok && reply.error && reply.error.code === 'unavailable') {
+        click.alt = alt;
+        click.alt_from = `no terrain there: ${flatFrom}`;
+        return sendCommand({ cmd: 'geopoint', lat, lon, alt });
+      }
+      return reply;
+    }).then((reply) => {
+      click.reply = reply;
       publishHook();
     });
   });

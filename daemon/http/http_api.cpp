@@ -172,6 +172,8 @@ json HttpApi::console_info() const {
     return {{"version", GIMBALD_VERSION},
             {"gimbals", std::move(gimbals)},
             {"laser_allow_fire", config.laser.allow_fire},
+            // Contract section 15: with terrain, a click's geopoint leaves `alt` to it.
+            {"terrain", config.terrain.has_value()},
             {"tiles_url", config.http && config.http->tiles_url ? json(*config.http->tiles_url)
                                                                 : json(nullptr)}};
 }

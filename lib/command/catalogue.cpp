@@ -43,18 +43,63 @@ constexpr std::array subscribe_params{
       .note = "with `changes`: a full STATE this often"},
 };
 
-// ---- protocol commands --------------------------------------------------------------------
+// ---- sections 15 and 16: the ground and the image (gimbald answers them itself) -----------
 
-constexpr std::array<std::string_view, 2> alt_refs{"wgs84", "msl"};
-constexpr std::array geopoint_params{
+constexpr std::array elevation_params{
+    P{.name = "lat", .required = true, .min = -90, .max = 90, .unit = "deg"},
+    P{.name = "lon", .required = true, .min = -180, .max = 180, .unit = "deg"},
+};
+
+// Pixel coordinates: the largest image a 16-bit size field describes.
+constexpr double max_pixels = 65535;
+constexpr std::array locate_params{
+    P{.name = "x", .min = -1, .max = 1, .note = "left edge -1, right edge 1"},
+    P{.name = "y", .min = -1, .max = 1, .note = "top edge -1, bottom edge 1"},
+    P{.name = "px",
+      .min = 0,
+      .max = max_pixels,
+      .note = "pixels from the left edge, up to the telemetry's `pixel_width`"},
+    P{.name = "py",
+      .min = 0,
+      .max = max_pixels,
+      .note = "pixels from the top edge, up to `pixel_height`"},
+};
+
+constexpr std::array project_params{
     P{.name = "lat", .required = true, .min = -90, .max = 90, .unit = "deg"},
     P{.name = "lon", .required = true, .min = -180, .max = 180, .unit = "deg"},
     P{.name = "alt", .required = true, .min = min_alt, .max = max_alt, .unit = "m"},
+};
+
+constexpr std::array point_params{
+    locate_params[0],
+    locate_params[1],
+    locate_params[2],
+    locate_params[3],
+    P{.name = "stare",
+      .type = T::boolean,
+      .default_text = "false",
+      .note = "stare at the point, where the gimbal's geopoint can"},
+};
+
+// ---- protocol commands --------------------------------------------------------------------
+
+constexpr std::array<std::string_view, 3> alt_refs{"wgs84", "msl", "terrain"};
+constexpr std::array geopoint_params{
+    P{.name = "lat", .required = true, .min = -90, .max = 90, .unit = "deg"},
+    P{.name = "lon", .required = true, .min = -180, .max = 180, .unit = "deg"},
+    P{.name = "alt",
+      .min = min_alt,
+      .max = max_alt,
+      .unit = "m",
+      .default_text = "the terrain's height there",
+      .note = "needed where no `terrain` covers the point"},
     P{.name = "alt_ref",
       .type = T::choice,
       .default_text = "wgs84",
       .choices = alt_refs,
-      .note = "`msl` converts with the latest telemetry's geoid undulation"},
+      .note = "`msl` converts with the latest telemetry's geoid undulation; `terrain`: `alt` "
+              "is height above the ground (default 0)"},
     P{.name = "vel_ned",
       .type = T::numbers,
       .min = -max_velocity,
@@ -72,11 +117,18 @@ constexpr std::array geopoint_params{
     P{.name = "closure", .type = T::boolean, .default_text = "false"},
 };
 
+constexpr std::array<std::string_view, 2> path_alt_refs{"wgs84", "terrain"};
 constexpr std::array path_params{
     P{.name = "points",
       .type = T::points,
       .max = 15,
-      .note = "altitudes above the WGS84 ellipsoid; leave out with `down`"},
+      .note = "altitudes above the WGS84 ellipsoid, `alt` optional where `terrain` covers the "
+              "point; leave out with `down`"},
+    P{.name = "alt_ref",
+      .type = T::choice,
+      .default_text = "wgs84",
+      .choices = path_alt_refs,
+      .note = "`terrain`: the points' `alt` is height above the ground (default 0)"},
     P{.name = "down",
       .type = T::boolean,
       .default_text = "false",
@@ -261,6 +313,41 @@ constexpr std::array commands{
       .summary = "Stop the STATE and event datagrams.",
       .reply = "`\"subscribed\": false`",
       .example = "{}"},
+    C{.name = "elevation",
+      .scope = Scope::daemon,
+      .access = Access::observe,
+      .summary = "The terrain's height at a point (needs `terrain`).",
+      .params = elevation_params,
+      .reply = "`\"alt\"` (above the ellipsoid), `\"alt_msl\"` (null with `\"geoid\": "
+               "\"none\"`), `\"source\"` (the file); `unavailable` outside the terrain",
+      .example = R"({"lat": 45.7, "lon": -121.5})"},
+    C{.name = "locate",
+      .scope = Scope::every_gimbal,
+      .access = Access::observe,
+      .summary = "The ground point seen at an image position.",
+      .params = locate_params,
+      .rule = "`x`,`y` or `px`,`py`",
+      .reply = "`\"lat\"`, `\"lon\"`, `\"alt\"`, `\"range_m\"`, `\"surface\"` "
+               "(`terrain` or `ellipsoid`); `unavailable` when the ray misses the ground or "
+               "no telemetry is known",
+      .example = R"({"x": 0.5, "y": -0.25})"},
+    C{.name = "project",
+      .scope = Scope::every_gimbal,
+      .access = Access::observe,
+      .summary = "Where a point appears in the current image (the inverse of locate).",
+      .params = project_params,
+      .reply = "`\"x\"`, `\"y\"` (null behind the camera), `\"visible\"` (in the image "
+               "and not hidden by the terrain), and `\"px\"`, `\"py\"` when the image size "
+               "is known",
+      .example = R"({"lat": 45.69, "lon": -121.5, "alt": 400})"},
+    C{.name = "point",
+      .scope = Scope::every_gimbal,
+      .summary = "Point the gimbal at the ground seen at an image position.",
+      .params = point_params,
+      .rule = "`x`,`y` or `px`,`py`",
+      .reply = "the located point as `locate` gives it and `\"sent\"`; `unsupported` for a "
+               "gimbal that cannot point at a location",
+      .example = R"({"x": 0.5, "y": -0.3})"},
     C{.name = "geopoint",
       .summary = "Point at a geographic location.",
       .params = geopoint_params,

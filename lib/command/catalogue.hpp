@@ -67,7 +67,8 @@ struct CommandSpec {
     std::string_view example = {};  // the parameters of one valid request, as a JSON object text
 };
 
-// Every command, in the contract's order: section 4.1, then the protocol commands.
+// Every command, in the contract's order: section 4.1, the ground and image commands of
+// sections 15 and 16, then the protocol commands.
 std::span<const CommandSpec> catalogue();
 const CommandSpec* find_command(std::string_view name);
 bool is_known_command(std::string_view name);

@@ -49,7 +49,8 @@ void geopoint(Request& r) {
     const auto lat = p.number("lat", -90.0, 90.0, true);
     const auto lon = p.number("lon", -180.0, 180.0, true);
     const auto alt = p.number("alt", min_alt_m, max_alt_m, true);
-    static constexpr std::array<std::string_view, 2> refs{"wgs84", "msl"};
+    // "terrain" is the daemon's to resolve (session/ground_altitude.hpp) before planning.
+    static constexpr std::array<std::string_view, 3> refs{"wgs84", "msl", "terrain"};
     const auto ref = p.choice("alt_ref", refs, false).value_or("wgs84");
     const auto vel = p.numbers("vel_ned", 3, -327.67, 327.67, false);
     const auto joystick = p.integer_or("joystick_range_m", 0, 65535, 0);
@@ -57,6 +58,8 @@ void geopoint(Request& r) {
     const bool closure = p.boolean_or("closure", false);
     if (!p.ok()) return;
 
+    if (ref == "terrain")
+        return p.fail(code::unavailable, "alt_ref 'terrain' needs gimbald's terrain section");
     double alt_wgs84 = *alt;
     if (ref == "msl") {
         if (!r.ctx.geoid_undulation_m)
@@ -81,7 +84,11 @@ void path(Request& r) {
     const double along = p.number_or("along_step_deg", 0.0, 180.0, 0.0);
     const auto cross_steps = p.integer_or("cross_steps", 0, 15, 0);
     const double cross_ratio = p.number_or("cross_ratio", 0.0, 2.55, 0.0);
+    static constexpr std::array<std::string_view, 2> refs{"wgs84", "terrain"};
+    const auto ref = p.choice("alt_ref", refs, false).value_or("wgs84");
     if (!p.ok()) return;
+    if (ref == "terrain")
+        return p.fail(code::unavailable, "alt_ref 'terrain' needs gimbald's terrain section");
 
     o::Path path;
     if (down) {

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "framing/stream_splitter.hpp"
+#include "geo/surface.hpp"
 #include "protocols/protocol_id.hpp"
 #include "protocols/simulator.hpp"
 #include "protocols/track.hpp"
@@ -22,12 +23,16 @@
 
 namespace gimbal::protocols {
 
-// The daemon-wide settings a session may use (contract section 3: telemetry, stare, laser).
+// The daemon-wide settings a session may use (contract section 3: telemetry, stare, laser;
+// section 15: terrain).
 struct SessionSettings {
     double stale_after_s = 1.0;
     bool auto_ack_stare = false;
     bool allow_fire = false;
     bool allow_safety_bypass = false;
+    // The elevation model (nullptr: none configured), shared by every gimbal of the daemon
+    // and used on its one io thread: where STATE's footprint and ground meet the ground.
+    geo::Surface* terrain = nullptr;
 };
 
 // A catalogue command (lib/command/catalogue.hpp) this protocol plans, and what it sends.

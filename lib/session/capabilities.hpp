@@ -8,8 +8,9 @@
 //     `unsupported` (this protocol cannot), `unavailable` (not yet: the STATE lacks what it
 //     needs, e.g. no telemetry for an angle left out);
 //   - a reading (line_of_sight, view, identity, limits, camera) returns what STATE says, with
-//     nullopt for what this gimbal does not report (yet).
-// Angles are degrees, positions WGS84 degrees and metres above mean sea level.
+//     nullopt for what this gimbal does not report (yet); `image` says why not as an Error.
+// Angles are degrees, positions WGS84 degrees and metres above mean sea level (image's camera
+// position: above the WGS84 ellipsoid, as image geometry works).
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -20,6 +21,7 @@
 
 #include "command/result.hpp"
 #include "geo/attitude.hpp"
+#include "geo/footprint.hpp"
 
 namespace gimbal::session {
 
@@ -91,6 +93,20 @@ struct View {
     std::optional<double> hfov_deg, vfov_deg;
 };
 
+// The camera as image geometry needs it (contract section 16: locate, project, point).
+struct ImageView {
+    // Position above the WGS84 ellipsoid; camera -> NED with any image rotation; full fields
+    // of view.
+    geo::CameraPose camera;
+    std::optional<double> width_px, height_px;  // the image in pixels, when reported
+    // The flat world's altitude above the ellipsoid: the gimbal's own target's, when it
+    // reports one (the ground where no terrain answers).
+    std::optional<double> flat_alt_m;
+    // The geoid height above the ellipsoid the gimbal converts MSL altitudes with (a
+    // GeoTarget's alt_msl_m), when it reports one.
+    std::optional<double> geoid_undulation_m;
+};
+
 // The camera (MAVLink CAMERA_INFORMATION); nullopt members: not reported.
 struct Camera {
     bool basic_zoom = false;
@@ -119,6 +135,9 @@ class Capabilities {
     // NED.
     virtual std::optional<geo::Quat> line_of_sight(const nlohmann::json& state) const = 0;
     virtual View view(const nlohmann::json& state) const = 0;
+    // The image geometry, or unsupported (the gimbal never reports what it needs, such as a
+    // field of view) / unavailable (no telemetry yet).
+    virtual command::Result<ImageView> image(const nlohmann::json& state) const = 0;
     virtual Identity identity(const nlohmann::json& state) const = 0;
     virtual Limits limits(const nlohmann::json& state) const = 0;
     virtual Camera camera(const nlohmann::json& state) const = 0;

@@ -7,6 +7,7 @@
 #include "orion/framing.hpp"
 #include "sim/orion_sim_info.hpp"
 #include "sim/orion_sim_model.hpp"
+#include "sim/terrain.hpp"
 
 namespace gimbal::sim {
 
@@ -66,6 +67,7 @@ bool is_version_id(std::uint8_t id) {
 
 OrionSim::OrionSim(const OrionSimOptions& options)
     : options_(options),
+      terrain_(options.terrain_alt_m ? nullptr : terrain_surface()),
       circle_(circle_options(options)),
       path_options_(path_options(options)),
       on_target_rad_(options.on_target_deg * deg),

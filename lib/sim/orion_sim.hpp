@@ -25,8 +25,10 @@ struct OrionSimOptions {
     double radius_m = 1000;
     double speed_mps = 25;  // 0 hovers at the centre
     bool clockwise = true;
-    // Flat terrain at this height above the ellipsoid gives the line of sight its range.
-    double terrain_alt_m = 100;
+    // Where the line of sight meets the ground (its range, the reported target): flat ground
+    // at this height above the ellipsoid, or when not set the analytic terrain of
+    // sim/terrain.hpp (hills and a valley around the demo area).
+    std::optional<double> terrain_alt_m;
     // Reported geoid height above the ellipsoid (MSL altitude = WGS84 altitude - this).
     double geoid_undulation_m = -21;
 

@@ -10,6 +10,7 @@
 #include <span>
 #include <vector>
 
+#include "geo/sampled_surface.hpp"
 #include "orion/codec.hpp"
 #include "orion/framer.hpp"
 #include "orion/packets.hpp"
@@ -92,9 +93,13 @@ class OrionSim final : public Device {
     // gimbal; zero when it meets nothing within reach of the I16 field.
     Vec3 line_of_sight_vector(orion::RangeSource& source) const;
     Vec3 line_of_sight_dir() const;
+    // Where a ray from the gimbal first meets the ground (flat or the analytic terrain).
+    std::optional<Vec3> ground_hit(Vec3 dir_ecef) const;
     double noise(double sigma);
 
     OrionSimOptions options_;
+    // The analytic terrain (sim/terrain.hpp) unless options_.terrain_alt_m sets flat ground.
+    std::unique_ptr<geo::SampledSurface> terrain_;
     CirclePlatform circle_;
     PathOptions path_options_;
     double on_target_rad_;

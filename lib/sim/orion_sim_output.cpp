@@ -7,6 +7,7 @@
 #include "orion/framing.hpp"
 #include "sim/camera.hpp"
 #include "sim/orion_sim_model.hpp"
+#include "sim/terrain.hpp"
 
 namespace gimbal::sim {
 
@@ -73,13 +74,24 @@ Vec3 OrionSim::line_of_sight_dir() const {
     return mount_to_ecef_ * los_in_mount(axes_.angles());
 }
 
+std::optional<Vec3> OrionSim::ground_hit(Vec3 dir) const {
+    if (options_.terrain_alt_m)
+        return hit_flat_terrain(platform_.ecef, dir, *options_.terrain_alt_m);
+    // Beyond the I16 field's reach the gimbal reports no location anyway.
+    const geo::RayOptions reach{2 * max_los_component_m};
+    const Lla& p = platform_.lla;
+    const auto hit = terrain_->intersect({p.lat / deg, p.lon / deg, p.alt}, dir, reach);
+    if (hit.status != geo::RayStatus::hit) return std::nullopt;
+    return geo::lla_to_ecef(hit.point);
+}
+
 Vec3 OrionSim::line_of_sight_vector(orion::RangeSource& source) const {
     const Vec3 dir = line_of_sight_dir();
     Vec3 v;
     if (t_ <= range_until_t_ && range_m_ > 0) {  // a client's range, while it is fresh
         v = range_m_ * dir;
         source = range_source_;
-    } else if (auto hit = hit_flat_terrain(platform_.ecef, dir, options_.terrain_alt_m)) {
+    } else if (auto hit = ground_hit(dir)) {
         v = *hit - platform_.ecef;
         source = orion::RangeSource::internal;
     } else {

@@ -105,6 +105,10 @@ const std::vector<Landmark>& landmarks() {
     return marks;
 }
 
+geo::GeoRect terrain_dem_area() {
+    return {45.5, 45.9, -121.8, -121.2};
+}
+
 std::unique_ptr<geo::SampledSurface> terrain_surface() {
     return std::make_unique<geo::SampledSurface>(
         terrain_height, geo::Lattice{0, 0, 1.0 / 3600, 1.0 / 3600}, terrain_max_alt_m);

@@ -50,6 +50,11 @@ struct Landmark {
 };
 const std::vector<Landmark>& landmarks();
 
+// The area `gimbal-sim --write-dem` writes (and gimbald's simulator demo reads back): about
+// 44 x 47 km around the terrain's origin, edges on whole arc-seconds so the file's lattice is
+// terrain_surface()'s.
+geo::GeoRect terrain_dem_area();
+
 // The terrain sampled at 1 arc-second (lattice nodes on whole arc-seconds) and interpolated
 // bilinearly, as a geo::Surface.
 std::unique_ptr<geo::SampledSurface> terrain_surface();

@@ -5,9 +5,10 @@
 #include <cstdio>
 #include <string_view>
 
-#include "geo/footprint.hpp"
+#include "geo/image.hpp"
 #include "geo/wgs84.hpp"
 #include "orion/json.hpp"
+#include "state/ground_json.hpp"
 #include "state/precision.hpp"
 
 namespace gimbal::state {
@@ -114,34 +115,14 @@ std::string gps_to_utc_iso(std::uint16_t week, std::uint32_t itow_ms, std::uint8
     return buf;
 }
 
-namespace {
-
-// Contract section 11: the image corners on the ground at the target's altitude; null
-// without a target (no ranging data) or when a corner looks above the horizon.
-nlohmann::json footprint_json(const o::GeolocateTelemetry& t, const geo::Lla& gimbal,
-                              const std::optional<geo::Lla>& target) {
-    if (!target) return nullptr;
-    const geo::Quat mount{t.quat[0], t.quat[1], t.quat[2], t.quat[3]};
-    const geo::CameraPose camera{
-        gimbal, geo::line_of_sight_attitude(mount, t.pan * o::rad2deg, t.tilt * o::rad2deg),
-        t.hfov * o::rad2deg, t.vfov * o::rad2deg};
-    const auto corners = geo::footprint(camera, target->alt_m);
-    if (!corners) return nullptr;
-    nlohmann::json out = nlohmann::json::array();
-    for (const auto& c : *corners)
-        out.push_back({{"lat", latlon_deg(c.lat_deg)}, {"lon", latlon_deg(c.lon_deg)}});
-    return out;
-}
-
-}  // namespace
-
-nlohmann::json telemetry_json(const o::GeolocateTelemetry& t) {
+nlohmann::json telemetry_json(const o::GeolocateTelemetry& t, geo::Surface* terrain) {
     nlohmann::json j = o::to_json(t, o::Digits::shortest);
     j["utc"] = t.gps_week != 0 || t.gps_itow_ms != 0
                    ? nlohmann::json(gps_to_utc_iso(t.gps_week, t.gps_itow_ms, t.leap_seconds))
                    : nlohmann::json(nullptr);
     j["alt_msl"] = metres(t.alt - t.geoid_undulation);
-    const auto att = geo::quat_to_euler({t.quat[0], t.quat[1], t.quat[2], t.quat[3]});
+    const geo::Quat mount{t.quat[0], t.quat[1], t.quat[2], t.quat[3]};
+    const auto att = geo::quat_to_euler(mount);
     j["roll"] = angle_deg(att.roll_deg);
     j["pitch"] = angle_deg(att.pitch_deg);
     j["yaw"] = angle_deg(att.yaw_deg);
@@ -153,7 +134,12 @@ nlohmann::json telemetry_json(const o::GeolocateTelemetry& t) {
                        {"alt", metres(target->alt_m)}};
     else
         j["target"] = nullptr;
-    j["footprint"] = footprint_json(t, gimbal, target);
+    // Contract sections 11 and 15. The Orion reports no image rotation.
+    const geo::CameraPose camera =
+        geo::camera_pose(gimbal, mount, t.pan * o::rad2deg, t.tilt * o::rad2deg,
+                         t.hfov * o::rad2deg, t.vfov * o::rad2deg);
+    add_ground_keys(j, camera,
+                    geo::Ground{terrain, target ? std::optional(target->alt_m) : std::nullopt});
     return j;
 }
 
@@ -181,7 +167,7 @@ void OrionState::on_telemetry(const o::GeolocateTelemetry& t, double now_s,
     telemetry_s_ = now_s;
     ++telemetry_count_;
     lost_reported_ = false;
-    store("telemetry", telemetry_json(t), now_s);
+    store("telemetry", telemetry_json(t, terrain_), now_s);
 }
 
 bool OrionState::apply(const o::Frame& frame, double now_s, std::vector<Event>& events) {

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "geo/surface.hpp"
 #include "orion/framing.hpp"
 #include "orion/packets.hpp"
 #include "state/event.hpp"
@@ -17,7 +18,10 @@ namespace gimbal::state {
 
 class OrionState {
   public:
-    explicit OrionState(double stale_after_s = 1.0) : stale_after_s_(stale_after_s) {}
+    // `terrain` (nullptr: none) is where telemetry's footprint and ground meet the ground
+    // (state/ground_json.hpp); it must outlive the state.
+    explicit OrionState(double stale_after_s = 1.0, geo::Surface* terrain = nullptr)
+        : stale_after_s_(stale_after_s), terrain_(terrain) {}
 
     // Applies one checksum-valid frame received at now_s and appends the events it causes
     // (mode, stare_start, debug). Returns false when the packet did not decode (too short):
@@ -49,6 +53,7 @@ class OrionState {
     void on_telemetry(const orion::GeolocateTelemetry& t, double now_s, std::vector<Event>& events);
 
     double stale_after_s_;
+    geo::Surface* terrain_;
     std::map<std::string, Entry> entries_;
     std::map<std::string, std::map<std::string, Entry>> keyed_;  // versions, software, boards
     std::optional<orion::GeolocateTelemetry> telemetry_;
@@ -63,6 +68,8 @@ class OrionState {
 // Derived telemetry values (contract section 5), exposed for tests and the simulator.
 // UTC from GPS week and time of week minus leap seconds, ISO-8601 with milliseconds.
 std::string gps_to_utc_iso(std::uint16_t week, std::uint32_t itow_ms, std::uint8_t leap_seconds);
-nlohmann::json telemetry_json(const orion::GeolocateTelemetry& t);
+// STATE `telemetry`; footprint and ground on `terrain` where it answers, else on the
+// ellipsoid raised to the target's altitude.
+nlohmann::json telemetry_json(const orion::GeolocateTelemetry& t, geo::Surface* terrain = nullptr);
 
 }  // namespace gimbal::state

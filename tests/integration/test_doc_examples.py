@@ -153,6 +153,14 @@ class DocExamples(gt.GimbaldTestCase):
             with open(os.path.join(SOURCE, "config", "sim.json")) as f:
                 config = json.load(f)
             config["http"]["port"] = http
+            if "terrain" in config:
+                # config/sim.json reads the DEM scripts/run-sim.sh writes: write it here.
+                dem = os.path.join(cls.class_workdir, "sim-dem.tif")
+                if not os.path.exists(dem):
+                    r = gt.run([gt.GIMBAL_SIM, "--write-dem", dem])
+                    if r.returncode != 0:
+                        raise RuntimeError("gimbal-sim --write-dem: %s" % r.stderr)
+                config["terrain"]["files"] = [dem]
             daemon = cls.start_class_daemon(config, ["--" + args[0]] + args[1:])
             c = daemon.client()
 

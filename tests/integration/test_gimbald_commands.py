@@ -14,7 +14,7 @@ import gimbaltest as gt
 
 # OrionMode_t values (ICD) of the commands sent below.
 MODE_RATE, MODE_POSITION = 16, 80
-TERRAIN_ALT_M = 100.0  # gimbal-sim's default --terrain-alt
+TERRAIN_ALT_M = 100.0  # flat ground for gimbal-sim (--terrain-alt), not its hilly terrain
 CONNECT_REQUESTS = ["clevis_version", "crown_version", "payload_version", "tracker_version",
                     "retract_version", "lensctl_version", "cameras", "limits"]
 VERSION_REQUESTS = CONNECT_REQUESTS[:6]
@@ -35,7 +35,7 @@ class OrionOverTcp(gt.GimbaldTestCase):
     @classmethod
     def setUpClass(cls):
         super().setUpClass()
-        cls.sim = cls.start_class_sim()
+        cls.sim = cls.start_class_sim("--terrain-alt", str(TERRAIN_ALT_M))
         cls.daemon = cls.start_class_daemon(
             {"gimbals": [gt.orion_tcp("main", cls.sim.port)]})
 

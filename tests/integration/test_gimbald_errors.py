@@ -115,9 +115,10 @@ class Errors(RefusalsTestCase):
         self.assert_refused("subscribe", "bad_request", events="yes")
         self.c.send({"cmd": "ping", "id": 21, "gimbal": 5})
         self.assertError(self.c.reply_to(21), "bad_request", 21)
-        # Missing parameters, named.
-        reply = self.assert_refused("geopoint", "bad_request", "main", lat=45.7, lon=-121.5)
-        self.assertIn("alt", reply["error"]["message"])
+        # Missing parameters, named. (A geopoint without alt needs terrain, and none is
+        # configured here: unavailable, naming alt.)
+        reply = self.assert_refused("geopoint", "unavailable", "main", lat=45.7, lon=-121.5)
+        self.assertIn("'alt'", reply["error"]["message"])
         self.assert_refused("retract", "bad_request", "main")
         self.assert_refused("laser", "bad_request", "main", enable=True, arm=True)
         self.assert_refused("path", "bad_request", "main")

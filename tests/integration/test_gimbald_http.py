@@ -95,6 +95,7 @@ class HttpWithSimulator(gt.GimbaldTestCase):
         self.assertEqual(body, {"version": version,
                                 "gimbals": [{"name": "main", "protocol": "orion"}],
                                 "laser_allow_fire": False,
+                                "terrain": False,
                                 "tiles_url": "http://tiles.example/{z}/{x}/{y}.png"})
 
     # --- POST /api/command ---------------------------------------------------------

@@ -1,5 +1,6 @@
 // gimbal-sim: a simulated gimbal of any registered protocol over TCP and/or a
-// pseudo-terminal, for tests, demos and operator training. See `gimbal-sim --help` and docs/simulator.md.
+// pseudo-terminal, for tests, demos and operator training. See `gimbal-sim --help` and
+// docs/simulator.md.
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/signal_set.hpp>
 #include <csignal>
@@ -8,10 +9,12 @@
 
 #include "options.hpp"
 #include "sim_app.hpp"
+#include "write_dem.hpp"
 
 int main(int argc, char** argv) {
     const auto parsed = gimbal_sim::parse_options(argc, argv);
     if (!parsed.options) return parsed.exit_status;
+    if (!parsed.options->write_dem.empty()) return gimbal_sim::write_dem(parsed.options->write_dem);
 
     std::signal(SIGPIPE, SIG_IGN);  // a client gone mid-write is an error code, not a death
     try {

@@ -59,6 +59,15 @@ DISCOVERY
        gimbal's reply, sent to the requester's address at --discovery-reply-port
        and, when different, to the request's source port.
 
+TERRAIN
+       The simulator's ground is an analytic terrain around 45.7 N 121.5 W: a
+       plateau near 400 m, hills up to about 1000 m and a river valley (heights
+       above the WGS84 ellipsoid); the models that range on it say so above.
+       --write-dem FILE writes it as a Float32 GeoTIFF (1 arc-second, 45.5..45.9 N,
+       121.8..121.2 W) and exits: give that file to gimbald's terrain section with
+       "geoid": "none", and gimbald's ground agrees with the simulated gimbal's
+       target.
+
 RX LOG
        --rx-log FILE writes one JSON object per line for every valid frame
        received from the controller, flushed at once; t is seconds since
@@ -87,6 +96,7 @@ EXIT STATUS
 
 EXAMPLES
        gimbal-sim --port 0 --no-discovery
+       gimbal-sim --write-dem build/release/sim-dem.tif
        gimbal-sim --no-tcp --pty --pty-link /tmp/gimbal
        gimbal-sim --corrupt-fraction 0.05 --junk-every 20 --rx-log rx.jsonl
        gimbal-sim --protocol viewpro --no-tcp --pty --pty-link /tmp/viewpro
@@ -236,6 +246,9 @@ ParsedOptions parse_options(int argc, char** argv) {
     app.add_option("--seed", scenario.seed, "Seed of sensor noise and faults")
         ->capture_default_str();
     app.add_option("--rx-log", o.rx_log, "Write every packet received as a JSON line to FILE");
+    app.add_option("--write-dem", o.write_dem,
+                   "Write the simulator's terrain as a GeoTIFF DEM to FILE and exit")
+        ->type_name("FILE");
 
     // Settings every model takes; each keeps its own default when one is not given.
     auto* lat_option = app.add_option("--lat", lat, "Aircraft (circle centre) latitude, degrees")
@@ -249,7 +262,8 @@ ParsedOptions parse_options(int argc, char** argv) {
             ->default_str("the model's");
     auto* terrain_option =
         app.add_option("--terrain-alt", terrain_alt,
-                       "Height of the flat terrain, metres (the model says above what)")
+                       "Flat ground at this height instead of the terrain, metres (the model "
+                       "says above what)")
             ->default_str("the model's");
     auto* geoid_option =
         app.add_option("--geoid-undulation", geoid, "Geoid height above the ellipsoid, metres")
@@ -292,6 +306,7 @@ ParsedOptions parse_options(int argc, char** argv) {
         const auto& v = values.at(std::string(f.name));
         if (v.option->count() > 0) scenario.options[std::string(f.key)] = flag_json(v);
     }
+    if (!o.write_dem.empty()) return {o, 0};  // serves nothing
     if (!o.tcp && !o.pty) {
         std::cerr << "gimbal-sim: nothing to serve: --no-tcp needs --pty\n";
         return {std::nullopt, 1};

@@ -34,7 +34,8 @@ struct ToolOptions {
     double stall_reading_for_s = 0;    // ... for this long; 0 = never
     unsigned read_baud = 0;            // read no faster than a serial line at this rate
 
-    std::string rx_log;  // JSON lines of every valid packet received
+    std::string rx_log;     // JSON lines of every valid packet received
+    std::string write_dem;  // write the simulator's terrain as a GeoTIFF here, then exit
     double tick_s = 0.01;
 
     gimbal::protocols::SimScenario scenario;  // the model: clock, seed, settings, own flags

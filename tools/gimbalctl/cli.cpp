@@ -134,6 +134,7 @@ ParseResult parse_command_line(int argc, char** argv) {
     std::int64_t watch_count = 0;
     CommandTable table(app);
     add_common_commands(table);
+    add_ground_commands(table);
     add_gimbal_commands(table);
     add_watch_command(table, watch_count);
     add_send_command(table);

@@ -27,11 +27,14 @@ void add_geopoint(CommandTable& table) {
     auto p = params_of(command);
     p->number("LAT", "lat", "latitude, degrees, north positive")->required();
     p->number("LON", "lon", "longitude, degrees, east positive")->required();
-    p->number("ALT", "alt", "altitude, metres (reference: --alt-ref)")->required();
+    p->number("ALT", "alt",
+              "altitude, metres (reference: --alt-ref); left out: the daemon's terrain gives "
+              "the ground's height there")
+        ->default_str("the terrain's");
     p->text("--alt-ref", "alt_ref",
-            "altitude reference: wgs84 (ellipsoid) or msl (converted by the daemon with the "
-            "latest telemetry's geoid undulation)")
-        ->check(CLI::IsMember({"wgs84", "msl"}))
+            "altitude reference: wgs84 (ellipsoid), msl (converted by the daemon with the "
+            "latest telemetry's geoid undulation) or terrain (ALT is height above the ground)")
+        ->check(CLI::IsMember({"wgs84", "msl", "terrain"}))
         ->type_name("REF")
         ->default_str("wgs84");
     p->numbers("--vel-ned", "vel_ned", 3, "target velocity north, east, down, m/s")
@@ -52,7 +55,8 @@ void add_path(CommandTable& table) {
         command.app
             ->add_option("POINT", *points,
                          "1..15 path points LAT,LON,ALT (degrees, degrees, "
-                         "metres above WGS84)")
+                         "metres above WGS84; --alt-ref terrain: above the ground); LAT,LON "
+                         "takes the ground's height from the daemon's terrain")
             ->check(point_check());
     p->custom("points", points_option, [points] {
         Json array = Json::array();
@@ -61,6 +65,10 @@ void add_path(CommandTable& table) {
     });
     CLI::Option* down = p->flag("--down", "down", "point straight down (no points)");
     down->excludes(points_option)->default_str("off");
+    p->text("--alt-ref", "alt_ref", "altitude reference of the points: wgs84 or terrain")
+        ->check(CLI::IsMember({"wgs84", "terrain"}))
+        ->type_name("REF")
+        ->default_str("wgs84");
     p->number("--along-step", "along_step_deg", "along-track step, degrees (0..180)")
         ->type_name("DEG")
         ->default_str("0");
@@ -72,7 +80,7 @@ void add_path(CommandTable& table) {
         ->default_str("0");
     p->check([points_option, down] {
         if (points_option->count() == 0 && down->count() == 0) {
-            throw CLI::ValidationError("path", "give path points LAT,LON,ALT or --down");
+            throw CLI::ValidationError("path", "give path points LAT,LON[,ALT] or --down");
         }
     });
 }

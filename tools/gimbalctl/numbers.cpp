@@ -53,11 +53,13 @@ std::optional<Json> parse_number(std::string_view text) {
 
 std::optional<Json> parse_point(std::string_view text) {
     const auto parts = split(text, ',');
-    if (parts.size() != 3) return std::nullopt;
+    if (parts.size() != 2 && parts.size() != 3) return std::nullopt;
     const auto lat = parse_number(parts[0]);
     const auto lon = parse_number(parts[1]);
+    if (!lat || !lon) return std::nullopt;
+    if (parts.size() == 2) return Json{{"lat", *lat}, {"lon", *lon}};  // alt: the terrain's
     const auto alt = parse_number(parts[2]);
-    if (!lat || !lon || !alt) return std::nullopt;
+    if (!alt) return std::nullopt;
     return Json{{"lat", *lat}, {"lon", *lon}, {"alt", *alt}};
 }
 
@@ -95,7 +97,7 @@ CLI::Validator point_check() {
         [](const std::string& text) {
             return parse_point(text)
                        ? std::string{}
-                       : "'" + text + "' is not a point LAT,LON,ALT (e.g. 45.7,-121.5,300)";
+                       : "'" + text + "' is not a point LAT,LON[,ALT] (e.g. 45.7,-121.5,300)";
         },
         "");
 }

@@ -15,7 +15,8 @@ namespace gimbalctl {
 // A finite decimal number (integer, fraction or exponent form); nullopt if it is not one.
 std::optional<Json> parse_number(std::string_view text);
 
-// A path point "LAT,LON,ALT" -> {"lat":..,"lon":..,"alt":..}; nullopt if malformed.
+// A path point "LAT,LON,ALT" -> {"lat":..,"lon":..,"alt":..}, or "LAT,LON" without "alt"
+// (the daemon's terrain gives it); nullopt if malformed.
 std::optional<Json> parse_point(std::string_view text);
 
 // CLI11 checks that reject what the parsers above reject, so bad input is a usage error.

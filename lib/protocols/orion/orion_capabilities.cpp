@@ -1,6 +1,9 @@
 #include "protocols/orion/orion_capabilities.hpp"
 
 #include <cmath>
+#include <string>
+
+#include "geo/image.hpp"
 
 namespace gimbal::protocols {
 
@@ -23,6 +26,20 @@ std::optional<double> limit(const json& state, const char* key, std::size_t axis
     const json* v = state_at(state, {"limits", key});
     if (!v || !v->is_array() || v->size() <= axis || !(*v)[axis].is_number()) return std::nullopt;
     return (*v)[axis].get<double>();
+}
+
+// The telemetry's mount quaternion (mount -> NED), when it holds four finite numbers.
+std::optional<geo::Quat> mount_quat(const json& state) {
+    const json* q = state_at(state, {"telemetry", "quat"});
+    if (!q || !q->is_array() || q->size() != 4) return std::nullopt;
+    geo::Quat mount;
+    double* parts[] = {&mount.w, &mount.x, &mount.y, &mount.z};
+    for (std::size_t i = 0; i < 4; ++i) {
+        if (!(*q)[i].is_number()) return std::nullopt;
+        *parts[i] = (*q)[i].get<double>();
+        if (!std::isfinite(*parts[i])) return std::nullopt;
+    }
+    return mount;
 }
 
 }  // namespace
@@ -98,16 +115,9 @@ std::optional<geo::Quat> OrionCapabilities::line_of_sight(const json& state) con
     // The mount quaternion, then pan about the mount's z and tilt about the new y.
     const auto pan = number_at(state, {"telemetry", "pan"});
     const auto tilt = number_at(state, {"telemetry", "tilt"});
-    const json* q = state_at(state, {"telemetry", "quat"});
-    if (!pan || !tilt || !q || !q->is_array() || q->size() != 4) return std::nullopt;
-    geo::Quat mount;
-    double* parts[] = {&mount.w, &mount.x, &mount.y, &mount.z};
-    for (std::size_t i = 0; i < 4; ++i) {
-        if (!(*q)[i].is_number()) return std::nullopt;
-        *parts[i] = (*q)[i].get<double>();
-        if (!std::isfinite(*parts[i])) return std::nullopt;
-    }
-    return geo::normalized(geo::normalized(mount) *
+    const auto mount = mount_quat(state);
+    if (!pan || !tilt || !mount) return std::nullopt;
+    return geo::normalized(geo::normalized(*mount) *
                            geo::euler_to_quat(geo::EulerDeg{0, *tilt, *pan}));
 }
 
@@ -124,6 +134,38 @@ session::View OrionCapabilities::view(const json& state) const {
     if (alt && n) v.target_alt_msl_m = *alt - *n;
     v.hfov_deg = number_at(state, {"telemetry", "hfov"});
     v.vfov_deg = number_at(state, {"telemetry", "vfov"});
+    return v;
+}
+
+command::Result<session::ImageView> OrionCapabilities::image(const json& state) const {
+    // GeolocateTelemetry: the gimbal's position, mount quaternion, pan/tilt and fields of
+    // view; no image rotation. The flat world is the target's altitude.
+    const auto lat = number_at(state, {"telemetry", "lat"});
+    const auto lon = number_at(state, {"telemetry", "lon"});
+    const auto alt = number_at(state, {"telemetry", "alt"});
+    const auto pan = number_at(state, {"telemetry", "pan"});
+    const auto tilt = number_at(state, {"telemetry", "tilt"});
+    const auto hfov = number_at(state, {"telemetry", "hfov"});
+    const auto vfov = number_at(state, {"telemetry", "vfov"});
+    const auto mount = mount_quat(state);
+    if (!lat || !lon || !alt || !pan || !tilt || !hfov || !vfov || !mount)
+        return command::Error{command::code::unavailable, "no telemetry from the gimbal yet"};
+    session::ImageView v;
+    v.camera = geo::camera_pose({*lat, *lon, *alt}, *mount, *pan, *tilt, *hfov, *vfov);
+    if (!geo::valid(v.camera))
+        return command::Error{command::code::unavailable,
+                              "the telemetry's field of view is not usable (hfov " +
+                                  std::to_string(*hfov) + ", vfov " + std::to_string(*vfov) +
+                                  " degrees)"};
+    const auto w = number_at(state, {"telemetry", "pixel_width"});
+    const auto h = number_at(state, {"telemetry", "pixel_height"});
+    if (w && h && *w > 0 && *h > 0) {
+        v.width_px = *w;
+        v.height_px = *h;
+    }
+    v.flat_alt_m = number_at(state, {"telemetry", "target", "alt"});
+    // geopoint's alt_ref msl converts with the telemetry's undulation.
+    v.geoid_undulation_m = number_at(state, {"telemetry", "geoid_undulation"});
     return v;
 }
 

@@ -1,6 +1,7 @@
 // What an Orion can do, read from its STATE: pan/tilt positions and rates (OrionCmd),
-// geopoints, zoom as a ratio of the first camera's focal lengths, the line of sight from the
-// mount quaternion and pan/tilt, limits from LIMITS, identity from the version packets.
+// geopoints, image geometry from GeolocateTelemetry, zoom as a ratio of the first camera's focal
+// lengths, the line of sight from the mount quaternion and pan/tilt, limits from LIMITS, identity
+// from the version packets.
 #pragma once
 
 #include "session/capabilities.hpp"
@@ -19,6 +20,7 @@ class OrionCapabilities final : public session::Capabilities {
     session::Request zoom(const nlohmann::json& state, const session::ZoomTarget& t) const override;
     std::optional<geo::Quat> line_of_sight(const nlohmann::json& state) const override;
     session::View view(const nlohmann::json& state) const override;
+    command::Result<session::ImageView> image(const nlohmann::json& state) const override;
     session::Identity identity(const nlohmann::json& state) const override;
     session::Limits limits(const nlohmann::json& state) const override;
     session::Camera camera(const nlohmann::json& state) const override;

@@ -35,6 +35,7 @@ std::unique_ptr<session::Protocol> make_session(const SessionSettings& s, const 
     options.auto_ack_stare = s.auto_ack_stare;
     options.allow_fire = s.allow_fire;
     options.allow_safety_bypass = s.allow_safety_bypass;
+    options.terrain = s.terrain;
     return std::make_unique<OrionProtocol>(options);
 }
 

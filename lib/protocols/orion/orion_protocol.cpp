@@ -8,7 +8,7 @@ namespace gimbal::protocols {
 namespace o = gimbal::orion;
 
 OrionProtocol::OrionProtocol(const OrionOptions& options)
-    : options_(options), state_(options.stale_after_s) {}
+    : options_(options), state_(options.stale_after_s, options.terrain) {}
 
 void OrionProtocol::receive(std::span<const std::uint8_t> bytes, double now_s,
                             std::vector<state::Event>& events, std::vector<Bytes>& replies) {

@@ -20,6 +20,7 @@ struct OrionOptions {
     bool auto_ack_stare = false;
     bool allow_fire = false;
     bool allow_safety_bypass = false;
+    geo::Surface* terrain = nullptr;  // telemetry's footprint and ground (SessionSettings)
 };
 
 class OrionProtocol final : public session::Protocol {

@@ -20,9 +20,11 @@ constexpr std::string_view manual =
        LaserStates and RetractStatus at 1 Hz, Diagnostics every 3 s and Vibration
        every 5 s, and obeys OrionCmd (echoed back), GeopointCmd, OrionPath with
        step-stare, laser, retract, camera and configuration packets. Zero-length
-       packets are requests for that packet. --alt and --terrain-alt are heights
-       above the WGS84 ellipsoid. The circle's centre is 45.7 N, 121.5 W, 1500 m,
-       unless --lat, --lon and --alt say otherwise.
+       packets are requests for that packet. Its line of sight (losECEF, the target)
+       meets the simulator's terrain - hills and a river valley around 45.7 N
+       121.5 W, the DEM --write-dem writes - or flat ground at --terrain-alt.
+       --alt and --terrain-alt are heights above the WGS84 ellipsoid. The circle's
+       centre is 45.7 N, 121.5 W, 1500 m, unless --lat, --lon and --alt say otherwise.
 )";
 
 constexpr std::string_view rx_log_manual =
@@ -68,7 +70,8 @@ std::unique_ptr<sim::Device> make(const SimScenario& s) {
     sim::OrionSimOptions o;
     o.gps_time_at_start_s = sim::gps_time_from_unix_s(s.unix_time_s);
     o.seed = s.seed;
-    // The aircraft flies around lat/lon at alt (WGS84); the terrain height is WGS84 too.
+    // The aircraft flies around lat/lon at alt (WGS84); flat ground at terrain_alt (WGS84 too)
+    // replaces the analytic terrain.
     if (s.lat_deg) o.lat_deg = *s.lat_deg;
     if (s.lon_deg) o.lon_deg = *s.lon_deg;
     if (s.alt_m) o.alt_m = *s.alt_m;

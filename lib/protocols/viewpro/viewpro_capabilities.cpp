@@ -77,6 +77,14 @@ session::View ViewproCapabilities::view(const json& state) const {
     return v;  // OUTx frames carry no field of view
 }
 
+command::Result<session::ImageView> ViewproCapabilities::image(const json&) const {
+    // OUT1..OUT4 carry the angles but no field of view or image size: an image position
+    // cannot be turned into a ray.
+    return command::Error{command::code::unsupported,
+                          "Viewpro output frames carry no field of view: image positions "
+                          "cannot be located"};
+}
+
 session::Identity ViewproCapabilities::identity(const json&) const {
     return {"Viewpro", "Viewpro", std::nullopt};
 }

@@ -3,6 +3,8 @@
 // terrain plus fractal relief down to 60 m wavelengths, written through GDAL into a temporary
 // directory and read back with the EGM96 geoid. Rays start 300-3000 m above the ground and
 // aim at ground points 1-20 km away; each is timed alone and p50/p99 reported as counters.
+// Also what STATE pays per telemetry packet with terrain: the footprint's four corners and
+// the ground under the line of sight (state::telemetry_json), computed once per packet.
 //   bench_terrain            full model (about 30 s to build it)
 //   bench_terrain --smoke    0.1 x 0.1 degree model, a few seconds
 #include <benchmark/benchmark.h>
@@ -19,8 +21,11 @@
 #include <string>
 #include <vector>
 
+#include "geo/image.hpp"
 #include "geo/wgs84.hpp"
+#include "orion/packets.hpp"
 #include "sim/terrain.hpp"
+#include "state/orion_state.hpp"
 #include "terrain/elevation_model.hpp"
 #include "terrain/geotiff_writer.hpp"
 
@@ -173,6 +178,48 @@ void BM_Height(benchmark::State& state) {
     }
 }
 BENCHMARK(BM_Height);
+
+// A GeolocateTelemetry looking along a benchmark ray (level mount, a 40 x 22.5 degree view).
+orion::GeolocateTelemetry telemetry_along(const Ray& r) {
+    orion::GeolocateTelemetry t;
+    t.lat = r.from.lat_deg * geo::deg2rad;
+    t.lon = r.from.lon_deg * geo::deg2rad;
+    t.alt = r.from.alt_m;
+    t.quat = {1, 0, 0, 0};
+    const geo::Lla aim = geo::ecef_to_lla(geo::lla_to_ecef(r.from) + r.dir);
+    const auto pt = geo::pan_tilt_towards({}, r.from, aim);
+    t.pan = pt ? pt->pan_deg * geo::deg2rad : 0;
+    t.tilt = pt ? pt->tilt_deg * geo::deg2rad : -0.5;
+    t.hfov = 40 * geo::deg2rad;
+    t.vfov = 22.5 * geo::deg2rad;
+    t.los_ecef = {r.dir.x, r.dir.y, r.dir.z};
+    return t;
+}
+
+// STATE's telemetry key for one packet, with the ground keys on the terrain (arg 1) or on the
+// flat world only (arg 0).
+void BM_TelemetryGround(benchmark::State& state) {
+    Fixture& f = *fixture;
+    std::vector<orion::GeolocateTelemetry> packets;
+    for (const Ray& r : f.rays) packets.push_back(telemetry_along(r));
+    geo::Surface* terrain = state.range(0) ? f.model.get() : nullptr;
+    std::vector<double> us;
+    std::size_t i = 0, on_terrain = 0;
+    for (auto _ : state) {
+        const auto& t = packets[i++ % packets.size()];
+        const auto t0 = std::chrono::steady_clock::now();
+        auto j = state::telemetry_json(t, terrain);
+        const auto t1 = std::chrono::steady_clock::now();
+        if (j["footprint_surface"] == "terrain") ++on_terrain;
+        benchmark::DoNotOptimize(j);
+        us.push_back(std::chrono::duration<double, std::micro>(t1 - t0).count());
+    }
+    state.counters["p50_us"] = percentile(us, 0.50);
+    state.counters["p99_us"] = percentile(us, 0.99);
+    state.counters["footprint_on_terrain"] =
+        static_cast<double>(on_terrain) / static_cast<double>(us.size());
+}
+BENCHMARK(BM_TelemetryGround)->Arg(0)->Arg(1)->UseRealTime();
 
 }  // namespace
 

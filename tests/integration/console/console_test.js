@@ -4,7 +4,8 @@
 // the formula in docs/console.md), that a click on the map reaches the gimbal as a geopoint at
 // the clicked place, that the position control works, that laser controls are absent unless
 // fire is allowed and then need arm + fire + confirm, and that the page reconnects after the
-// daemon restarts. Saves a screenshot (CONSOLE_SCREENSHOT, default ./console.png).
+// daemon restarts, and that with a terrain section a click leaves the altitude to gimbald.
+// Saves a screenshot (CONSOLE_SCREENSHOT, default ./console.png).
 // Exit 0 on success, 1 on a failed check.
 'use strict';
 const dgram = require('dgram');
@@ -13,7 +14,7 @@ const fs = require('fs');
 const os = require('os');
 const path = require('path');
 const http = require('http');
-const { spawn } = require('child_process');
+const { spawn, spawnSync } = require('child_process');
 const puppeteer = require('puppeteer-core');
 
 const GIMBALD = process.env.GIMBALD;
@@ -117,6 +118,16 @@ class Reference {
   close() { clearInterval(this.timer); this.socket.close(); }
 }
 
+// One request on gimbald's UDP command socket; its reply (null after 2 s).
+function udpRequest(port, request) {
+  return new Promise((resolve) => {
+    const s = dgram.createSocket('udp4');
+    const t = setTimeout(() => { s.close(); resolve(null); }, 2000);
+    s.on('message', (buf) => { clearTimeout(t); s.close(); resolve(JSON.parse(buf.toString())); });
+    s.send(JSON.stringify(request), port, '127.0.0.1');
+  });
+}
+
 // The projection of docs/console.md, written again here: local tangent plane at the aircraft,
 // x = cx + east * k, y = cy - north * k.
 const WGS84_A = 6378137.0;
@@ -196,7 +207,9 @@ async function main() {
   const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'gimbald-console-'));
   workDir = dir;
   const rxLog = path.join(dir, 'rx.jsonl');
-  const sim = start(GIMBAL_SIM, ['--port', '0', '--no-discovery', '--rx-log', rxLog]);
+  // Flat ground at 100 m until the terrain phase below (gimbald then reads the simulator's
+  // DEM; the gimbal's own target stays on its flat ground).
+  const sim = start(GIMBAL_SIM, ['--port', '0', '--no-discovery', '--rx-log', rxLog, '--terrain-alt', '100']);
   const simLine = await waitFor(() => sim.lines.find((l) => l.startsWith('tcp: ')), 5000);
   if (!check(!!simLine, 'gimbal-sim serves TCP')) return;
   const simPort = Number(simLine.split(':').pop());
@@ -388,6 +401,39 @@ async function main() {
     check(banner && banner.startsWith('forbidden'), `command refused: banner "${(banner || '').slice(0, 60)}..."`);
     await sleep(300);
     check(!readRx(rxLog).slice(rxBefore).some((l) => l.id === 213), 'no geopoint reached the gimbal');
+
+    // With terrain (contract section 15): /api/console says so, a click sends geopoint with no
+    // alt and gimbald takes the ground's height there from the DEM; the footprint drawn is
+    // STATE's, now on the terrain.
+    const dem = path.join(dir, 'sim-dem.tif');
+    const written = spawnSync(GIMBAL_SIM, ['--write-dem', dem], { encoding: 'utf8' });
+    check(written.status === 0, `gimbal-sim --write-dem wrote the DEM (${(written.stderr || '').trim()})`);
+    await stop(daemon);
+    fs.writeFileSync(cfgPath, JSON.stringify({ ...config, terrain: { files: [dem], geoid: 'none' } }));
+    daemon = startDaemon();
+    const onTerrain = await waitFor(() => page.evaluate(() => {
+      const h = window.gimbaldConsole;
+      return h.stream === 'open' && document.getElementById('stream-status').textContent === 'live' &&
+        h.drawn && h.drawn.footprint ? true : null;
+    }), 15000, 200);
+    check(!!onTerrain, 'page reconnected to gimbald with terrain');
+    const st = await udpRequest(commandPort, { cmd: 'state', gimbal: 'orion1' });
+    check(st && st.state.telemetry.footprint_surface === 'terrain', `STATE footprint_surface ${st && st.state.telemetry.footprint_surface}`);
+    const rxTerrain = readRx(rxLog).length;
+    await page.mouse.click(dc.left + dc.width / 2 + 80, dc.top + dc.height / 2 - 60);
+    const tclick = await waitFor(() => page.evaluate(() => {
+      const c = window.gimbaldConsole.lastClick;
+      return c && c.reply && c.alt_from === 'terrain' ? c : null;
+    }), 5000);
+    if (check(!!tclick && tclick.reply.ok === true, `terrain click: geopoint ok (${tclick ? JSON.stringify(tclick.reply).slice(0, 120) : '-'})`)) {
+      const shown = await page.$eval('#last-command', (e) => e.textContent);
+      check(shown.includes('"cmd":"geopoint"') && !shown.includes('"alt"'), `geopoint sent without alt: ${shown.split('\n')[0]}`);
+      const elevation = await udpRequest(commandPort, { cmd: 'elevation', lat: tclick.lat, lon: tclick.lon });
+      const rx = await waitFor(() => readRx(rxLog).slice(rxTerrain).find((l) => l.id === 213 && l.packet), 3000);
+      check(rx && elevation && elevation.ok && Math.abs(rx.packet.alt - elevation.alt) < 0.01 &&
+        Math.abs(rx.packet.lat - tclick.lat) < 1e-6 && Math.abs(rx.packet.lon - tclick.lon) < 1e-6,
+        `GeopointCmd at the click, alt = the terrain's ${elevation && elevation.alt} m (${rx ? rx.packet.alt : '-'})`);
+    }
     check(external.length === 0, `no tiles_url: no request to anything but gimbald (${external.slice(0, 3).join(' ')})`);
     check(pageErrors.length === 0, `no script errors in the page (${pageErrors.slice(0, 3).join(' | ')})`);
     await page.close();

@@ -135,6 +135,7 @@ TEST_CASE("the example configuration is valid and holds every default", "[config
     minimal["mqtt"] = {{"station", "ground-1"}};  // the station default is the host name
     minimal["http"] = json::object();
     minimal["record"] = {{"dir", "/var/tmp"}};  // the one required key of `record`
+    minimal["terrain"] = {{"files", {"/var/lib/gimbald/dem/*.tif"}}};  // and of `terrain`
     const auto defaults = parse_config(minimal.dump());
     REQUIRE(defaults.ok());
     CHECK(defaults.config == config);

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "options.hpp"
+#include "terrain/geotiff_writer.hpp"
 
 using namespace gimbal::daemon;
 using nlohmann::json;
@@ -177,7 +178,7 @@ TEST_CASE("help output reads like a man page", "[options]") {
                              "--help",
                              "Default: /etc/gimbald/gimbald.json",
                              "\"sim-orion\", \"sim-viewpro\". Default: off.",
-                             "1 if not. Opens no device. Default: off.",
+                             "1 if not. Opens every terrain file, no device. Default: off.",
                              "Default: the file's (info)",
                              "Default: the file's (json)",
                              "EXAMPLES",
@@ -199,16 +200,68 @@ TEST_CASE("help output reads like a man page", "[options]") {
     }
 }
 
+// The example configuration with its terrain section naming a DEM written here (the example
+// names /var/lib/gimbald/dem/*.tif, which --check-config opens).
+std::string example_with_dem(const TempDir& dir) {
+    const auto dem = (dir.path / "dem.tif").string();
+    const gimbal::terrain::GridSpec grid{45.69, 45.71, -121.51, -121.49, 1.0 / 3600};
+    REQUIRE(
+        gimbal::terrain::write_geotiff(dem, grid, [](double, double) { return 400.0; }).empty());
+    std::ifstream in(example_config);
+    json example = json::parse(in);
+    example["terrain"]["files"] = {dem};
+    return dir.write("example.json", example.dump(2));
+}
+
 TEST_CASE("check_config: accepts the example configuration", "[options]") {
+    TempDir dir;
     Options options;
-    options.config_path = example_config;
+    options.config_path = example_with_dem(dir);
     options.config_given = true;
     const auto run = run_check(options);
     CHECK(run.code == exit_ok);
     CHECK(run.err.empty());
-    CHECK(run.out == example_config +
+    CHECK(run.out == options.config_path +
                          ": OK, 2 gimbals: main (orion, tcp 192.168.1.20:8747), "
-                         "nose (viewpro, serial /dev/ttyUSB0@115200)\n");
+                         "nose (viewpro, serial /dev/ttyUSB0@115200); terrain: 1 file\n");
+}
+
+TEST_CASE("check_config: opens every terrain file and names the one it cannot use", "[options]") {
+    TempDir dir;
+    Options options;
+    options.config_given = true;
+    const auto check_with = [&](const json& files) {
+        options.config_path = dir.write(
+            "terrain.json",
+            json{{"gimbals", json::array()}, {"terrain", {{"files", files}, {"geoid", "none"}}}}
+                .dump());
+        return run_check(options);
+    };
+    const auto missing = (dir.path / "missing.tif").string();
+    auto run = check_with({missing});
+    CHECK(run.code == exit_config_error);
+    CHECK(run.out.empty());
+    CHECK_THAT(run.err, Catch::Contains(options.config_path + ": terrain.files: " + missing));
+    CHECK_THAT(run.err, Catch::EndsWith(": 1 problem\n"));
+
+    const auto junk = dir.write("junk.tif", "not a raster");
+    run = check_with({junk});
+    CHECK(run.code == exit_config_error);
+    CHECK_THAT(run.err, Catch::Contains("terrain.files: " + junk));
+
+    run = check_with({(dir.path / "*.dt2").string()});  // a glob that matches nothing
+    CHECK(run.code == exit_config_error);
+    CHECK_THAT(run.err, Catch::Contains("no file matches"));
+
+    // Key problems are reported like every section's.
+    options.config_path = dir.write(
+        "keys.json",
+        R"({"gimbals": [], "terrain": {"files": [], "geoid": "egm2008", "cache_mb": 0}})");
+    run = run_check(options);
+    CHECK(run.code == exit_config_error);
+    CHECK_THAT(run.err, Catch::Contains("terrain.files: must be a non-empty array"));
+    CHECK_THAT(run.err, Catch::Contains("terrain.geoid: must be one of \"egm96\", \"none\""));
+    CHECK_THAT(run.err, Catch::Contains("terrain.cache_mb: must be between 1 and 65536"));
 }
 
 TEST_CASE("check_config: prints every problem with its path and exits 1", "[options]") {

@@ -5,6 +5,7 @@
 #include "orion/packets.hpp"
 #include "sim/frames.hpp"
 #include "sim/pointing.hpp"
+#include "sim/terrain.hpp"
 #include "sim_harness.hpp"
 
 using namespace gimbal;
@@ -124,7 +125,7 @@ TEST_CASE("geopoint turns the line of sight onto the commanded point", "[sim][or
     orion::GeopointCmd g;
     g.target_lat = 45.712 * sim::deg;
     g.target_lon = -121.47 * sim::deg;
-    g.target_alt = 100;  // on the terrain
+    g.target_alt = sim::terrain_height(45.712, -121.47);  // on the simulator's terrain
     h.send_packet(g);
     const sim::Vec3 target = sim::to_ecef({g.target_lat, g.target_lon, g.target_alt});
 
@@ -270,7 +271,9 @@ TEST_CASE("path with pointDown and no points looks straight down", "[sim][orion]
     const auto& s = t.back();
     CHECK(s.mode == orion::Mode::down);
     const sim::Vec3 los{s.los_ecef[0], s.los_ecef[1], s.los_ecef[2]};
-    CHECK(norm(los) == Approx(1400).margin(2));
+    // Straight down onto the simulator's terrain.
+    CHECK(norm(los) ==
+          Approx(s.alt - sim::terrain_height(s.lat / sim::deg, s.lon / sim::deg)).margin(2));
 }
 
 TEST_CASE("the laser states packet answers each laser command", "[sim][orion][laser]") {

@@ -4,6 +4,7 @@
 
 #include "orion/packets.hpp"
 #include "sim/frames.hpp"
+#include "sim/terrain.hpp"
 #include "sim_harness.hpp"
 
 using namespace gimbal;
@@ -95,6 +96,25 @@ TEST_CASE("telemetry places the gimbal on its circle and the line of sight on th
         CHECK(s.pixel_width == 1920);
         CHECK(s.hfov > 0.5);
     }
+}
+
+TEST_CASE("by default the line of sight meets the simulator's terrain", "[sim][orion][telemetry]") {
+    Harness h;  // no terrain_alt_m: the analytic terrain of sim/terrain.hpp
+    const auto t = decoded<orion::GeolocateTelemetry>(h.run(20));
+    REQUIRE(t.size() > 150);
+    double lowest = 1e9, highest = -1e9;
+    for (const auto& s : t) {
+        REQUIRE(s.range_source == orion::RangeSource::internal);
+        const sim::Vec3 los{s.los_ecef[0], s.los_ecef[1], s.los_ecef[2]};
+        const sim::Lla target = sim::to_lla(sim::to_ecef({s.lat, s.lon, s.alt}) + los);
+        const double ground = sim::terrain_height(target.lat / sim::deg, target.lon / sim::deg);
+        // losECEF is whole metres: the reported point is within a metre or so of the ground.
+        CHECK(target.alt == Approx(ground).margin(3.0));
+        lowest = std::min(lowest, target.alt);
+        highest = std::max(highest, target.alt);
+    }
+    // Not a flat world: the ground seen along the circle rises and falls.
+    CHECK(highest - lowest > 50);
 }
 
 TEST_CASE("a line of sight above the horizon has no location", "[sim][orion][telemetry]") {

@@ -1,6 +1,9 @@
 // The Orion state model: packets in, STATE (contract section 5) and events out.
 #include <catch2/catch.hpp>
 
+#include <cmath>
+
+#include "geo/sampled_surface.hpp"
 #include "orion/framer.hpp"
 #include "orion/packets.hpp"
 #include "state/orion_state.hpp"
@@ -131,4 +134,49 @@ TEST_CASE("laser states become the STATE lasers array", "[state]") {
     CHECK(arr[0]["enabled"] == true);
     CHECK(arr[1]["armed"] == true);
     CHECK(arr[1]["age_s"].get<double>() == Approx(0.5));
+}
+
+TEST_CASE("telemetry's footprint and ground meet the terrain, else the target's altitude",
+          "[state][terrain]") {
+    orion::GeolocateTelemetry t = telemetry(orion::Mode::position);
+    t.pan = 0;
+    t.tilt = -60 * orion::pi / 180;
+    t.hfov = 30 * orion::pi / 180;
+    t.vfov = 20 * orion::pi / 180;
+    // Without terrain: the flat world at the target's altitude; the ground is the target.
+    json j = state::telemetry_json(t);
+    REQUIRE(j["target"].is_object());
+    CHECK(j["footprint_surface"] == "ellipsoid");
+    REQUIRE(j["footprint"].size() == 4);
+    REQUIRE(j["ground"].is_object());
+    CHECK(j["ground"]["surface"] == "ellipsoid");
+    CHECK(j["ground"]["alt"].get<double>() ==
+          Approx(j["target"]["alt"].get<double>()).margin(1e-3));
+
+    // A plateau at 700 m: every key on it (the gimbal's target stays as reported).
+    geo::SampledSurface plateau([](double, double) { return 700.0; }, geo::Lattice{}, 700.0,
+                                geo::GeoRect{45.5, 45.9, -121.7, -121.3});
+    j = state::telemetry_json(t, &plateau);
+    CHECK(j["footprint_surface"] == "terrain");
+    CHECK(j["ground"]["surface"] == "terrain");
+    CHECK(j["ground"]["alt"].get<double>() == Approx(700).margin(1e-3));
+    // Looking 60 degrees down from 800 m above it.
+    CHECK(j["ground"]["range_m"].get<double>() ==
+          Approx(800 / std::sin(orion::pi / 3)).margin(0.5));
+    CHECK(j["target"] == state::telemetry_json(t)["target"]);
+
+    // No target and no terrain: nothing; terrain alone still answers.
+    t.los_ecef = {0, 0, 0};
+    j = state::telemetry_json(t);
+    CHECK(j["footprint"].is_null());
+    CHECK(j["footprint_surface"].is_null());
+    CHECK(j["ground"].is_null());
+    j = state::telemetry_json(t, &plateau);
+    CHECK(j["ground"]["surface"] == "terrain");
+
+    // Through the state model: STATE carries what it was given at each packet.
+    state::OrionState s(1.0, &plateau);
+    std::vector<state::Event> events;
+    REQUIRE(s.apply(frame_of(t), 1.0, events));
+    CHECK(s.snapshot(1.0)["telemetry"]["footprint_surface"] == "terrain");
 }

@@ -1,0 +1,134 @@
+#include "ground_commands.hpp"
+
+#include <string>
+
+#include "command/params.hpp"
+#include "session/ground_altitude.hpp"
+#include "session/image_commands.hpp"
+#include "state/ground_json.hpp"
+#include "state/precision.hpp"
+
+namespace gimbald {
+
+namespace cmdns = gimbal::command;
+namespace session = gimbal::session;
+using cmdns::Error;
+using nlohmann::json;
+namespace code = gimbal::command::code;
+
+namespace {
+
+GimbalSession::Outcome failed(Error e) {
+    GimbalSession::Outcome out;
+    out.error = std::move(e);
+    return out;
+}
+
+// Built by appending: GCC 12 -O3 reports a false -Wrestrict for "'" + std::string(...).
+Error not_ours(std::string_view cmd) {
+    std::string message = "'";
+    message += cmd;
+    message += "' is not a ground command";
+    return {code::internal, std::move(message)};
+}
+
+}  // namespace
+
+bool GroundCommands::answers_without_gimbal(std::string_view cmd) {
+    return cmd == "elevation";
+}
+
+bool GroundCommands::answers_for_gimbal(std::string_view cmd) {
+    return cmd == "locate" || cmd == "project" || cmd == "point";
+}
+
+cmdns::Result<json> GroundCommands::run(std::string_view cmd, const json& request) {
+    if (cmd == "elevation") return elevation(request);
+    return not_ours(cmd);
+}
+
+GimbalSession::Outcome GroundCommands::run(std::string_view cmd, GimbalSession& session,
+                                           const json& request) {
+    if (cmd == "locate") return locate(session, request, false);
+    if (cmd == "point") return locate(session, request, true);
+    if (cmd == "project") return project(session, request);
+    return failed(not_ours(cmd));
+}
+
+cmdns::Result<json> GroundCommands::prepare(std::string_view cmd, const json& request) {
+    if (!session::takes_ground_altitudes(cmd)) return request;
+    return session::resolve_ground_altitudes(cmd, request, terrain_);
+}
+
+cmdns::Result<json> GroundCommands::elevation(const json& request) {
+    cmdns::Params p(request);
+    const auto lat = p.number("lat", -90.0, 90.0, true);
+    const auto lon = p.number("lon", -180.0, 180.0, true);
+    p.reject_unknown();
+    if (!p.ok()) return p.error();
+    if (!terrain_)
+        return Error{code::unavailable, "no terrain is configured (the terrain section)"};
+    const auto e = terrain_->elevation(*lat, *lon);
+    if (!e)
+        return Error{code::unavailable, "no terrain at " + cmdns::format_number(*lat) + ", " +
+                                            cmdns::format_number(*lon) +
+                                            " (outside the elevation model, or nodata)"};
+    using gimbal::state::metres;
+    return json{{"lat", *lat},
+                {"lon", *lon},
+                {"alt", metres(e->alt_m)},
+                {"alt_msl", e->alt_msl_m ? json(metres(*e->alt_msl_m)) : json(nullptr)},
+                {"source", e->source}};
+}
+
+GimbalSession::Outcome GroundCommands::locate(GimbalSession& session, const json& request,
+                                              bool point) {
+    cmdns::Params p(request);
+    const auto position = session::read_image_position(p);
+    const bool stare = point && p.boolean_or("stare", false);
+    p.reject_unknown();
+    if (!p.ok()) return failed(p.error());
+    if (!position) return failed(position.error());
+
+    const json state = session.snapshot();
+    const auto& capabilities = session.capabilities();
+    const auto view = capabilities.image(state);
+    if (!view) return failed(view.error());
+    const auto at = session::image_point(*position, *view);
+    if (!at) return failed(at.error());
+    const auto ground = session::locate_point(*view, *at, terrain_);
+    if (!ground) return failed(ground.error());
+    json located = gimbal::state::ground_point_json(*ground);
+    if (!point) {
+        GimbalSession::Outcome out;
+        out.results = std::move(located);
+        return out;
+    }
+    auto pointing = session::point_request(capabilities, state, *view, *ground, stare);
+    if (!pointing) return failed(pointing.error());
+    const std::string cmd = pointing->value("cmd", std::string());
+    if (!session.supports(cmd))
+        return failed({code::internal, "the gimbal's geopoint capability asked for '" + cmd +
+                                           "', which its protocol does not plan"});
+    auto outcome = session.execute(cmd, *pointing);
+    if (outcome.error) return outcome;
+    // The reply: the point, then what was sent.
+    for (auto& [key, value] : located.items()) outcome.results[key] = std::move(value);
+    return outcome;
+}
+
+GimbalSession::Outcome GroundCommands::project(GimbalSession& session, const json& request) {
+    cmdns::Params p(request);
+    const auto lat = p.number("lat", -90.0, 90.0, true);
+    const auto lon = p.number("lon", -180.0, 180.0, true);
+    const auto alt = p.number("alt", -2000.0, 100000.0, true);
+    p.reject_unknown();
+    if (!p.ok()) return failed(p.error());
+    const auto view = session.capabilities().image(session.snapshot());
+    if (!view) return failed(view.error());
+    GimbalSession::Outcome out;
+    out.results = session::project_reply(*view, {*lat, *lon, *alt}, terrain_);
+    return out;
+}
+
+}  // namespace gimbald
