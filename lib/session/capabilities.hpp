@@ -89,6 +89,9 @@ struct View {
     std::optional<double> lat_deg, lon_deg, alt_msl_m;                       // the camera
     std::optional<double> target_lat_deg, target_lon_deg, target_alt_msl_m;  // image centre
     std::optional<double> hfov_deg, vfov_deg;
+    std::optional<double> alt_m;  // the camera above the WGS84 ellipsoid, when reported
+    // A range to the image centre the gimbal measured (a laser range finder), metres.
+    std::optional<double> measured_range_m;
 };
 
 // The camera (MAVLink CAMERA_INFORMATION); nullopt members: not reported.
@@ -119,6 +122,11 @@ class Capabilities {
     // NED.
     virtual std::optional<geo::Quat> line_of_sight(const nlohmann::json& state) const = 0;
     virtual View view(const nlohmann::json& state) const = 0;
+    // The platform's (aircraft's, or the gimbal mount's) attitude as a rotation from its body
+    // frame to NED, when the gimbal reports it (KLV platform heading, pitch and roll).
+    virtual std::optional<geo::Quat> platform_attitude(const nlohmann::json&) const {
+        return std::nullopt;
+    }
     virtual Identity identity(const nlohmann::json& state) const = 0;
     virtual Limits limits(const nlohmann::json& state) const = 0;
     virtual Camera camera(const nlohmann::json& state) const = 0;

@@ -98,17 +98,9 @@ std::optional<geo::Quat> OrionCapabilities::line_of_sight(const json& state) con
     // The mount quaternion, then pan about the mount's z and tilt about the new y.
     const auto pan = number_at(state, {"telemetry", "pan"});
     const auto tilt = number_at(state, {"telemetry", "tilt"});
-    const json* q = state_at(state, {"telemetry", "quat"});
-    if (!pan || !tilt || !q || !q->is_array() || q->size() != 4) return std::nullopt;
-    geo::Quat mount;
-    double* parts[] = {&mount.w, &mount.x, &mount.y, &mount.z};
-    for (std::size_t i = 0; i < 4; ++i) {
-        if (!(*q)[i].is_number()) return std::nullopt;
-        *parts[i] = (*q)[i].get<double>();
-        if (!std::isfinite(*parts[i])) return std::nullopt;
-    }
-    return geo::normalized(geo::normalized(mount) *
-                           geo::euler_to_quat(geo::EulerDeg{0, *tilt, *pan}));
+    const auto mount = platform_attitude(state);
+    if (!pan || !tilt || !mount) return std::nullopt;
+    return geo::normalized(*mount * geo::euler_to_quat(geo::EulerDeg{0, *tilt, *pan}));
 }
 
 session::View OrionCapabilities::view(const json& state) const {
@@ -124,7 +116,31 @@ session::View OrionCapabilities::view(const json& state) const {
     if (alt && n) v.target_alt_msl_m = *alt - *n;
     v.hfov_deg = number_at(state, {"telemetry", "hfov"});
     v.vfov_deg = number_at(state, {"telemetry", "vfov"});
+    v.alt_m = number_at(state, {"telemetry", "alt"});
+    // With range_source "laser" the line-of-sight vector is the laser's range (Orion ICD).
+    const json* source = state_at(state, {"telemetry", "range_source"});
+    const json* los = state_at(state, {"telemetry", "los_ecef"});
+    if (source && *source == "laser" && los && los->is_array() && los->size() == 3 &&
+        v.target_lat_deg) {
+        double sum = 0;
+        for (const auto& c : *los) sum += c.is_number() ? c.get<double>() * c.get<double>() : 0;
+        if (sum > 0) v.measured_range_m = std::sqrt(sum);
+    }
     return v;
+}
+
+std::optional<geo::Quat> OrionCapabilities::platform_attitude(const json& state) const {
+    // The mount quaternion: the gimbal is fixed to the aircraft.
+    const json* q = state_at(state, {"telemetry", "quat"});
+    if (!q || !q->is_array() || q->size() != 4) return std::nullopt;
+    geo::Quat mount;
+    double* parts[] = {&mount.w, &mount.x, &mount.y, &mount.z};
+    for (std::size_t i = 0; i < 4; ++i) {
+        if (!(*q)[i].is_number()) return std::nullopt;
+        *parts[i] = (*q)[i].get<double>();
+        if (!std::isfinite(*parts[i])) return std::nullopt;
+    }
+    return geo::normalized(mount);
 }
 
 session::Identity OrionCapabilities::identity(const json& state) const {

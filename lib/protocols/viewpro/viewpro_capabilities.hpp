@@ -19,6 +19,7 @@ class ViewproCapabilities final : public session::Capabilities {
     session::Request zoom(const nlohmann::json& state, const session::ZoomTarget& t) const override;
     std::optional<geo::Quat> line_of_sight(const nlohmann::json& state) const override;
     session::View view(const nlohmann::json& state) const override;
+    std::optional<geo::Quat> platform_attitude(const nlohmann::json& state) const override;
     session::Identity identity(const nlohmann::json& state) const override;
     session::Limits limits(const nlohmann::json& state) const override;
     session::Camera camera(const nlohmann::json& state) const override;
