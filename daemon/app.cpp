@@ -6,6 +6,7 @@
 
 #include <unistd.h>
 
+#include "command/params.hpp"
 #include "http/static_files.hpp"
 #include "link/serial_link.hpp"
 #include "link/sim_link.hpp"
@@ -131,6 +132,52 @@ App::App(const cfg::Config& config)
         mqtt_ = std::make_unique<mqtt::Bridge>(io_, *config_.mqtt, *request_path_, events_);
     if (config_.http) start_http();
     tap_recorder();
+    start_video();
+}
+
+// Contract section 17: each gimbal's video, STATE `video` (null without one) and `klv`.
+void App::start_video() {
+    const std::size_t first_interface =
+        sessions_.size() + (config_.vehicle ? 1 : 0) + 1;  // after `json` (start_recorder)
+    std::size_t recorded = 0;
+    for (std::size_t i = 0; i < sessions_.size(); ++i) {
+        auto& session = *sessions_[i];
+        const auto& g = config_.gimbals[i];
+        videos_.push_back(nullptr);
+        if (!g.video) {
+            session.add_state_key("video", [] { return nlohmann::json(nullptr); });
+            session.add_command("klv", [name = g.name](const nlohmann::json& request) {
+                gimbal::command::Params params(request);
+                params.reject_unknown();
+                if (!params.ok()) return gimbal::command::Result<nlohmann::json>(params.error());
+                return gimbal::command::Result<nlohmann::json>(
+                    gimbal::command::code::unavailable,
+                    "gimbal '" + name + "' has no video section");
+            });
+            continue;
+        }
+        video::GimbalVideoOptions o;
+        o.gimbal = g.name;
+        o.config = *g.video;
+        o.capabilities = protocols::entry(g.protocol).capabilities;
+        o.state = [&session] { return session.snapshot(); };
+        if (recorder_) {
+            const auto interface = static_cast<std::uint32_t>(first_interface + recorded++);
+            o.record = [this, interface](std::span<const std::uint8_t> bytes, bool generated) {
+                recorder_->record(
+                    interface, generated ? record::Direction::outbound : record::Direction::inbound,
+                    generated ? "data" : "mp2t", bytes);
+            };
+        }
+        auto& v = *(videos_.back() = std::make_unique<video::GimbalVideo>(io_, std::move(o)));
+        session.add_state_key("video", [&v] { return v.snapshot(); });
+        session.add_command("klv", [&v](const nlohmann::json& request) {
+            gimbal::command::Params params(request);
+            params.reject_unknown();
+            if (!params.ok()) return gimbal::command::Result<nlohmann::json>(params.error());
+            return v.klv_reply();
+        });
+    }
 }
 
 void App::start_http() {
@@ -193,6 +240,9 @@ void App::start_recorder() {
         options.interfaces.push_back({"mavlink", "mavlink " + source});
     }
     options.interfaces.push_back({"json", "gimbald JSON requests and replies"});
+    // Then one per gimbal with video (contract section 17): its MPEG-TS, and generated KLV.
+    for (const auto& g : config_.gimbals)
+        if (g.video) options.interfaces.push_back({"video:" + g.name, "mp2t " + g.video->input});
     recorder_ = std::make_unique<record::Recorder>(io_, std::move(options));
 }
 
@@ -283,6 +333,8 @@ void App::shutdown() {
     vehicle_->stop();
     // Sessions first: their cease-fire goes out before the links close.
     for (auto& s : sessions_) s->stop();
+    for (auto& v : videos_)
+        if (v) v->stop();  // joins an RTSP input's thread
     server_->stop();
     if (mqtt_) mqtt_->stop();  // publishes {"online": false}, then disconnects
     if (http_) http_->stop();
@@ -316,6 +368,8 @@ void App::arm_watchdog() {
 
 int App::run() {
     for (auto& s : sessions_) s->start();
+    for (auto& v : videos_)
+        if (v) v->start();
     server_->start();
     vehicle_->start();
     if (mavlink_) mavlink_->start();

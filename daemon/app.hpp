@@ -19,6 +19,7 @@
 #include "record/recorder.hpp"
 #include "request_path.hpp"
 #include "vehicle_feed.hpp"
+#include "video/gimbal_video.hpp"
 
 namespace gimbald {
 
@@ -41,6 +42,7 @@ class App {
     void shutdown();
     void arm_watchdog();
     void start_http();
+    void start_video();
     void update_status();
 
     gimbal::daemon::Config config_;
@@ -50,6 +52,8 @@ class App {
     // Declared before everything that records into it, so it outlives them.
     std::unique_ptr<record::Recorder> recorder_;  // contract section 12; null unless `record`
     std::vector<std::unique_ptr<GimbalSession>> sessions_;
+    // Contract section 17: per gimbal, null unless it has a `video` section.
+    std::vector<std::unique_ptr<video::GimbalVideo>> videos_;
     EventHub events_;
     std::unique_ptr<RequestPath> request_path_;
     std::unique_ptr<CommandServer> server_;

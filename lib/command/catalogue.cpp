@@ -250,6 +250,14 @@ constexpr std::array commands{
       .summary = "Stop the STATE and event datagrams.",
       .reply = "`\"subscribed\": false`",
       .example = "{}"},
+    C{.name = "klv",
+      .scope = Scope::every_gimbal,
+      .access = Access::observe,
+      .summary = "The latest MISB ST 0601 KLV set of the gimbal's video, as bytes and decoded.",
+      .reply = "`\"klv_hex\"` (the whole set, 16-byte key through checksum), `\"klv\"` "
+               "(decoded, with `age_s`), `\"klv_source\"` (`stream` or `generated`); "
+               "`unavailable` when there is none",
+      .example = "{}"},
     C{.name = "geopoint",
       .summary = "Point at a geographic location.",
       .params = geopoint_params,
