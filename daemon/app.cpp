@@ -309,7 +309,42 @@ std::unique_ptr<Link> App::make_link(const cfg::GimbalConfig& g) {
     protocols::SimScenario scenario;
     scenario.unix_time_s =
         std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
-    return std::make_unique<SimLink>(io_, protocols::entry(g.protocol).simulator.make(scenario));
+    auto link =
+        std::make_unique<SimLink>(io_, protocols::entry(g.protocol).simulator.make(scenario));
+    if (g.video) add_sim_video(*link, g);
+    return link;
+}
+
+// Contract section 17: `gimbald --sim` (or a sim link) with a `video` section sends the
+// simulated camera's video to that video's input, as a real gimbal would.
+void App::add_sim_video(SimLink& link, const cfg::GimbalConfig& g) {
+    const auto camera = protocols::entry(g.protocol).simulator.camera;
+    const nlohmann::json fields = {{"gimbal", g.name}, {"input", g.video->input}};
+    if (camera == nullptr) {
+        log::warn("sim_video_off", "this protocol's simulated gimbal has no camera: no video",
+                  fields);
+        return;
+    }
+    std::string why;
+    const auto target = video::sim_video_target(g.video->input, why);
+    if (!target) {
+        log::warn("sim_video_off", "no simulated video: " + why, fields);
+        return;
+    }
+    video::SimVideoSenderOptions options;
+    options.host = target->host;
+    options.port = target->port;
+    options.ttl = target->ttl;
+    try {
+        auto sender = std::make_unique<video::SimVideoSender>(std::move(options));
+        link.set_advance_listener([camera, s = sender.get()](const gimbal::sim::Device& device) {
+            if (const auto view = camera(device)) s->update(*view);
+        });
+        log::info("sim_video", "simulated video to " + sender->destination(), fields);
+        sim_videos_.push_back(std::move(sender));
+    } catch (const std::exception& e) {
+        log::warn("sim_video_off", std::string("no simulated video: ") + e.what(), fields);
+    }
 }
 
 void App::on_signal(const boost::system::error_code& ec, int signo) {
@@ -334,7 +369,8 @@ void App::shutdown() {
     // Sessions first: their cease-fire goes out before the links close.
     for (auto& s : sessions_) s->stop();
     for (auto& v : videos_)
-        if (v) v->stop();  // joins an RTSP input's thread
+        if (v) v->stop();                   // joins an RTSP input's thread
+    for (auto& s : sim_videos_) s->stop();  // joins its worker
     server_->stop();
     if (mqtt_) mqtt_->stop();  // publishes {"online": false}, then disconnects
     if (http_) http_->stop();
@@ -370,6 +406,7 @@ int App::run() {
     for (auto& s : sessions_) s->start();
     for (auto& v : videos_)
         if (v) v->start();
+    for (auto& s : sim_videos_) s->start();
     server_->start();
     vehicle_->start();
     if (mavlink_) mavlink_->start();

@@ -93,7 +93,7 @@ double unix_time_now_s() {
 std::string footer() {
     std::string rx;
     for (const auto* p : protocols::entries()) rx += std::string(p->simulator.rx_log_manual);
-    return std::string(footer_start) + rx + footer_end;
+    return std::string(footer_start) + rx + video_manual + footer_end;
 }
 
 // The value of a protocol's flag as parsed (stored per flag name; several protocols may
@@ -254,6 +254,7 @@ ParsedOptions parse_options(int argc, char** argv) {
             it->second.option = add_flag(app, f, defaults, it->second, group);
         }
     }
+    add_video_options(app, o.video);
     app.add_flag("--version", version, "Print the version and exit");
 
     try {
@@ -287,6 +288,11 @@ ParsedOptions parse_options(int argc, char** argv) {
     }
     if (o.stall_after_s > 0 && o.stall_for_s <= 0) {
         std::cerr << "gimbal-sim: --stall-after needs --stall-for\n";
+        return {std::nullopt, 1};
+    }
+    if (std::string error;
+        !o.video.url.empty() && !video_sender_options(o.video, o.entry(), error)) {
+        std::cerr << "gimbal-sim: " << error << "\n";
         return {std::nullopt, 1};
     }
     return {o, 0};
