@@ -7,6 +7,7 @@
 
 #include <unistd.h>
 
+#include "command/params.hpp"
 #include "http/static_files.hpp"
 #include "link/serial_link.hpp"
 #include "link/sim_link.hpp"
@@ -141,6 +142,52 @@ App::App(const cfg::Config& config, std::unique_ptr<gimbal::terrain::ElevationMo
         mqtt_ = std::make_unique<mqtt::Bridge>(io_, *config_.mqtt, *request_path_, events_);
     if (config_.http) start_http();
     tap_recorder();
+    start_video();
+}
+
+// Contract section 17: each gimbal's video, STATE `video` (null without one) and `klv`.
+void App::start_video() {
+    const std::size_t first_interface =
+        sessions_.size() + (config_.vehicle ? 1 : 0) + 1;  // after `json` (start_recorder)
+    std::size_t recorded = 0;
+    for (std::size_t i = 0; i < sessions_.size(); ++i) {
+        auto& session = *sessions_[i];
+        const auto& g = config_.gimbals[i];
+        videos_.push_back(nullptr);
+        if (!g.video) {
+            session.add_state_key("video", [] { return nlohmann::json(nullptr); });
+            session.add_command("klv", [name = g.name](const nlohmann::json& request) {
+                gimbal::command::Params params(request);
+                params.reject_unknown();
+                if (!params.ok()) return gimbal::command::Result<nlohmann::json>(params.error());
+                return gimbal::command::Result<nlohmann::json>(
+                    gimbal::command::code::unavailable,
+                    "gimbal '" + name + "' has no video section");
+            });
+            continue;
+        }
+        video::GimbalVideoOptions o;
+        o.gimbal = g.name;
+        o.config = *g.video;
+        o.capabilities = protocols::entry(g.protocol).capabilities;
+        o.state = [&session] { return session.snapshot(); };
+        if (recorder_) {
+            const auto interface = static_cast<std::uint32_t>(first_interface + recorded++);
+            o.record = [this, interface](std::span<const std::uint8_t> bytes, bool generated) {
+                recorder_->record(
+                    interface, generated ? record::Direction::outbound : record::Direction::inbound,
+                    generated ? "data" : "mp2t", bytes);
+            };
+        }
+        auto& v = *(videos_.back() = std::make_unique<video::GimbalVideo>(io_, std::move(o)));
+        session.add_state_key("video", [&v] { return v.snapshot(); });
+        session.add_command("klv", [&v](const nlohmann::json& request) {
+            gimbal::command::Params params(request);
+            params.reject_unknown();
+            if (!params.ok()) return gimbal::command::Result<nlohmann::json>(params.error());
+            return v.klv_reply();
+        });
+    }
 }
 
 void App::start_http() {
@@ -203,6 +250,9 @@ void App::start_recorder() {
         options.interfaces.push_back({"mavlink", "mavlink " + source});
     }
     options.interfaces.push_back({"json", "gimbald JSON requests and replies"});
+    // Then one per gimbal with video (contract section 17): its MPEG-TS, and generated KLV.
+    for (const auto& g : config_.gimbals)
+        if (g.video) options.interfaces.push_back({"video:" + g.name, "mp2t " + g.video->input});
     recorder_ = std::make_unique<record::Recorder>(io_, std::move(options));
 }
 
@@ -270,7 +320,42 @@ std::unique_ptr<Link> App::make_link(const cfg::GimbalConfig& g) {
     protocols::SimScenario scenario;
     scenario.unix_time_s =
         std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
-    return std::make_unique<SimLink>(io_, protocols::entry(g.protocol).simulator.make(scenario));
+    auto link =
+        std::make_unique<SimLink>(io_, protocols::entry(g.protocol).simulator.make(scenario));
+    if (g.video) add_sim_video(*link, g);
+    return link;
+}
+
+// Contract section 17: `gimbald --sim` (or a sim link) with a `video` section sends the
+// simulated camera's video to that video's input, as a real gimbal would.
+void App::add_sim_video(SimLink& link, const cfg::GimbalConfig& g) {
+    const auto camera = protocols::entry(g.protocol).simulator.camera;
+    const nlohmann::json fields = {{"gimbal", g.name}, {"input", g.video->input}};
+    if (camera == nullptr) {
+        log::warn("sim_video_off", "this protocol's simulated gimbal has no camera: no video",
+                  fields);
+        return;
+    }
+    std::string why;
+    const auto target = video::sim_video_target(g.video->input, why);
+    if (!target) {
+        log::warn("sim_video_off", "no simulated video: " + why, fields);
+        return;
+    }
+    video::SimVideoSenderOptions options;
+    options.host = target->host;
+    options.port = target->port;
+    options.ttl = target->ttl;
+    try {
+        auto sender = std::make_unique<video::SimVideoSender>(std::move(options));
+        link.set_advance_listener([camera, s = sender.get()](const gimbal::sim::Device& device) {
+            if (const auto view = camera(device)) s->update(*view);
+        });
+        log::info("sim_video", "simulated video to " + sender->destination(), fields);
+        sim_videos_.push_back(std::move(sender));
+    } catch (const std::exception& e) {
+        log::warn("sim_video_off", std::string("no simulated video: ") + e.what(), fields);
+    }
 }
 
 void App::on_signal(const boost::system::error_code& ec, int signo) {
@@ -294,6 +379,9 @@ void App::shutdown() {
     vehicle_->stop();
     // Sessions first: their cease-fire goes out before the links close.
     for (auto& s : sessions_) s->stop();
+    for (auto& v : videos_)
+        if (v) v->stop();                   // joins an RTSP input's thread
+    for (auto& s : sim_videos_) s->stop();  // joins its worker
     server_->stop();
     if (mqtt_) mqtt_->stop();  // publishes {"online": false}, then disconnects
     if (http_) http_->stop();
@@ -327,6 +415,9 @@ void App::arm_watchdog() {
 
 int App::run() {
     for (auto& s : sessions_) s->start();
+    for (auto& v : videos_)
+        if (v) v->start();
+    for (auto& s : sim_videos_) s->start();
     server_->start();
     vehicle_->start();
     if (mavlink_) mavlink_->start();

@@ -13,6 +13,7 @@
 #include "event_hub.hpp"
 #include "gimbal_session.hpp"
 #include "http/http_server.hpp"
+#include "link/sim_link.hpp"
 #include "mavlink_endpoint.hpp"
 #include "mqtt/mqtt_bridge.hpp"
 #include "protocols/registry.hpp"
@@ -20,6 +21,8 @@
 #include "request_path.hpp"
 #include "terrain/elevation_model.hpp"
 #include "vehicle_feed.hpp"
+#include "video/gimbal_video.hpp"
+#include "video/sim_video_sender.hpp"
 
 namespace gimbald {
 
@@ -38,12 +41,14 @@ class App {
     std::unique_ptr<gimbal::session::Protocol> make_protocol(
         const gimbal::protocols::Entry& protocol, const nlohmann::json& gimbal);
     std::unique_ptr<Link> make_link(const gimbal::daemon::GimbalConfig& g);
+    void add_sim_video(SimLink& link, const gimbal::daemon::GimbalConfig& g);
     void start_recorder();
     void tap_recorder();
     void on_signal(const boost::system::error_code& ec, int signo);
     void shutdown();
     void arm_watchdog();
     void start_http();
+    void start_video();
     void update_status();
 
     gimbal::daemon::Config config_;
@@ -56,6 +61,10 @@ class App {
     // Declared before everything that records into it, so it outlives them.
     std::unique_ptr<record::Recorder> recorder_;  // contract section 12; null unless `record`
     std::vector<std::unique_ptr<GimbalSession>> sessions_;
+    // Contract section 17: per gimbal, null unless it has a `video` section.
+    std::vector<std::unique_ptr<video::GimbalVideo>> videos_;
+    // A simulated gimbal with `video` sends its camera's picture to that video's input.
+    std::vector<std::unique_ptr<video::SimVideoSender>> sim_videos_;
     EventHub events_;
     std::unique_ptr<RequestPath> request_path_;
     std::unique_ptr<CommandServer> server_;

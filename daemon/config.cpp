@@ -430,6 +430,35 @@ void read_feed(Fields& f, GimbalConfig& gimbal) {
     }
 }
 
+// `video` (contract section 17): its reading is daemon/video/video_config.cpp's.
+void read_video(Fields& f, GimbalConfig& gimbal) {
+    if (const json* video = f.find("video"); video != nullptr && !video->is_null())
+        gimbal.video = gimbald::video::read_video_config(
+            *video, f.path("video"), [&f](std::string path, std::string message) {
+                f.problems().add(std::move(path), std::move(message));
+            });
+}
+
+// Under --sim the file's gimbals are replaced, but their `video` sections still apply to
+// the simulated gimbal of the same protocol (sim_gimbals): only `protocol` and `video` are
+// read, and only a video section's problems are reported.
+void read_sim_videos(Fields& root, Config& config) {
+    const json* list = root.find("gimbals");
+    if (list == nullptr || !list->is_array()) return;
+    for (std::size_t i = 0; i < list->size(); ++i) {
+        const json& item = (*list)[i];
+        if (!item.is_object() || !item.contains("protocol") || !item["protocol"].is_string())
+            continue;
+        const auto protocol = parse_protocol(item["protocol"].get<std::string>());
+        if (!protocol) continue;
+        Fields f(item, index_path("gimbals", i), root.problems());
+        GimbalConfig gimbal;
+        gimbal.protocol = *protocol;
+        read_video(f, gimbal);
+        if (gimbal.video) config.gimbals.push_back(std::move(gimbal));
+    }
+}
+
 GimbalConfig read_gimbal(Fields& f) {
     static const std::regex name_pattern("[a-z0-9_-]{1,32}");
     GimbalConfig gimbal;
@@ -460,6 +489,7 @@ GimbalConfig read_gimbal(Fields& f) {
         f.problem("viewpro", "only for protocol \"viewpro\"");
     }
     read_feed(f, gimbal);
+    read_video(f, gimbal);
     return gimbal;
 }
 
@@ -1099,7 +1129,7 @@ ConfigResult parse_config(std::string_view text, GimbalsSection gimbals) {
     if (gimbals == GimbalsSection::required) {
         read_gimbals(root, config);
     } else {
-        root.find("gimbals");  // replaced by --sim: accepted, not read
+        read_sim_videos(root, config);  // replaced by --sim: only their video sections count
     }
     section(root, "command", [&](Fields& f) { read_command(f, config.command); });
     section(root, "laser", [&](Fields& f) {
@@ -1172,7 +1202,8 @@ ConfigResult load_config_file(const std::string& path, GimbalsSection gimbals) {
     return parse_config(text, gimbals);
 }
 
-std::vector<GimbalConfig> sim_gimbals(std::span<const Protocol> protocols) {
+std::vector<GimbalConfig> sim_gimbals(std::span<const Protocol> protocols,
+                                      const std::vector<GimbalConfig>& file_gimbals) {
     auto simulated = [](std::string name, Protocol protocol) {
         GimbalConfig gimbal;
         gimbal.name = std::move(name);
@@ -1185,6 +1216,13 @@ std::vector<GimbalConfig> sim_gimbals(std::span<const Protocol> protocols) {
         gimbals.push_back(simulated("sim", gimbal::protocols::all_protocol_ids.front()));
     for (Protocol protocol : protocols) {
         gimbals.push_back(simulated(fmt::format("sim-{}", to_string(protocol)), protocol));
+    }
+    for (auto& gimbal : gimbals) {
+        for (const auto& from : file_gimbals) {
+            if (from.protocol != gimbal.protocol || !from.video) continue;
+            gimbal.video = from.video;
+            break;
+        }
     }
     return gimbals;
 }
@@ -1231,6 +1269,7 @@ json gimbal_to_json(const GimbalConfig& gimbal) {
                             {"network", o.network},
                             {"format", formats[static_cast<std::size_t>(o.format)]}}}};
     }
+    if (gimbal.video) out["video"] = gimbald::video::to_json(*gimbal.video);
     return out;
 }
 

@@ -16,6 +16,7 @@
 
 #include "logging.hpp"
 #include "protocols/protocol_id.hpp"
+#include "video/video_config.hpp"
 
 namespace gimbal::daemon {
 
@@ -95,6 +96,8 @@ struct GimbalConfig {
     ViewproOptions viewpro;                       // Viewpro only
     OrionFeed orion_feed;                         // `feed` of an Orion gimbal
     ViewproFeed viewpro_feed = ViewproFeed::in2;  // `feed` of a Viewpro gimbal
+    // `video` (contract section 17, daemon/video/video_config.hpp); off unless set.
+    std::optional<gimbald::video::VideoConfig> video;
     bool operator==(const GimbalConfig&) const = default;
 };
 
@@ -314,8 +317,11 @@ ConfigResult load_config_file(const std::string& path,
                               GimbalsSection gimbals = GimbalsSection::required);
 
 // The simulated gimbals of `--sim` (contract section 2): no protocols -> one Orion named
-// "sim"; otherwise one gimbal "sim-<protocol>" per protocol, link type sim.
-std::vector<GimbalConfig> sim_gimbals(std::span<const Protocol> protocols);
+// "sim"; otherwise one gimbal "sim-<protocol>" per protocol, link type sim. Each takes the
+// `video` section of the first of `file_gimbals` of its protocol that has one (under --sim,
+// parse_config reads only `protocol` and `video` of the file's gimbals).
+std::vector<GimbalConfig> sim_gimbals(std::span<const Protocol> protocols,
+                                      const std::vector<GimbalConfig>& file_gimbals = {});
 
 // The configuration as JSON, every key present (the inverse of parse_config). The command
 // token is shown as "***" unless `show_token`.

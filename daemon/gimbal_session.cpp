@@ -154,6 +154,14 @@ void GimbalSession::schedule_tick() {
 
 GimbalSession::Outcome GimbalSession::execute(std::string_view cmd, const nlohmann::json& request) {
     Outcome out;
+    if (const auto local = commands_.find(std::string(cmd)); local != commands_.end()) {
+        auto result = local->second(request);
+        if (result)
+            out.results = std::move(result.value());
+        else
+            out.error = result.error();
+        return out;
+    }
     gimbal::command::Plan plan;
     const gimbal::session::Now now{
         now_s(),

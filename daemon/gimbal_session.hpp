@@ -8,6 +8,7 @@
 #include <boost/asio/steady_timer.hpp>
 #include <chrono>
 #include <functional>
+#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -44,7 +45,9 @@ class GimbalSession {
     // The daemon's own record of a laser it commanded to fire (metrics).
     bool laser_firing(std::uint8_t index) const { return lasers_.firing(index); }
 
-    bool supports(std::string_view cmd) const { return protocol_->supports(cmd); }
+    bool supports(std::string_view cmd) const {
+        return protocol_->supports(cmd) || commands_.count(std::string(cmd)) != 0;
+    }
     // What the gimbal can do and how its camera sees (session/capabilities.hpp).
     const gimbal::session::Capabilities& capabilities() const { return protocol_->capabilities(); }
     // Runs a gimbal command: validate, refuse (nothing sent) or write its packets.
@@ -76,6 +79,13 @@ class GimbalSession {
     // want to follow new telemetry at once, such as MQTT).
     void add_receive_listener(std::function<void()> listener) {
         receive_listeners_.push_back(std::move(listener));
+    }
+    // A command every gimbal answers from daemon-level data rather than its protocol (`klv`,
+    // contract section 17): execute() runs it, with no link needed.
+    using LocalCommand =
+        std::function<gimbal::command::Result<nlohmann::json>(const nlohmann::json& request)>;
+    void add_command(std::string cmd, LocalCommand handler) {
+        commands_[std::move(cmd)] = std::move(handler);
     }
     // Short text for systemd's STATUS= line.
     std::string status() const;
@@ -113,6 +123,7 @@ class GimbalSession {
     std::function<nlohmann::json()> vehicle_snapshot_;
     std::vector<std::pair<std::string, std::function<nlohmann::json()>>> state_keys_;
     std::vector<std::function<void()>> receive_listeners_;
+    std::map<std::string, LocalCommand> commands_;
 };
 
 }  // namespace gimbald

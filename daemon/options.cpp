@@ -246,7 +246,8 @@ ConfigResult resolve_config(const Options& options) {
         result = load_config_file(options.config_path,
                                   options.sim ? GimbalsSection::ignored : GimbalsSection::required);
     }
-    if (options.sim) result.config.gimbals = sim_gimbals(options.sim_protocols);
+    if (options.sim)
+        result.config.gimbals = sim_gimbals(options.sim_protocols, result.config.gimbals);
     if (options.log_level) result.config.log.level = *options.log_level;
     if (options.log_format) result.config.log.format = *options.log_format;
     return result;

@@ -85,6 +85,7 @@ void SimLink::arm_tick() {
 void SimLink::on_tick() {
     produced_.clear();
     device_->advance(now_s(), produced_);
+    if (advance_listener_) advance_listener_(*device_);
     if (!produced_.empty()) {
         stats_.rx_bytes += produced_.size();
         stats_.last_rx = std::chrono::steady_clock::now();

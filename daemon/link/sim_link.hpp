@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <span>
 #include <string>
@@ -40,6 +41,11 @@ class SimLink final : public Link {
     const LinkStats& stats() const override { return stats_; }
     std::string type() const override { return "sim"; }
     std::string endpoint() const override { return "sim"; }
+    // Called on every tick right after the model advanced (the simulated video takes the
+    // camera's view there).
+    void set_advance_listener(std::function<void(const gimbal::sim::Device&)> listener) {
+        advance_listener_ = std::move(listener);
+    }
 
   private:
     double now_s() const;  // device time: seconds since this link was made (monotonic)
@@ -59,6 +65,7 @@ class SimLink final : public Link {
     bool connected_ = false;
     LinkStats stats_;
     std::vector<std::uint8_t> produced_;
+    std::function<void(const gimbal::sim::Device&)> advance_listener_;
 };
 
 }  // namespace gimbald

@@ -30,6 +30,8 @@ class VideoOutput {
     virtual void write_klv(std::span<const std::uint8_t> klv, std::optional<std::uint64_t> pts) = 0;
     virtual const UdpSenderStats& stats() const = 0;
     virtual const std::string& url() const = 0;
+    // MPEG-TS (KLV needs a PTS there) rather than bare KLV datagrams.
+    virtual bool transport_stream() const = 0;
 };
 
 class TsUdpOutput final : public VideoOutput {
@@ -40,6 +42,7 @@ class TsUdpOutput final : public VideoOutput {
     void write_klv(std::span<const std::uint8_t> klv, std::optional<std::uint64_t> pts) override;
     const UdpSenderStats& stats() const override { return sender_.stats(); }
     const std::string& url() const override { return url_; }
+    bool transport_stream() const override { return true; }
     const gimbal::video::MuxStats& mux_stats() const { return mux_.stats(); }
 
   private:
@@ -56,6 +59,7 @@ class KlvUdpOutput final : public VideoOutput {
     void write_klv(std::span<const std::uint8_t> klv, std::optional<std::uint64_t> pts) override;
     const UdpSenderStats& stats() const override { return sender_.stats(); }
     const std::string& url() const override { return url_; }
+    bool transport_stream() const override { return false; }
 
   private:
     std::string url_;

@@ -348,6 +348,14 @@ constexpr std::array commands{
       .reply = "the located point as `locate` gives it and `\"sent\"`; `unsupported` for a "
                "gimbal that cannot point at a location",
       .example = R"({"x": 0.5, "y": -0.3})"},
+    C{.name = "klv",
+      .scope = Scope::every_gimbal,
+      .access = Access::observe,
+      .summary = "The latest MISB ST 0601 KLV set of the gimbal's video, as bytes and decoded.",
+      .reply = "`\"klv_hex\"` (the whole set, 16-byte key through checksum), `\"klv\"` "
+               "(decoded, with `age_s`), `\"klv_source\"` (`stream` or `generated`); "
+               "`unavailable` when there is none",
+      .example = "{}"},
     C{.name = "geopoint",
       .summary = "Point at a geographic location.",
       .params = geopoint_params,

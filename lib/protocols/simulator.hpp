@@ -1,6 +1,6 @@
 // A protocol's simulator hook: how gimbal-sim and the daemon's `sim` link make its simulated
 // gimbal, the protocol's own gimbal-sim flags, the frame shape its fault injector corrupts,
-// discovery, and the decoder of gimbal-sim's --rx-log. Pure.
+// discovery, the decoder of gimbal-sim's --rx-log and the camera the video shows. Pure.
 #pragma once
 
 #include <cstdint>
@@ -13,6 +13,7 @@
 #include <string_view>
 #include <vector>
 
+#include "sim/camera_view.hpp"
 #include "sim/device.hpp"
 #include "sim/fault_injector.hpp"
 
@@ -80,6 +81,10 @@ struct Simulator {
     // one: which datagrams ask, and what gimbal-sim answers. nullptr: no discovery.
     bool (*is_discovery_request)(std::span<const std::uint8_t> datagram) = nullptr;
     std::vector<std::uint8_t> (*discovery_reply)() = nullptr;
+    // What the model's camera sees at its current time (call right after advance()): the
+    // simulated video and its KLV (gimbal-sim --video, gimbald's sim link with `video`) are
+    // made from it. nullptr: the model has no camera.
+    std::optional<sim::CameraView> (*camera)(const sim::Device& device) = nullptr;
 };
 
 }  // namespace gimbal::protocols

@@ -91,6 +91,9 @@ struct View {
     std::optional<double> lat_deg, lon_deg, alt_msl_m;                       // the camera
     std::optional<double> target_lat_deg, target_lon_deg, target_alt_msl_m;  // image centre
     std::optional<double> hfov_deg, vfov_deg;
+    std::optional<double> alt_m;  // the camera above the WGS84 ellipsoid, when reported
+    // A range to the image centre the gimbal measured (a laser range finder), metres.
+    std::optional<double> measured_range_m;
 };
 
 // The camera as image geometry needs it (contract section 16: locate, project, point).
@@ -138,6 +141,11 @@ class Capabilities {
     // The image geometry, or unsupported (the gimbal never reports what it needs, such as a
     // field of view) / unavailable (no telemetry yet).
     virtual command::Result<ImageView> image(const nlohmann::json& state) const = 0;
+    // The platform's (aircraft's, or the gimbal mount's) attitude as a rotation from its body
+    // frame to NED, when the gimbal reports it (KLV platform heading, pitch and roll).
+    virtual std::optional<geo::Quat> platform_attitude(const nlohmann::json&) const {
+        return std::nullopt;
+    }
     virtual Identity identity(const nlohmann::json& state) const = 0;
     virtual Limits limits(const nlohmann::json& state) const = 0;
     virtual Camera camera(const nlohmann::json& state) const = 0;

@@ -76,6 +76,8 @@ struct OrionCameraView {
     double hfov_rad = 0;  // the active camera's fields of view at its zoom
     double vfov_rad = 0;
     bool infrared = false;  // the active camera is the LWIR one
+    // The geoid height the telemetry reports (MSL = WGS84 - this).
+    double geoid_undulation_m = 0;
 };
 // nullopt when `device` is not a simulated Orion made by make_orion_sim.
 std::optional<OrionCameraView> orion_sim_camera(const Device& device);

@@ -16,6 +16,7 @@ OrionCameraView OrionSim::camera_view() const {
     const FieldOfView fov = field_of_view(camera, zoom_[active_camera_]);
     v.hfov_rad = fov.horizontal;
     v.vfov_rad = fov.vertical;
+    v.geoid_undulation_m = options_.geoid_undulation_m;
     v.infrared = camera.type == orion::CameraType::swir || camera.type == orion::CameraType::mwir ||
                  camera.type == orion::CameraType::lwir;
     return v;

@@ -34,4 +34,10 @@ bool SimVideoSource::frame(const sim::OrionCameraView& view, std::uint64_t unix_
     return frame(sim::camera_pose(view), unix_ms, pts_90k, out);
 }
 
+bool SimVideoSource::frame(const sim::CameraView& view, std::uint64_t unix_ms, std::int64_t pts_90k,
+                           std::vector<AccessUnit>& out) {
+    renderer_.set_monochrome(view.monochrome);
+    return frame(view.pose, unix_ms, pts_90k, out);
+}
+
 }  // namespace gimbal::sim_video

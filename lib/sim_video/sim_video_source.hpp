@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "geo/footprint.hpp"
+#include "sim/camera_view.hpp"
 #include "sim/i420_frame.hpp"
 #include "sim/orion_sim.hpp"
 #include "sim/scene_renderer.hpp"
@@ -40,6 +41,9 @@ class SimVideoSource {
     // The simulated Orion's active camera (sim::orion_sim_camera): its pose, and no colour
     // when it is the infrared one.
     bool frame(const sim::OrionCameraView& view, std::uint64_t unix_ms, std::int64_t pts_90k,
+               std::vector<AccessUnit>& out);
+    // Any simulated camera (a protocol's simulator hook): its pose, grey when monochrome.
+    bool frame(const sim::CameraView& view, std::uint64_t unix_ms, std::int64_t pts_90k,
                std::vector<AccessUnit>& out);
 
     // The last frame as rendered (time code included), before encoding.

@@ -7,7 +7,7 @@ namespace gimbal::state {
 
 namespace {
 
-// Every top-level STATE key of contract sections 5, 8-12 and 10 (`command`).
+// Every top-level STATE key of contract sections 5, 8-12, 10 (`command`) and 17 (`video`).
 constexpr std::string_view known_keys[] = {"protocol",
                                            "link",
                                            "stale",
@@ -37,7 +37,8 @@ constexpr std::string_view known_keys[] = {"protocol",
                                            "mavlink",
                                            "mqtt",
                                            "record",
-                                           "capabilities"};
+                                           "capabilities",
+                                           "video"};
 
 bool always_kept(std::string_view key) {
     return key == "protocol" || key == "link" || key == "stale";

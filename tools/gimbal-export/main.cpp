@@ -6,8 +6,10 @@
 #include <string>
 #include <vector>
 
+#include "export/klv_csv.hpp"
 #include "export/writers.hpp"
 #include "record/gimbal_stream.hpp"
+#include "record/video_stream.hpp"
 
 namespace {
 
@@ -16,7 +18,7 @@ constexpr const char* description = R"(NAME
        gimbald recording, for QGIS, Google Earth or a spreadsheet
 
 SYNOPSIS
-       gimbal-export FILE... --format geojson|kml|csv [--gimbal NAME]
+       gimbal-export FILE... --format geojson|kml|csv|klv-csv [--gimbal NAME]
                      [--footprint-every S] [-o OUT]
 
 DESCRIPTION
@@ -41,6 +43,14 @@ DESCRIPTION
                 lon, alt, alt_msl, roll, pitch, yaw (aircraft), pan, tilt, hfov,
                 vfov, mode, range_source, target_lat, target_lon, target_alt,
                 target_alt_msl, zoom, lrf_m; empty where the packet has no value.
+       klv-csv  the KLV track of the gimbal's recorded video (interface
+                video:NAME, contract section 17): a header line, then one row
+                per MISB ST 0601 set - the sets found in the recorded MPEG-TS
+                (source "stream", checksum verified; bad ones are skipped and
+                counted) and those gimbald generated (source "generated") -
+                with time (when gimbald received or made it, ISO-8601 UTC),
+                source, and every decoded item as a column (names and units of
+                docs/video.md; flags as item.flag columns).
 
        Units are those of gimbald's STATE (degrees, metres). Camera footprints
        are the image corners projected onto the ground at the target's altitude
@@ -55,6 +65,7 @@ constexpr const char* footer = R"(OUTPUT
        The export goes to OUT (or standard output); a summary line goes to
        standard error:
            gimbal-export: gimbal main (orion): 300 telemetry packets, 30 footprints
+           gimbal-export: video of gimbal main: 450 KLV sets (450 stream, 0 generated)
 
 EXIT STATUS
        0 written; 1 bad command line, unreadable file, not a recording, no such
@@ -64,7 +75,50 @@ EXAMPLES
        gimbal-export flight.pcapng --format geojson -o flight.geojson
        gimbal-export flight.pcapng --format kml --footprint-every 2 -o flight.kml
        gimbal-export flight.pcapng --gimbal nose --format csv > nose.csv
+       gimbal-export flight.pcapng --format klv-csv -o klv.csv
 )";
+
+// Writes `text` to `output` (standard output when empty); false when it cannot.
+bool write_output(const std::string& output, const std::string& text) {
+    if (output.empty()) {
+        std::cout << text << std::flush;
+        return true;
+    }
+    std::ofstream out(output, std::ios::binary | std::ios::trunc);
+    out << text;
+    out.close();
+    if (!out) {
+        std::cerr << "gimbal-export: cannot write " << output << std::endl;
+        return false;
+    }
+    return true;
+}
+
+int export_klv(const std::vector<std::string>& files, const std::string& gimbal,
+               const std::string& output) {
+    namespace fe = gimbal::flight_export;
+    std::string error;
+    std::vector<std::string> warnings;
+    gimbal::record::VideoStream video;
+    if (!gimbal::record::load_video_files(files, gimbal, video, warnings, error)) {
+        std::cerr << "gimbal-export: " << error << std::endl;
+        return 1;
+    }
+    for (const auto& w : warnings)
+        std::cerr << "gimbal-export: warning: " << w << "; exporting what came before" << std::endl;
+    const fe::KlvTrack track = fe::klv_track(video);
+    if (!write_output(output, fe::to_klv_csv(track))) return 1;
+    std::size_t generated = 0;
+    for (const auto& row : track.rows) generated += row.generated ? 1 : 0;
+    std::cerr << "gimbal-export: video of gimbal " << video.gimbal << ": " << track.rows.size()
+              << " KLV sets (" << track.rows.size() - generated << " stream, " << generated
+              << " generated)"
+              << (track.bad_checksums
+                      ? ", " + std::to_string(track.bad_checksums) + " with a bad checksum skipped"
+                      : std::string())
+              << std::endl;
+    return 0;
+}
 
 }  // namespace
 
@@ -82,9 +136,9 @@ int main(int argc, char** argv) {
     app.get_formatter()->column_width(30);
     app.add_option("FILE", files, "Recording (pcapng) to read; several: in this order")
         ->type_name("");
-    app.add_option("--format", format, "Output format: geojson, kml or csv")
+    app.add_option("--format", format, "Output format: geojson, kml, csv or klv-csv")
         ->type_name("FORMAT")
-        ->check(CLI::IsMember({"geojson", "kml", "csv"}).description(""));
+        ->check(CLI::IsMember({"geojson", "kml", "csv", "klv-csv"}).description(""));
     app.add_option("--gimbal", gimbal,
                    "Gimbal to export (its interface gimbal:NAME); needed when the recording "
                    "holds several")
@@ -112,6 +166,8 @@ int main(int argc, char** argv) {
         return 1;
     }
 
+    if (format == "klv-csv") return export_klv(files, gimbal, output);
+
     std::string error;
     std::vector<std::string> warnings;
     gimbal::record::GimbalStream stream;
@@ -130,17 +186,7 @@ int main(int argc, char** argv) {
     const std::string text = format == "geojson" ? fe::to_geojson(flight, footprint_every_s)
                              : format == "kml"   ? fe::to_kml(flight, footprint_every_s)
                                                  : fe::to_csv(flight);
-    if (output.empty()) {
-        std::cout << text << std::flush;
-    } else {
-        std::ofstream out(output, std::ios::binary | std::ios::trunc);
-        out << text;
-        out.close();
-        if (!out) {
-            std::cerr << "gimbal-export: cannot write " << output << std::endl;
-            return 1;
-        }
-    }
+    if (!write_output(output, text)) return 1;
     std::cerr << "gimbal-export: gimbal " << flight.gimbal << " (" << flight.protocol
               << "): " << flight.points.size() << " telemetry packets, "
               << fe::footprints_every(flight, footprint_every_s).size() << " footprints"

@@ -8,6 +8,7 @@
 
 #include "options.hpp"
 #include "record/gimbal_stream.hpp"
+#include "record/video_stream.hpp"
 #include "replay_app.hpp"
 
 int main(int argc, char** argv) {
@@ -28,12 +29,21 @@ int main(int argc, char** argv) {
     if (stream.chunks.empty())
         std::cerr << "gimbal-replay: warning: gimbal " << stream.gimbal.name
                   << " sent nothing in this recording" << std::endl;
+    gimbal::record::VideoStream video;
+    if (!options.video.empty()) {
+        std::vector<std::string> video_warnings;
+        if (!gimbal::record::load_video_files(options.files, stream.gimbal.name, video,
+                                              video_warnings, error)) {
+            std::cerr << "gimbal-replay: --video: " << error << std::endl;
+            return 1;
+        }
+    }
 
     std::signal(SIGPIPE, SIG_IGN);  // a client gone mid-write is an error code, not a death
     try {
         boost::asio::io_context io;
         boost::asio::signal_set signals(io, SIGINT, SIGTERM);
-        gimbal_replay::ReplayApp app(io, options, std::move(stream));
+        gimbal_replay::ReplayApp app(io, options, std::move(stream), std::move(video));
         app.on_stop([&] { signals.cancel(); });
         signals.async_wait([&](const boost::system::error_code& ec, int) {
             if (!ec) app.stop();

@@ -3,6 +3,8 @@
 #include <CLI/CLI.hpp>
 #include <iostream>
 
+#include "video/url.hpp"
+
 namespace gimbal_replay {
 
 namespace {
@@ -13,7 +15,7 @@ constexpr const char* description = R"(NAME
 
 SYNOPSIS
        gimbal-replay FILE... [--gimbal NAME] [--speed N] [--tcp PORT] [--pty [PATH]]
-                     [--no-tcp] [--loop] [--hold]
+                     [--no-tcp] [--loop] [--hold] [--video udp://HOST:PORT]
 
 DESCRIPTION
        Reads a pcapng recording written by gimbald (the "record" configuration,
@@ -33,6 +35,12 @@ DESCRIPTION
        Nothing in the packets is rewritten: GPS time, system time and every
        other field are the recorded ones. Only gimbald's own clock-derived
        values (age_s, stale, last_rx_age_s) follow the replay's pace.
+
+       With --video, the gimbal's recorded video (its interface "video:NAME":
+       the MPEG-TS datagrams gimbald received, KLV included) goes to that UDP
+       address on the same clock as the gimbal's bytes, so a gimbald with
+       "video": {"input": "udp://..."} sees the flight's picture and metadata
+       again, in step with its telemetry. Each datagram is sent as recorded.
 
        Several FILEs are played as one recording, in the order given (gimbald
        rotates files: gimbal-replay /var/lib/gimbald/recordings/gimbald-20261125T*
@@ -59,6 +67,7 @@ EXAMPLES
        gimbal-replay flight.pcapng
        gimbal-replay flight.pcapng --gimbal nose --speed 10 --tcp 0
        gimbal-replay flight.pcapng --no-tcp --pty /tmp/orion --loop
+       gimbal-replay flight.pcapng --video udp://127.0.0.1:15004
 )";
 
 }  // namespace
@@ -101,6 +110,9 @@ ParsedOptions parse_options(int argc, char** argv) {
         ->type_name("S")
         ->check(CLI::NonNegativeNumber.description(""))
         ->capture_default_str();
+    app.add_option("--video", o.video,
+                   "Send the gimbal's recorded video (MPEG-TS with its KLV) to udp://HOST:PORT")
+        ->type_name("URL");
     app.add_flag("--version", version, "Print the version and exit");
 
     try {
@@ -121,6 +133,14 @@ ParsedOptions parse_options(int argc, char** argv) {
     if (!o.tcp && !o.pty) {
         std::cerr << "gimbal-replay: nothing to serve: --no-tcp needs --pty\n";
         return {std::nullopt, 1};
+    }
+    if (!o.video.empty()) {
+        const auto url = gimbal::video::parse_video_url(o.video);
+        if (!url.url || url.url->scheme != gimbal::video::UrlScheme::udp || url.url->host.empty()) {
+            std::cerr << "gimbal-replay: --video: expected udp://HOST:PORT"
+                      << (url.url ? "" : " (" + url.error + ")") << "\n";
+            return {std::nullopt, 1};
+        }
     }
     if (o.loop && o.hold) {
         std::cerr << "gimbal-replay: --loop and --hold exclude each other\n";

@@ -20,6 +20,7 @@ struct ReplayOptions {
     bool loop = false;
     bool hold = false;  // keep serving (silently) after the end
     double progress_every_s = 5.0;
+    std::string video;  // udp://HOST:PORT: also send the gimbal's recorded video there
 };
 
 struct ParsedOptions {

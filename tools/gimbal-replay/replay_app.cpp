@@ -3,6 +3,8 @@
 #include <cstdio>
 #include <iostream>
 
+#include "video/url.hpp"
+
 namespace gimbal_replay {
 
 namespace asio = boost::asio;
@@ -18,8 +20,27 @@ std::string fixed(double value, int decimals) {
 }  // namespace
 
 ReplayApp::ReplayApp(asio::io_context& io, const ReplayOptions& options,
-                     gimbal::record::GimbalStream stream)
-    : io_(io), options_(options), stream_(std::move(stream)), send_timer_(io), progress_timer_(io) {
+                     gimbal::record::GimbalStream stream, gimbal::record::VideoStream video)
+    : io_(io),
+      options_(options),
+      stream_(std::move(stream)),
+      video_(std::move(video)),
+      video_timer_(io),
+      send_timer_(io),
+      progress_timer_(io) {
+    // Only the TS as received goes out; gimbald makes its generated KLV again from the flight.
+    std::erase_if(video_.chunks, [](const auto& c) { return c.generated; });
+    if (!stream_.chunks.empty()) origin_us_ = stream_.chunks.front().time_us;
+    if (!video_.chunks.empty() &&
+        (stream_.chunks.empty() || video_.chunks.front().time_us < origin_us_))
+        origin_us_ = video_.chunks.front().time_us;
+    if (!options_.video.empty()) {
+        const auto url = gimbal::video::parse_video_url(options_.video);
+        video_to_ = asio::ip::udp::endpoint(asio::ip::make_address(url.url->host), url.url->port);
+        video_socket_.emplace(io_, video_to_.protocol());
+        video_socket_->non_blocking(true);
+        std::cout << "video: " << options_.video << std::endl;
+    }
     const auto on_rx = [this](std::span<const std::uint8_t> bytes) {
         ignored_rx_bytes_ += bytes.size();
     };
@@ -47,6 +68,7 @@ void ReplayApp::stop() {
     if (stopped_) return;
     stopped_ = true;
     send_timer_.cancel();
+    video_timer_.cancel();
     progress_timer_.cancel();
     if (tcp_) tcp_->stop();
     if (pty_) pty_->stop();
@@ -66,10 +88,40 @@ double ReplayApp::recorded_s(std::size_t index) const {
            1e-6;
 }
 
-ReplayApp::Clock::time_point ReplayApp::due_time(std::size_t index) const {
-    const double wall_s = recorded_s(index) / options_.speed;
+// Gimbal bytes and video share one clock: recorded time since the first of either.
+ReplayApp::Clock::time_point ReplayApp::due_at(std::int64_t time_us) const {
+    const double wall_s = static_cast<double>(time_us - origin_us_) * 1e-6 / options_.speed;
     return started_at_ + std::chrono::duration_cast<Clock::duration>(
                              std::chrono::duration<double>(std::max(0.0, wall_s)));
+}
+
+ReplayApp::Clock::time_point ReplayApp::due_time(std::size_t index) const {
+    return due_at(stream_.chunks[std::min(index, stream_.chunks.size() - 1)].time_us);
+}
+
+bool ReplayApp::video_done() const {
+    return !video_socket_ || next_video_ >= video_.chunks.size();
+}
+
+void ReplayApp::send_video_due() {
+    if (stopped_ || !video_socket_) return;
+    const auto now = Clock::now();
+    while (next_video_ < video_.chunks.size() &&
+           due_at(video_.chunks[next_video_].time_us) <= now) {
+        const auto& bytes = video_.chunks[next_video_].bytes;
+        boost::system::error_code ec;
+        video_socket_->send_to(asio::buffer(bytes), video_to_, 0, ec);
+        ++(ec ? video_errors_ : video_datagrams_);
+        ++next_video_;
+    }
+    if (video_done()) {
+        if (next_ >= stream_.chunks.size()) finish();
+        return;
+    }
+    video_timer_.expires_at(due_at(video_.chunks[next_video_].time_us));
+    video_timer_.async_wait([this](const boost::system::error_code& ec) {
+        if (!ec) send_video_due();
+    });
 }
 
 void ReplayApp::begin_playback() {
@@ -80,7 +132,11 @@ void ReplayApp::begin_playback() {
               << "), " << stream_.chunks.size() << " packets, "
               << fixed(recorded_s(stream_.chunks.size()), 1) << " s recorded, speed "
               << options_.speed << std::endl;
+    if (video_socket_)
+        std::cout << "playing: video of gimbal " << video_.gimbal << ", " << video_.chunks.size()
+                  << " datagrams" << std::endl;
     arm_progress();
+    send_video_due();
     send_due();
 }
 
@@ -97,7 +153,7 @@ void ReplayApp::send_due() {
         ++next_;
     }
     if (next_ >= chunks.size()) {
-        finish();
+        if (video_done()) finish();
         return;
     }
     send_timer_.expires_at(due_time(next_));
@@ -110,14 +166,22 @@ void ReplayApp::finish() {
     const double wall_s = std::chrono::duration<double>(Clock::now() - started_at_).count();
     std::cout << "done: " << sent_packets_ << " packets, " << sent_bytes_ << " bytes, "
               << fixed(recorded_s(stream_.chunks.size()), 1) << " s recorded in "
-              << fixed(wall_s, 1) << " s" << std::endl;
-    if (options_.loop && !stream_.chunks.empty()) {
+              << fixed(wall_s, 1) << " s";
+    if (video_socket_)
+        std::cout << "; video: " << video_datagrams_ << " datagrams"
+                  << (video_errors_ ? " (" + std::to_string(video_errors_) + " not sent)" : "");
+    std::cout << std::endl;
+    if (options_.loop && (!stream_.chunks.empty() || !video_.chunks.empty())) {
         ++rounds_;
         next_ = 0;
+        next_video_ = 0;
+        video_datagrams_ = 0;
+        video_errors_ = 0;
         sent_packets_ = 0;
         sent_bytes_ = 0;
         started_at_ = Clock::now();
         std::cerr << "gimbal-replay: loop " << rounds_ + 1 << std::endl;
+        send_video_due();
         send_due();
         return;
     }

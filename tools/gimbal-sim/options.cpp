@@ -110,7 +110,7 @@ double unix_time_now_s() {
 std::string footer() {
     std::string rx;
     for (const auto* p : protocols::entries()) rx += std::string(p->simulator.rx_log_manual);
-    return std::string(footer_start) + rx + footer_end;
+    return std::string(footer_start) + rx + video_manual + footer_end;
 }
 
 // The value of a protocol's flag as parsed (stored per flag name; several protocols may
@@ -283,6 +283,7 @@ ParsedOptions parse_options(int argc, char** argv) {
             it->second.option = add_flag(app, f, defaults, it->second, group);
         }
     }
+    add_video_options(app, o.video);
     app.add_flag("--version", version, "Print the version and exit");
 
     try {
@@ -321,6 +322,11 @@ ParsedOptions parse_options(int argc, char** argv) {
     }
     if (o.stall_reading_after_s > 0 && o.stall_reading_for_s <= 0) {
         std::cerr << "gimbal-sim: --stall-reading-after needs --stall-reading-for\n";
+        return {std::nullopt, 1};
+    }
+    if (std::string error;
+        !o.video.url.empty() && !video_sender_options(o.video, o.entry(), error)) {
+        std::cerr << "gimbal-sim: " << error << "\n";
         return {std::nullopt, 1};
     }
     return {o, 0};

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "protocols/registry.hpp"
+#include "video_options.hpp"
 
 namespace gimbal_sim {
 
@@ -39,6 +40,7 @@ struct ToolOptions {
     double tick_s = 0.01;
 
     gimbal::protocols::SimScenario scenario;  // the model: clock, seed, settings, own flags
+    VideoToolOptions video;                   // --video (video_options.hpp)
 
     const gimbal::protocols::Entry& entry() const { return *gimbal::protocols::find(protocol); }
 };

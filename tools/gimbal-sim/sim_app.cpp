@@ -1,6 +1,8 @@
 #include "sim_app.hpp"
 
+#include <cstdio>
 #include <iostream>
+#include <stdexcept>
 #include <vector>
 
 namespace gimbal_sim {
@@ -73,6 +75,13 @@ SimApp::SimApp(asio::io_context& io, const ToolOptions& options)
         if (read_gate_.active()) pty_->set_read_policy([this] { return read_budget(); });
         std::cout << "pty: " << pty_->device() << std::endl;
     }
+    if (!options_.video.url.empty()) {
+        std::string error;
+        auto video = video_sender_options(options_.video, options_.entry(), error);
+        if (!video) throw std::runtime_error(error);
+        video_ = std::make_unique<gimbald::video::SimVideoSender>(std::move(*video));
+        std::cout << "video: " << video_->destination() << std::endl;
+    }
     if (options_.discovery) {
         const auto& simulator = options_.entry().simulator;
         try {
@@ -95,6 +104,7 @@ void SimApp::start() {
     if (tcp_) tcp_->start();
     if (pty_) pty_->start();
     if (discovery_) discovery_->start();
+    if (video_) video_->start();
     next_tick_ = std::chrono::steady_clock::now();
     on_tick();
 }
@@ -105,6 +115,17 @@ void SimApp::stop() {
     if (tcp_) tcp_->stop();
     if (pty_) pty_->stop();
     if (discovery_) discovery_->stop();
+    if (video_) {
+        video_->stop();
+        const auto s = video_->stats();
+        char cpu[96];
+        std::snprintf(cpu, sizeof cpu, "%.2f s CPU in %.1f s (%.1f %% of a core)", s.cpu_s,
+                      s.wall_s, s.wall_s > 0 ? 100.0 * s.cpu_s / s.wall_s : 0.0);
+        note("video: " + std::to_string(s.frames) + " frames, " + std::to_string(s.klv_sets) +
+             " KLV sets, " + std::to_string(s.bytes) + " bytes, " + std::to_string(s.late_frames) +
+             " frames skipped, " + std::to_string(s.send_errors) + " send errors; render+encode " +
+             cpu);
+    }
 }
 
 void SimApp::arm_tick() {
@@ -158,6 +179,8 @@ void SimApp::on_tick() {
 void SimApp::deliver(double now) {
     std::vector<std::uint8_t> out;
     device_->advance(now, out);
+    if (video_)  // the camera as the model just left it (SimVideoSender copies it)
+        if (const auto view = options_.entry().simulator.camera(*device_)) video_->update(*view);
     if (out.empty() || stalled(now)) return;  // a stalled gimbal says nothing; the model runs on
     std::vector<std::uint8_t> wire;
     if (faults_.active()) {

@@ -134,6 +134,16 @@ session::View OrionCapabilities::view(const json& state) const {
     if (alt && n) v.target_alt_msl_m = *alt - *n;
     v.hfov_deg = number_at(state, {"telemetry", "hfov"});
     v.vfov_deg = number_at(state, {"telemetry", "vfov"});
+    v.alt_m = number_at(state, {"telemetry", "alt"});
+    // With range_source "laser" the line-of-sight vector is the laser's range (Orion ICD).
+    const json* source = state_at(state, {"telemetry", "range_source"});
+    const json* los = state_at(state, {"telemetry", "los_ecef"});
+    if (source && *source == "laser" && los && los->is_array() && los->size() == 3 &&
+        v.target_lat_deg) {
+        double sum = 0;
+        for (const auto& c : *los) sum += c.is_number() ? c.get<double>() * c.get<double>() : 0;
+        if (sum > 0) v.measured_range_m = std::sqrt(sum);
+    }
     return v;
 }
 
@@ -167,6 +177,13 @@ command::Result<session::ImageView> OrionCapabilities::image(const json& state) 
     // geopoint's alt_ref msl converts with the telemetry's undulation.
     v.geoid_undulation_m = number_at(state, {"telemetry", "geoid_undulation"});
     return v;
+}
+
+std::optional<geo::Quat> OrionCapabilities::platform_attitude(const json& state) const {
+    // The mount quaternion: the gimbal is fixed to the aircraft.
+    const auto mount = mount_quat(state);
+    if (!mount) return std::nullopt;
+    return geo::normalized(*mount);
 }
 
 session::Identity OrionCapabilities::identity(const json& state) const {

@@ -21,6 +21,7 @@ class OrionCapabilities final : public session::Capabilities {
     std::optional<geo::Quat> line_of_sight(const nlohmann::json& state) const override;
     session::View view(const nlohmann::json& state) const override;
     command::Result<session::ImageView> image(const nlohmann::json& state) const override;
+    std::optional<geo::Quat> platform_attitude(const nlohmann::json& state) const override;
     session::Identity identity(const nlohmann::json& state) const override;
     session::Limits limits(const nlohmann::json& state) const override;
     session::Camera camera(const nlohmann::json& state) const override;

@@ -4,6 +4,7 @@
 #include "orion/json.hpp"
 #include "orion/packets.hpp"
 #include "sim/orion_sim.hpp"
+#include "sim/sim_camera.hpp"
 
 namespace gimbal::protocols {
 
@@ -126,6 +127,14 @@ bool is_discovery_request(std::span<const std::uint8_t> datagram) {
     return asked;
 }
 
+// The active camera, as the rendered video and its KLV need it.
+std::optional<sim::CameraView> camera(const sim::Device& device) {
+    const auto v = sim::orion_sim_camera(device);
+    if (!v) return std::nullopt;
+    return sim::CameraView{v->model_time_s, sim::camera_pose(*v), v->mount_to_ned,
+                           v->geoid_undulation_m, v->infrared};
+}
+
 }  // namespace
 
 Simulator orion_simulator() {
@@ -141,6 +150,7 @@ Simulator orion_simulator() {
     };
     s.is_discovery_request = is_discovery_request;
     s.discovery_reply = sim::orion_sim_crown_version_frame;
+    s.camera = camera;
     return s;
 }
 

@@ -55,15 +55,12 @@ session::Request ViewproCapabilities::zoom(const json&, const session::ZoomTarge
 
 std::optional<geo::Quat> ViewproCapabilities::line_of_sight(const json& state) const {
     // The aircraft's attitude (output.uav), then the gimbal's relative to it (output.gimbal).
-    const auto ur = number_at(state, {"output", "uav", "roll"});
-    const auto up = number_at(state, {"output", "uav", "pitch"});
-    const auto uy = number_at(state, {"output", "uav", "yaw"});
+    const auto uav = platform_attitude(state);
     const auto gr = number_at(state, {"output", "gimbal", "roll"});
     const auto gp = number_at(state, {"output", "gimbal", "pitch"});
     const auto gy = number_at(state, {"output", "gimbal", "yaw"});
-    if (!ur || !up || !uy || !gp || !gy) return std::nullopt;
-    return geo::normalized(geo::euler_to_quat(geo::EulerDeg{*ur, *up, *uy}) *
-                           geo::euler_to_quat(geo::EulerDeg{gr.value_or(0), *gp, *gy}));
+    if (!uav || !gp || !gy) return std::nullopt;
+    return geo::normalized(*uav * geo::euler_to_quat(geo::EulerDeg{gr.value_or(0), *gp, *gy}));
 }
 
 session::View ViewproCapabilities::view(const json& state) const {
@@ -74,6 +71,9 @@ session::View ViewproCapabilities::view(const json& state) const {
     v.target_lat_deg = number_at(state, {"output", "target", "lat"});
     v.target_lon_deg = number_at(state, {"output", "target", "lon"});
     v.target_alt_msl_m = number_at(state, {"output", "target", "alt_msl"});
+    // The laser range finder's distance; 0 when it measures nothing.
+    if (const auto lrf = number_at(state, {"output", "lrf_m"}); lrf && *lrf > 0)
+        v.measured_range_m = lrf;
     return v;  // OUTx frames carry no field of view
 }
 
@@ -83,6 +83,14 @@ command::Result<session::ImageView> ViewproCapabilities::image(const json&) cons
     return command::Error{command::code::unsupported,
                           "Viewpro output frames carry no field of view: image positions "
                           "cannot be located"};
+}
+
+std::optional<geo::Quat> ViewproCapabilities::platform_attitude(const json& state) const {
+    const auto roll = number_at(state, {"output", "uav", "roll"});
+    const auto pitch = number_at(state, {"output", "uav", "pitch"});
+    const auto yaw = number_at(state, {"output", "uav", "yaw"});
+    if (!roll || !pitch || !yaw) return std::nullopt;
+    return geo::euler_to_quat(geo::EulerDeg{*roll, *pitch, *yaw});
 }
 
 session::Identity ViewproCapabilities::identity(const json&) const {

@@ -1,0 +1,247 @@
+#include "video/gimbal_video.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "klv/local_set.hpp"
+#include "klv_state/sensor_frame.hpp"
+#include "state/precision.hpp"
+#include "video/url.hpp"
+
+namespace gimbald::video {
+
+namespace gv = gimbal::video;
+namespace klv = gimbal::klv;
+using nlohmann::json;
+using SteadyClock = std::chrono::steady_clock;
+
+namespace {
+
+gv::VideoUrl parse(const std::string& text) {
+    auto parsed = gv::parse_video_url(text);
+    if (!parsed.url) throw std::invalid_argument(text + ": " + parsed.error);
+    return *parsed.url;
+}
+
+std::uint64_t unix_us_now() {
+    return static_cast<std::uint64_t>(std::chrono::duration_cast<std::chrono::microseconds>(
+                                          std::chrono::system_clock::now().time_since_epoch())
+                                          .count());
+}
+
+std::string hex(std::span<const std::uint8_t> bytes) {
+    static constexpr char digits[] = "0123456789ABCDEF";
+    std::string s;
+    s.reserve(bytes.size() * 2);
+    for (const auto b : bytes) {
+        s.push_back(digits[b >> 4]);
+        s.push_back(digits[b & 0x0F]);
+    }
+    return s;
+}
+
+// klv_vs_telemetry is worked out at most this often (it reads the whole STATE).
+constexpr double compare_every_s = 0.2;
+
+}  // namespace
+
+GimbalVideo::GimbalVideo(boost::asio::io_context& io, GimbalVideoOptions options)
+    : io_(io),
+      options_(std::move(options)),
+      log_fields_({{"gimbal", options_.gimbal}}),
+      generate_timer_(io),
+      generate_period_(std::chrono::duration_cast<SteadyClock::duration>(
+          std::chrono::duration<double>(1.0 / options_.config.klv_rate_hz))),
+      track_(options_.klv_stream_fresh_s),
+      bad_checksum_log_(gimbal::log::Level::warn, "klv_bad_checksum",
+                        "KLV sets with a bad checksum"),
+      generate_error_log_(gimbal::log::Level::warn, "klv_generate_error",
+                          "KLV sets not generated") {
+    if (!options_.capabilities) throw std::invalid_argument("GimbalVideo needs capabilities");
+    const bool klv_off = options_.config.klv == KlvMode::off;
+    for (const auto& text : options_.config.outputs) {
+        VideoOutputOptions o;
+        o.log_fields = log_fields_;
+        o.mux.klv = !klv_off;
+        outputs_.push_back(make_video_output(io_, parse(text), std::move(o)));
+    }
+    const gv::VideoUrl input = parse(options_.config.input);
+    if (options_.record && input.scheme == gv::UrlScheme::rtsp) {
+        // No TS arrives from RTSP: the recording gets the access units muxed as gimbald's
+        // outputs would carry them (without KLV: generated sets are recorded on their own).
+        gv::MuxerOptions mux;
+        mux.klv = false;
+        record_mux_ = std::make_unique<gv::TsMuxer>(
+            mux, gv::Codec::h264,
+            [this](std::span<const std::uint8_t> chunk) { options_.record(chunk, false); });
+    }
+    VideoInputOptions in = options_.input;
+    for (const auto& [k, v] : log_fields_.items()) in.log_fields[k] = v;
+    VideoInputHandlers handlers;
+    handlers.access_unit = [this](const gv::AccessUnit& au, Clock::time_point) {
+        on_access_unit(au);
+    };
+    handlers.klv = [this](const gv::KlvUnit& unit, Clock::time_point) { on_klv(unit); };
+    handlers.connection = [this](bool up) { on_connection(up); };
+    if (options_.record && input.scheme == gv::UrlScheme::udp)
+        handlers.ts_bytes = [this](std::span<const std::uint8_t> ts, Clock::time_point) {
+            options_.record(ts, false);
+        };
+    input_ = make_video_input(io_, input, std::move(in), std::move(handlers));
+}
+
+GimbalVideo::~GimbalVideo() {
+    stop();
+}
+
+double GimbalVideo::now_s() const {
+    return std::chrono::duration<double>(SteadyClock::now() - epoch_).count();
+}
+
+void GimbalVideo::start() {
+    if (running_) return;
+    running_ = true;
+    input_->start();
+    if (options_.config.klv != KlvMode::off) {
+        next_generate_ = SteadyClock::now() + generate_period_;
+        arm_generate();
+    }
+}
+
+void GimbalVideo::stop() {
+    if (!running_) return;
+    running_ = false;
+    lifetime_.reset();
+    generate_timer_.cancel();
+    input_->stop();
+}
+
+void GimbalVideo::on_access_unit(const gv::AccessUnit& au) {
+    clock_.video(au.dts ? au.dts : au.pts);
+    for (auto& out : outputs_) out->write_video(au);
+    if (record_mux_) record_mux_->write_video(au);
+}
+
+void GimbalVideo::on_klv(const gv::KlvUnit& unit) {
+    const KlvMode mode = options_.config.klv;
+    if (mode == KlvMode::off || mode == KlvMode::generate) return;
+    const double now = now_s();
+    const auto sets = track_.stream_unit(unit.data, now);
+    for (; reported_bad_ < track_.bad_checksums(); ++reported_bad_)
+        bad_checksum_log_.hit("KLV set with a bad checksum in the video stream: ignored",
+                              {{"gimbal", options_.gimbal},
+                               {"input", options_.config.input},
+                               {"total", track_.bad_checksums()}});
+    if (sets.empty()) return;
+    for (const auto& set : sets) send_klv(set);
+    if (now - vs_telemetry_at_s_ >= compare_every_s && options_.state) {
+        vs_telemetry_at_s_ = now;
+        const auto own = gimbal::klv_state::sensor_frame(options_.state(), *options_.capabilities,
+                                                         unix_us_now());
+        vs_telemetry_ = gimbal::klv_state::compare(*track_.latest_stream_json(), own);
+        for (auto& [key, value] : vs_telemetry_.items())
+            if (value.is_number()) value = gimbal::state::metres(value.get<double>());
+    }
+}
+
+void GimbalVideo::send_klv(std::span<const std::uint8_t> set) {
+    // TS outputs only while video flows: their KLV's PTS is the latest video DTS.
+    const auto pts = connected_ ? clock_.next() : std::nullopt;
+    for (auto& out : outputs_) {
+        if (!out->transport_stream() || pts) out->write_klv(set, pts);
+    }
+}
+
+void GimbalVideo::on_connection(bool connected) {
+    connected_ = connected;
+    if (!connected) clock_.reset();
+}
+
+bool GimbalVideo::generating() const {
+    switch (options_.config.klv) {
+        case KlvMode::generate:
+            return true;
+        case KlvMode::automatic:
+            return !track_.stream_fresh(now_s());
+        case KlvMode::parse:
+        case KlvMode::off:
+            return false;
+    }
+    return false;
+}
+
+void GimbalVideo::arm_generate() {
+    generate_timer_.expires_at(next_generate_);
+    generate_timer_.async_wait(lifetime_.wrap([this](const boost::system::error_code& ec) {
+        if (ec || !running_) return;
+        generate();
+        bad_checksum_log_.poll();
+        generate_error_log_.poll();
+        // A fixed rate without drift; after a stall, skip rather than burst.
+        next_generate_ += generate_period_;
+        const auto now = SteadyClock::now();
+        if (next_generate_ < now) next_generate_ = now + generate_period_;
+        arm_generate();
+    }));
+}
+
+void GimbalVideo::generate() {
+    if (!generating() || !options_.state) return;
+    const auto frame = gimbal::klv_state::sensor_frame(options_.state(), *options_.capabilities,
+                                                       unix_us_now(), options_.config.mission_id);
+    if (!gimbal::klv_state::has_position(frame)) return;  // nothing known about the camera yet
+    klv::Encoded encoded = klv::encode(klv::sensor_set(frame));
+    if (!encoded.ok()) {
+        ++generate_errors_;
+        generate_error_log_.hit("a generated KLV set did not encode: " + encoded.error,
+                                {{"gimbal", options_.gimbal}});
+        return;
+    }
+    ++generated_;
+    send_klv(encoded.bytes);
+    if (options_.record) options_.record(encoded.bytes, true);
+    track_.generated(std::move(encoded.bytes), now_s());
+}
+
+json GimbalVideo::snapshot() const {
+    const VideoInputStatus s = input_->status();
+    const auto& info = s.stream;
+    const auto positive = [](int v) { return v > 0 ? json(v) : json(nullptr); };
+    json klv = nullptr;
+    if (track_.has_latest()) {
+        klv = track_.latest_json();
+        klv["age_s"] = gimbal::state::seconds(track_.latest_age_s(now_s()));
+    }
+    const auto source = track_.source();
+    return {{"input", options_.config.input},
+            {"connected", s.connected},
+            {"codec", info.codec ? json(std::string(gv::to_string(*info.codec))) : json(nullptr)},
+            {"width", positive(info.width)},
+            {"height", positive(info.height)},
+            {"fps", info.fps ? json(gimbal::state::round_decimals(*info.fps, 3)) : json(nullptr)},
+            {"bitrate_bps", static_cast<std::uint64_t>(std::llround(info.bitrate_bps))},
+            {"klv_source", source ? json(std::string(to_string(*source))) : json(nullptr)},
+            {"klv", std::move(klv)},
+            {"klv_sets", track_.sets()},
+            {"klv_bad_checksums", track_.bad_checksums()},
+            {"klv_vs_telemetry", vs_telemetry_}};
+}
+
+gimbal::command::Result<json> GimbalVideo::klv_reply() const {
+    const auto* bytes = track_.latest_bytes();
+    if (bytes == nullptr)
+        return gimbal::command::Error{
+            gimbal::command::code::unavailable,
+            options_.config.klv == KlvMode::off
+                ? "video.klv is \"off\" for gimbal '" + options_.gimbal + "'"
+                : "no KLV set yet for gimbal '" + options_.gimbal +
+                      "' (none in the stream, and nothing known to generate one from)"};
+    json klv = track_.latest_json();
+    klv["age_s"] = gimbal::state::seconds(track_.latest_age_s(now_s()));
+    const auto source = track_.source();
+    return json{{"klv_hex", hex(*bytes)},
+                {"klv", std::move(klv)},
+                {"klv_source", std::string(to_string(*source))}};
+}
+
+}  // namespace gimbald::video

@@ -1,0 +1,102 @@
+// One gimbal's video (contract section 17), on the daemon's io_context: the input (UDP TS or
+// RTSP, video_input.hpp) feeds the outputs unchanged (video_output.hpp) together with one
+// KLV stream - the stream's own UAS Datalink sets, parsed and checked (KlvTrack), or sets
+// generated from the gimbal's STATE at klv_rate_hz through its capabilities
+// (lib/klv_state) - and, when recording, the recorder (the input's TS packets inbound, the
+// generated sets outbound). STATE `video` and the `klv` command read it. Nothing is decoded
+// or re-encoded; no thread of its own (an RTSP input has its reader thread, which only posts).
+#pragma once
+
+#include <chrono>
+#include <functional>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/steady_timer.hpp>
+
+#include "command/result.hpp"
+#include "klv/sensor_set.hpp"
+#include "link/lifetime.hpp"
+#include "logging.hpp"
+#include "session/capabilities.hpp"
+#include "video/klv_clock.hpp"
+#include "video/klv_track.hpp"
+#include "video/ts_muxer.hpp"
+#include "video/video_config.hpp"
+#include "video/video_input.hpp"
+#include "video/video_output.hpp"
+
+namespace gimbald::video {
+
+struct GimbalVideoOptions {
+    std::string gimbal;
+    VideoConfig config;
+    const gimbal::session::Capabilities* capabilities = nullptr;
+    // The gimbal's STATE (GimbalSession::snapshot), read to generate KLV and to compare the
+    // stream's KLV with gimbald's own values.
+    std::function<nlohmann::json()> state;
+    // The recorder's tap: the input's MPEG-TS (each UDP datagram; an RTSP input's access
+    // units muxed into TS) with generated = false, and each generated set with generated =
+    // true. Empty: not recording.
+    std::function<void(std::span<const std::uint8_t> bytes, bool generated)> record;
+    VideoInputOptions input;          // timeout, backoff, queue (log_fields are filled in)
+    double klv_stream_fresh_s = 2.0;  // "auto" generates when no stream set came this long
+};
+
+class GimbalVideo {
+  public:
+    // Throws std::invalid_argument when a URL does not parse (the configuration checked it).
+    GimbalVideo(boost::asio::io_context& io, GimbalVideoOptions options);
+    ~GimbalVideo();
+
+    void start();
+    void stop();
+
+    // STATE `video`.
+    nlohmann::json snapshot() const;
+    // The `klv` command: {"klv_hex", "klv"}, or unavailable when no set is known yet.
+    gimbal::command::Result<nlohmann::json> klv_reply() const;
+
+    const KlvTrack& klv() const { return track_; }
+    std::uint64_t generated_sets() const { return generated_; }
+
+  private:
+    double now_s() const;
+    void on_access_unit(const gimbal::video::AccessUnit& au);
+    void on_klv(const gimbal::video::KlvUnit& unit);
+    void on_connection(bool connected);
+    void send_klv(std::span<const std::uint8_t> set);
+    void arm_generate();
+    void generate();
+    bool generating() const;
+
+    boost::asio::io_context& io_;
+    GimbalVideoOptions options_;
+    nlohmann::json log_fields_;
+    std::unique_ptr<VideoInput> input_;
+    std::vector<std::unique_ptr<VideoOutput>> outputs_;
+    std::unique_ptr<gimbal::video::TsMuxer> record_mux_;  // RTSP input while recording
+    boost::asio::steady_timer generate_timer_;
+    std::chrono::steady_clock::duration generate_period_;
+    std::chrono::steady_clock::time_point next_generate_{};
+    Lifetime lifetime_;
+    std::chrono::steady_clock::time_point epoch_ = std::chrono::steady_clock::now();
+    KlvTrack track_;
+    KlvClock clock_;
+    bool connected_ = false;
+    bool running_ = false;
+    std::uint64_t generated_ = 0;
+    std::uint64_t generate_errors_ = 0;
+    nlohmann::json vs_telemetry_;  // null until a stream set was compared
+    double vs_telemetry_at_s_ = -1e9;
+    std::uint64_t reported_bad_ = 0;
+    gimbal::log::RateLimitedLog bad_checksum_log_;
+    gimbal::log::RateLimitedLog generate_error_log_;
+};
+
+}  // namespace gimbald::video
