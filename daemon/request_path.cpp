@@ -268,9 +268,9 @@ void RequestPath::authorize(Outcome& o) {
             Error{code::forbidden, o.env.token ? "wrong token" : "this command needs 'token'"};
 }
 
-json RequestPath::execute(const json& request, const RequestSource& from) {
+std::string RequestPath::execute_object(const json& request, const RequestSource& from,
+                                        Outcome& o) {
     ++counters_.requests;
-    Outcome o;
     const std::string text = request.dump(-1, ' ', false, json::error_handler_t::replace);
     if (auto bad = cmdns::parse_envelope(text, known_command, o.env)) {
         o.error = bad->error;
@@ -280,23 +280,17 @@ json RequestPath::execute(const json& request, const RequestSource& from) {
         o.cmd = o.env.cmd;
         run(o, from);
     }
-    const std::string reply = finish(o, from, text);
-    return json::parse(reply, nullptr, false);
+    return finish(o, from, text);
+}
+
+json RequestPath::execute(const json& request, const RequestSource& from) {
+    Outcome o;
+    return json::parse(execute_object(request, from, o), nullptr, false);
 }
 
 RequestPath::Executed RequestPath::execute_request(const json& request, const RequestSource& from) {
-    ++counters_.requests;
     Outcome o;
-    const std::string text = request.dump(-1, ' ', false, json::error_handler_t::replace);
-    if (auto bad = cmdns::parse_envelope(text, known_command, o.env)) {
-        o.error = bad->error;
-        o.cmd = bad->cmd;
-        o.env.id = bad->id;
-    } else {
-        o.cmd = o.env.cmd;
-        run(o, from);
-    }
-    finish(o, from, text);
+    execute_object(request, from, o);
     return {o.error};
 }
 

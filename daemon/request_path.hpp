@@ -107,6 +107,9 @@ class RequestPath {
   private:
     struct Outcome;
     void run(Outcome& o, const RequestSource& from);
+    // execute()'s work: the envelope check, run and finish; returns the reply text.
+    std::string execute_object(const nlohmann::json& request, const RequestSource& from,
+                               Outcome& o);
     nlohmann::json dispatch(Outcome& o, const RequestSource& from);
     nlohmann::json subscription(Outcome& o, const RequestSource& from);
     std::string finish(Outcome& o, const RequestSource& from, std::string_view request_bytes);

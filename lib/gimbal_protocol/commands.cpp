@@ -6,11 +6,15 @@
 
 #include "geo/attitude.hpp"
 #include "gimbal_protocol/status.hpp"
+#include "session/capabilities.hpp"
 
 namespace gimbal::gimbal_protocol {
 
 namespace mav = gimbal::mavlink;
 using mav::MavResult;
+using session::number_at;
+using session::state_at;
+using session::wrap180;
 
 namespace {
 
@@ -21,29 +25,6 @@ Mapped answer(MavResult result, std::string reason = {}) {
     m.result = result;
     m.reason = std::move(reason);
     return m;
-}
-
-double wrap180(double deg) {
-    double d = std::fmod(deg + 180.0, 360.0);
-    if (d < 0) d += 360.0;
-    return d - 180.0;
-}
-
-const nlohmann::json* path(const nlohmann::json& j, std::initializer_list<const char*> keys) {
-    const nlohmann::json* at = &j;
-    for (const char* k : keys) {
-        if (!at->is_object()) return nullptr;
-        const auto it = at->find(k);
-        if (it == at->end() || it->is_null()) return nullptr;
-        at = &*it;
-    }
-    return at;
-}
-
-std::optional<double> number_at(const nlohmann::json& j, std::initializer_list<const char*> keys) {
-    const nlohmann::json* v = path(j, keys);
-    if (!v || !v->is_number()) return std::nullopt;
-    return v->get<double>();
 }
 
 // The quaternion's pitch and yaw in degrees (roll is ignored: two-axis gimbals).
@@ -392,7 +373,7 @@ Mapped GimbalManager::zoom(const CommandView& cmd, const StateLookup& state) {
     for (const auto* g : targets) {
         if (g->protocol != "orion") continue;
         const nlohmann::json s = state(g->name);
-        const nlohmann::json* cams = path(s, {"cameras", "cameras"});
+        const nlohmann::json* cams = state_at(s, {"cameras", "cameras"});
         double max_ratio = 1.0;
         if (cams && cams->is_array() && !cams->empty()) {
             const auto lo = number_at((*cams)[0], {"min_focal_length_mm"});

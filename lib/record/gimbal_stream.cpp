@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "protocols/registry.hpp"
+#include "record/interface_scan.hpp"
 
 namespace gimbal::record {
 
@@ -34,34 +35,18 @@ std::string names(const std::vector<GimbalInterfaceInfo>& gimbals) {
 bool load_gimbal_stream(std::span<const std::uint8_t> file, const std::string& name,
                         GimbalStream& out, std::string& error) {
     out = GimbalStream{};
-    // First pass: which gimbals exist (every section; rotated files repeat them all).
-    {
-        PcapngReader reader(file);
-        RecordedPacket p;
-        std::size_t seen_sections = 0;
-        auto collect = [&] {
-            for (const auto& itf : reader.interfaces()) {
-                if (!is_gimbal(itf)) continue;
-                auto info = describe(itf);
-                const bool known = std::any_of(out.all_gimbals.begin(), out.all_gimbals.end(),
-                                               [&](const auto& g) { return g.name == info.name; });
-                if (!known) out.all_gimbals.push_back(std::move(info));
-            }
-        };
-        while (reader.next(p)) {
-            if (reader.sections() != seen_sections) {
-                seen_sections = reader.sections();
-                collect();
-            }
-        }
-        collect();  // interfaces of a section without packets
-        if (reader.sections() == 0) {
-            error = reader.stop() == Stop::truncated
-                        ? "empty or cut-short file (" + reader.stop_message() + ")"
-                        : reader.stop_message();
-            return false;
-        }
-    }
+    // First pass: which gimbals exist.
+    const bool scanned = scan_interfaces(
+        file,
+        [&](const RecordedInterface& itf) {
+            if (!is_gimbal(itf)) return;
+            auto info = describe(itf);
+            const bool known = std::any_of(out.all_gimbals.begin(), out.all_gimbals.end(),
+                                           [&](const auto& g) { return g.name == info.name; });
+            if (!known) out.all_gimbals.push_back(std::move(info));
+        },
+        error);
+    if (!scanned) return false;
     if (out.all_gimbals.empty()) {
         error = "the recording has no gimbal interface (if_name \"gimbal:<name>\")";
         return false;

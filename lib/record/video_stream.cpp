@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "record/interface_scan.hpp"
+
 namespace gimbal::record {
 
 namespace {
@@ -21,33 +23,17 @@ std::string joined(const std::vector<std::string>& names) {
 bool load_video_stream(std::span<const std::uint8_t> file, const std::string& name,
                        VideoStream& out, std::string& error) {
     out = VideoStream{};
-    {
-        PcapngReader reader(file);
-        RecordedPacket p;
-        std::size_t seen_sections = 0;
-        auto collect = [&] {
-            for (const auto& itf : reader.interfaces()) {
-                if (!is_video(itf)) continue;
-                std::string gimbal = itf.name.substr(video_prefix.size());
-                if (std::find(out.all_gimbals.begin(), out.all_gimbals.end(), gimbal) ==
-                    out.all_gimbals.end())
-                    out.all_gimbals.push_back(std::move(gimbal));
-            }
-        };
-        while (reader.next(p)) {
-            if (reader.sections() != seen_sections) {
-                seen_sections = reader.sections();
-                collect();
-            }
-        }
-        collect();
-        if (reader.sections() == 0) {
-            error = reader.stop() == Stop::truncated
-                        ? "empty or cut-short file (" + reader.stop_message() + ")"
-                        : reader.stop_message();
-            return false;
-        }
-    }
+    const bool scanned = scan_interfaces(
+        file,
+        [&](const RecordedInterface& itf) {
+            if (!is_video(itf)) return;
+            std::string gimbal = itf.name.substr(video_prefix.size());
+            if (std::find(out.all_gimbals.begin(), out.all_gimbals.end(), gimbal) ==
+                out.all_gimbals.end())
+                out.all_gimbals.push_back(std::move(gimbal));
+        },
+        error);
+    if (!scanned) return false;
     if (out.all_gimbals.empty()) {
         error = "the recording has no video interface (if_name \"video:<gimbal>\")";
         return false;

@@ -417,7 +417,9 @@ class RateLimits(gt.GimbaldTestCase):
         p99_ms = rtts[int(len(rtts) * 0.99) - 1] * 1000
         print("flood of %d requests: ping p50 %.2f ms, p99 %.2f ms" %
               (sent, rtts[len(rtts) // 2] * 1000, p99_ms))
-        self.assertLess(p99_ms, 5.0)
+        # Starvation would be seconds (the flood's backlog ahead of every ping); the bound
+        # leaves room for a busy CI machine, the figure printed above is the measurement.
+        self.assertLess(p99_ms, 100.0)
         state = c.request("state")["state"]
         self.assertGreater(state["command"]["rate_limited"], 5000)
 
