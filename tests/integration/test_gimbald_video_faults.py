@@ -1,0 +1,289 @@
+"""Video inputs under trouble, through a real gimbald (contract section 17, issue 20):
+
+- an RTSP source served in the test by GStreamer's RTSP server (rtsp_server.py, Debian's
+  python3-gi): gimbald reads rtsp://, its output has h264 + klv (ffprobe); the server going
+  away is `video_down`, its return `video_up` again (reconnect with backoff);
+- an MPEG-TS over UDP with KLV sets whose checksum is wrong: counted in
+  `klv_bad_checksums`, never shown or relayed;
+- junk between packets, lost packets, a PID change and a restarted encoder: the video and
+  its KLV keep flowing to the outputs;
+- an output that cannot send (a broadcast address without SO_BROADCAST: EACCES on every
+  send) is logged once and retried, and does not hold up the input or the other outputs;
+- a silent UDP input is `video_down`, and `video_up` when data comes back.
+
+The TS is crafted here (videotest.TsWriter, libx264 units made by ffmpeg); what gimbald sends
+is read back by the test's own TS reader and st0601.py.
+"""
+
+import os
+import random
+import socket
+import subprocess
+import time
+import unittest
+
+import gimbaltest as gt
+import st0601
+import videotest as vt
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+SYSTEM_PYTHON = "/usr/bin/python3"  # Debian's, with python3-gi
+FPS = 30
+
+
+def state_video(client, gimbal="cam"):
+    reply = client.request("state", gimbal=gimbal, keys=["video"])
+    return reply["state"]["video"] if reply and reply.get("ok") else None
+
+
+def have_rtsp_server():
+    if not os.path.exists(SYSTEM_PYTHON):
+        return False
+    r = subprocess.run([SYSTEM_PYTHON, "-c", "import gi; gi.require_version('Gst', '1.0'); "
+                        "gi.require_version('GstRtspServer', '1.0')"], capture_output=True)
+    return r.returncode == 0
+
+
+class RtspServer:
+    """rtsp_server.py on `port` (0: a free one), H.264 320x240 at 15 fps, SPS/PPS only in
+    the SDP."""
+
+    def __init__(self, port=0):
+        self.proc = subprocess.Popen(
+            [SYSTEM_PYTHON, os.path.join(HERE, "rtsp_server.py"), "--port", str(port)],
+            stdout=subprocess.PIPE, stderr=subprocess.PIPE, stdin=subprocess.DEVNULL,
+            text=True)
+        line = gt.read_line(self.proc.stdout, 15.0)
+        if not line or not line.startswith("ready "):
+            self.stop()
+            raise RuntimeError("rtsp_server.py did not start: %r %s"
+                               % (line, self.proc.stderr.read()))
+        self.port = int(line.split()[1])
+
+    def stop(self):
+        gt.stop_process(self.proc)
+        for pipe in (self.proc.stdout, self.proc.stderr):
+            pipe.close()
+
+
+@unittest.skipUnless(have_rtsp_server(), "GStreamer's RTSP server (python3-gi, "
+                     "gir1.2-gst-rtsp-server-1.0) is not installed")
+class RtspSource(gt.GimbaldTestCase):
+    """A Viewpro-like camera on RTSP (no KLV of its own): gimbald generates the KLV."""
+
+    @classmethod
+    def setUpClass(cls):
+        super().setUpClass()
+        cls.server = RtspServer()
+        cls.addClassCleanup(lambda: cls.server.stop())
+        cls.out = gt.free_port()
+        cls.input = "rtsp://127.0.0.1:%d/test?transport=tcp&timeout_s=1" % cls.server.port
+        cls.daemon = cls.start_class_daemon({"gimbals": [{
+            "name": "cam", "protocol": "viewpro", "link": {"type": "sim"},
+            "video": {"input": cls.input, "outputs": ["udp://127.0.0.1:%d" % cls.out]}}]})
+
+    def setUp(self):
+        super().setUp()
+        self.c = self.client(self.daemon)
+
+    def wait_up(self, timeout=20.0):
+        v = gt.wait_for(lambda: (lambda v: v if v and v["connected"] and v["codec"] and
+                                 v["klv_source"] else None)(state_video(self.c)), timeout)
+        self.assertTrue(v, "RTSP video never came up: %s" % state_video(self.c))
+        return v
+
+    def test_rtsp_input_relayed_as_ts_with_h264_and_klv(self):
+        v = self.wait_up()
+        self.assertEqual(v["input"], self.input)
+        self.assertEqual(v["codec"], "h264")
+        self.assertEqual((v["width"], v["height"]), (320, 240))
+        self.assertEqual(v["klv_source"], "generated")
+        t0 = time.monotonic()
+        streams = vt.ffprobe_streams("udp://127.0.0.1:%d" % self.out)
+        kinds = {(s.get("codec_type"), s.get("codec_name")) for s in streams}
+        self.assertIn(("video", "h264"), kinds, streams)
+        self.assertIn(("data", "klv"), kinds, streams)
+        video = [s for s in streams if s.get("codec_type") == "video"][0]
+        self.assertEqual((video["width"], video["height"]), (320, 240))
+        print("ffprobe on the RTSP relay: %.1f s" % (time.monotonic() - t0))
+        reply = self.c.request("klv", gimbal="cam")
+        self.assertOk(reply)
+        status, reason, _ = st0601.decode(bytes.fromhex(reply["klv_hex"]))
+        self.assertEqual(status, "ok", reason)
+
+    def test_server_lost_is_video_down_then_reconnected(self):
+        self.wait_up()
+        ups = len(self.daemon.events("video_up"))
+        port = self.server.port
+        self.server.stop()
+        down = self.daemon.wait_log(lambda e: e.get("event") == "video_down", 10.0)
+        self.assertTrue(down, "no video_down after the RTSP server went away")
+        self.assertEqual(down["input"], self.input)
+        self.assertEqual(down["gimbal"], "cam")
+        self.assertTrue(gt.wait_for(lambda: state_video(self.c)["connected"] is False, 5.0))
+        type(self).server = RtspServer(port)  # the camera comes back on the same port
+        self.assertTrue(gt.wait_for(lambda: len(self.daemon.events("video_up")) > ups, 20.0),
+                        "no video_up after the RTSP server came back")
+        self.wait_up()
+
+
+class TsFaults(gt.GimbaldTestCase):
+    """MPEG-TS over UDP with KLV, fed by the test frame by frame at 30 fps."""
+
+    @classmethod
+    def setUpClass(cls):
+        super().setUpClass()
+        cls.units = vt.h264_access_units(cls.class_workdir, fps=FPS)
+        cls.in_port = gt.free_port()
+        cls.ts = vt.UdpCollector()
+        cls.klv = vt.UdpCollector()
+        cls.addClassCleanup(cls.ts.close)
+        cls.addClassCleanup(cls.klv.close)
+        cls.blocked_port = gt.free_port()
+        cls.blocked = "udp://255.255.255.255:%d" % cls.blocked_port
+        cls.daemon = cls.start_class_daemon({"gimbals": [{
+            "name": "cam", "protocol": "viewpro", "link": {"type": "sim"},
+            "video": {"input": "udp://127.0.0.1:%d?timeout_s=1" % cls.in_port,
+                      "klv": "parse",
+                      "outputs": [cls.blocked, "udp://127.0.0.1:%d" % cls.ts.port,
+                                  "klv-udp://127.0.0.1:%d" % cls.klv.port]}}]})
+        cls.sock = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
+        cls.addClassCleanup(cls.sock.close)
+        cls.pts = 10 * vt.PTS_HZ
+        cls.frame = 0
+
+    def setUp(self):
+        super().setUp()
+        self.c = self.client(self.daemon)
+        self.rng = random.Random(20)
+
+    def feed(self, writer, frames, bad_every=0, junk=False, drop_every=0, lat=45.7):
+        """Sends `frames` frames (PAT/PMT each second, a KLV set per frame; every
+        `bad_every`-th set with a wrong checksum and latitude 10) at FPS; returns
+        (good sets, bad sets) sent."""
+        cls = type(self)
+        good = bad = 0
+        next_t = time.monotonic()
+        for _ in range(frames):
+            ts = writer.psi() if cls.frame % FPS == 0 else b""
+            ts += writer.video(cls.units[cls.frame % len(cls.units)], cls.pts)
+            is_bad = bad_every and cls.frame % bad_every == 0
+            k = vt.klv_set(int(time.time() * 1e6), 10.0 if is_bad else lat, -121.5,
+                           bad_checksum=bool(is_bad))
+            ts += writer.klv_pes(k, cls.pts)
+            bad += 1 if is_bad else 0
+            good += 0 if is_bad else 1
+            packets = [ts[i:i + 188] for i in range(0, len(ts), 188)]
+            if drop_every:
+                packets = [p for n, p in enumerate(packets) if n % drop_every != drop_every - 1]
+            for i in range(0, len(packets), 7):
+                d = b"".join(packets[i:i + 7])
+                if junk:
+                    d = bytes(self.rng.randrange(256) for _ in range(self.rng.randrange(1, 40))) + d
+                cls.sock.sendto(d, ("127.0.0.1", cls.in_port))
+            cls.frame += 1
+            cls.pts += vt.PTS_HZ // FPS
+            next_t += 1.0 / FPS
+            time.sleep(max(0.0, next_t - time.monotonic()))
+        return good, bad
+
+    def relayed(self, since_ts, since_klv):
+        """(video units, KLV PES) gimbald sent to the TS output, and the klv-udp sets, since
+        the given collector counts."""
+        time.sleep(0.3)  # the last datagrams in flight
+        reader = vt.TsReader()
+        for d in self.ts.data(since_ts):
+            reader.push(d)
+        reader.flush()
+        return reader, self.klv.data(since_klv)
+
+    def test_bad_checksums_are_counted_and_ignored(self):
+        w = vt.TsWriter()
+        self.feed(w, FPS)  # up and running
+        before = state_video(self.c)
+        self.assertTrue(before["connected"])
+        ts0, klv0 = self.ts.count(), self.klv.count()
+        good, bad = self.feed(w, 2 * FPS, bad_every=3)
+        time.sleep(0.3)
+        after = state_video(self.c)
+        self.assertEqual(after["klv_bad_checksums"] - before["klv_bad_checksums"], bad)
+        self.assertEqual(after["klv_sets"] - before["klv_sets"], good)
+        self.assertEqual(after["klv_source"], "stream")
+        self.assertAlmostEqual(after["klv"]["sensor_latitude"], 45.7, places=5)
+        reader, sets = self.relayed(ts0, klv0)
+        self.assertEqual(len(sets), good)  # only the good ones go on
+        for s in sets:
+            status, reason, items = st0601.decode(s)
+            self.assertEqual(status, "ok", reason)
+            self.assertAlmostEqual(items["sensor_latitude"], 45.7, places=5)
+        relayed_klv = [s for _, payload in reader.klv for s in vt.split_sets(payload)]
+        self.assertEqual(len(relayed_klv), good)
+        self.assertTrue(self.daemon.wait_log(lambda e: e.get("event") == "klv_bad_checksum",
+                                             5.0), "no klv_bad_checksum log")
+
+    def test_junk_lost_packets_pid_change_and_restart_keep_working(self):
+        w = vt.TsWriter()
+        self.feed(w, FPS)
+        phases = [
+            ("junk before every datagram", w, dict(junk=True)),
+            ("every 10th TS packet lost", w, dict(drop_every=10)),
+            ("new PIDs and PMT version", vt.TsWriter(video_pid=0x200, klv_pid=0x201,
+                                                     pmt_pid=0x1100, version=1), {}),
+            ("encoder restarted: PIDs, version 0, counters and PTS from the start",
+             vt.TsWriter(), dict(restart=True)),
+        ]
+        for name, writer, faults in phases:
+            with self.subTest(phase=name):
+                if faults.pop("restart", False):
+                    type(self).pts = vt.PTS_HZ  # back from far ahead: a new encoder's clock
+                    type(self).frame = 0
+                ts0, klv0 = self.ts.count(), self.klv.count()
+                good, _ = self.feed(writer, 2 * FPS, **faults)
+                reader, sets = self.relayed(ts0, klv0)
+                v = state_video(self.c)
+                self.assertTrue(v["connected"], v)
+                self.assertEqual(v["codec"], "h264")
+                self.assertEqual((v["width"], v["height"]), (320, 240))
+                self.assertEqual(reader.video_type, 0x1B)
+                # Damaged units are dropped, the rest go on (lost packets: about 1 in 10
+                # units of ~3 packets, and those that lose their header).
+                self.assertGreater(reader.video_units, FPS, name)
+                self.assertGreater(len(sets), good // 2, name)
+                print("%s: %d of %d units and %d of %d KLV sets relayed"
+                      % (name, reader.video_units, 2 * FPS, len(sets), good))
+        self.assertTrue(self.daemon.running())
+
+    def test_output_that_cannot_send_is_logged_once_and_blocks_nothing(self):
+        w = vt.TsWriter()
+        ts0 = self.ts.count()
+        self.feed(w, 3 * FPS)  # 3 s: the blocked output retries every second
+        reader, _ = self.relayed(ts0, self.klv.count())
+        errors = [e for e in self.daemon.events("video_output_error")
+                  if e.get("output") == self.blocked]
+        self.assertEqual(len(errors), 1, errors)  # once per outage, however often retried
+        self.assertTrue(errors[0].get("error"), errors[0])
+        self.assertEqual(errors[0]["gimbal"], "cam")
+        # Nothing else is held up: the other outputs got (nearly) every frame.
+        self.assertGreaterEqual(reader.video_units, 3 * FPS - 3)
+        self.assertFalse([e for e in self.daemon.events("video_output_error")
+                          if e.get("output") != self.blocked])
+
+    def test_silence_is_video_down_and_data_again_video_up(self):
+        w = vt.TsWriter()
+        self.feed(w, FPS // 2)
+        self.assertTrue(gt.wait_for(lambda: state_video(self.c)["connected"], 3.0))
+        downs, ups = len(self.daemon.events("video_down")), len(self.daemon.events("video_up"))
+        time.sleep(1.8)  # timeout_s=1
+        v = state_video(self.c)
+        self.assertIs(v["connected"], False)
+        self.assertEqual(len(self.daemon.events("video_down")), downs + 1)
+        self.feed(w, FPS // 2)
+        self.assertTrue(gt.wait_for(lambda: state_video(self.c)["connected"], 3.0))
+        self.assertEqual(len(self.daemon.events("video_up")), ups + 1)
+        down = self.daemon.events("video_down")[-1]
+        self.assertEqual(down["gimbal"], "cam")
+        self.assertEqual(down["timeout_s"], 1)
+
+
+if __name__ == "__main__":
+    gt.main()
