@@ -19,6 +19,7 @@ import os
 import random
 import socket
 import subprocess
+import threading
 import time
 import unittest
 
@@ -127,7 +128,43 @@ class RtspSource(gt.GimbaldTestCase):
         self.wait_up()
 
 
-class TsFaults(gt.GimbaldTestCase):
+class Feeder:
+    """Feeds a crafted TS to gimbald frame by frame at FPS (class attributes: units, sock,
+    dest, pts, frame)."""
+
+    def feed(self, writer, frames, bad_every=0, junk=False, drop_every=0, lat=45.7):
+        """Sends `frames` frames (PAT/PMT each second, a KLV set per frame; every
+        `bad_every`-th set with a wrong checksum and latitude 10) at FPS; returns
+        (good sets, bad sets) sent."""
+        cls = type(self)
+        rng = random.Random(cls.frame)
+        good = bad = 0
+        next_t = time.monotonic()
+        for _ in range(frames):
+            ts = writer.psi() if cls.frame % FPS == 0 else b""
+            ts += writer.video(cls.units[cls.frame % len(cls.units)], cls.pts)
+            is_bad = bad_every and cls.frame % bad_every == 0
+            k = vt.klv_set(int(time.time() * 1e6), 10.0 if is_bad else lat, -121.5,
+                           bad_checksum=bool(is_bad))
+            ts += writer.klv_pes(k, cls.pts)
+            bad += 1 if is_bad else 0
+            good += 0 if is_bad else 1
+            packets = [ts[i:i + 188] for i in range(0, len(ts), 188)]
+            if drop_every:
+                packets = [p for n, p in enumerate(packets) if n % drop_every != drop_every - 1]
+            for i in range(0, len(packets), 7):
+                d = b"".join(packets[i:i + 7])
+                if junk:
+                    d = bytes(rng.randrange(256) for _ in range(rng.randrange(1, 40))) + d
+                cls.sock.sendto(d, cls.dest)
+            cls.frame += 1
+            cls.pts += vt.PTS_HZ // FPS
+            next_t += 1.0 / FPS
+            time.sleep(max(0.0, next_t - time.monotonic()))
+        return good, bad
+
+
+class TsFaults(Feeder, gt.GimbaldTestCase):
     """MPEG-TS over UDP with KLV, fed by the test frame by frame at 30 fps."""
 
     @classmethod
@@ -149,43 +186,13 @@ class TsFaults(gt.GimbaldTestCase):
                                   "klv-udp://127.0.0.1:%d" % cls.klv.port]}}]})
         cls.sock = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
         cls.addClassCleanup(cls.sock.close)
+        cls.dest = ("127.0.0.1", cls.in_port)
         cls.pts = 10 * vt.PTS_HZ
         cls.frame = 0
 
     def setUp(self):
         super().setUp()
         self.c = self.client(self.daemon)
-        self.rng = random.Random(20)
-
-    def feed(self, writer, frames, bad_every=0, junk=False, drop_every=0, lat=45.7):
-        """Sends `frames` frames (PAT/PMT each second, a KLV set per frame; every
-        `bad_every`-th set with a wrong checksum and latitude 10) at FPS; returns
-        (good sets, bad sets) sent."""
-        cls = type(self)
-        good = bad = 0
-        next_t = time.monotonic()
-        for _ in range(frames):
-            ts = writer.psi() if cls.frame % FPS == 0 else b""
-            ts += writer.video(cls.units[cls.frame % len(cls.units)], cls.pts)
-            is_bad = bad_every and cls.frame % bad_every == 0
-            k = vt.klv_set(int(time.time() * 1e6), 10.0 if is_bad else lat, -121.5,
-                           bad_checksum=bool(is_bad))
-            ts += writer.klv_pes(k, cls.pts)
-            bad += 1 if is_bad else 0
-            good += 0 if is_bad else 1
-            packets = [ts[i:i + 188] for i in range(0, len(ts), 188)]
-            if drop_every:
-                packets = [p for n, p in enumerate(packets) if n % drop_every != drop_every - 1]
-            for i in range(0, len(packets), 7):
-                d = b"".join(packets[i:i + 7])
-                if junk:
-                    d = bytes(self.rng.randrange(256) for _ in range(self.rng.randrange(1, 40))) + d
-                cls.sock.sendto(d, ("127.0.0.1", cls.in_port))
-            cls.frame += 1
-            cls.pts += vt.PTS_HZ // FPS
-            next_t += 1.0 / FPS
-            time.sleep(max(0.0, next_t - time.monotonic()))
-        return good, bad
 
     def relayed(self, since_ts, since_klv):
         """(video units, KLV PES) gimbald sent to the TS output, and the klv-udp sets, since
@@ -283,6 +290,78 @@ class TsFaults(gt.GimbaldTestCase):
         down = self.daemon.events("video_down")[-1]
         self.assertEqual(down["gimbal"], "cam")
         self.assertEqual(down["timeout_s"], 1)
+
+
+IP_RECVTTL = 12  # linux/in.h; not in Python's socket module
+
+
+class Multicast(Feeder, gt.GimbaldTestCase):
+    """A multicast input (the group joined on 127.0.0.1) relayed to a multicast output with
+    ?ttl=3: the datagrams arrive in the output group with IP TTL 3."""
+
+    @classmethod
+    def setUpClass(cls):
+        super().setUpClass()
+        cls.units = vt.h264_access_units(cls.class_workdir, fps=FPS)
+        port = gt.free_port()
+        cls.in_group = "239.255.73.%d" % (port % 250 + 1)
+        cls.out_group = "239.255.74.%d" % (port % 250 + 1)
+        cls.out_port = gt.free_port()
+        cls.rx = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
+        cls.addClassCleanup(cls.rx.close)
+        cls.rx.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+        cls.rx.bind((cls.out_group, cls.out_port))
+        try:
+            cls.rx.setsockopt(socket.IPPROTO_IP, socket.IP_ADD_MEMBERSHIP,
+                              socket.inet_aton(cls.out_group) + socket.inet_aton("127.0.0.1"))
+        except OSError as e:
+            raise unittest.SkipTest("no multicast on the loopback interface here: %s" % e)
+        cls.rx.setsockopt(socket.IPPROTO_IP, IP_RECVTTL, 1)
+        cls.rx.settimeout(0.2)
+        cls.sock = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
+        cls.addClassCleanup(cls.sock.close)
+        cls.sock.setsockopt(socket.IPPROTO_IP, socket.IP_MULTICAST_IF,
+                            socket.inet_aton("127.0.0.1"))
+        cls.sock.setsockopt(socket.IPPROTO_IP, socket.IP_MULTICAST_TTL, 1)
+        cls.dest = (cls.in_group, port)
+        cls.pts = vt.PTS_HZ
+        cls.frame = 0
+        cls.input = "udp://%s:%d?iface=127.0.0.1" % cls.dest
+        cls.daemon = cls.start_class_daemon({"gimbals": [{
+            "name": "cam", "protocol": "viewpro", "link": {"type": "sim"},
+            "video": {"input": cls.input, "klv": "parse", "outputs": [
+                "udp://%s:%d?ttl=3&iface=127.0.0.1" % (cls.out_group, cls.out_port)]}}]})
+
+    def test_multicast_in_and_out_with_ttl(self):
+        c = self.client(self.daemon)
+        w = vt.TsWriter()
+        self.feed(w, FPS)  # gimbald has joined its group by now (it started before)
+        v = state_video(c)
+        self.assertTrue(v["connected"], v)
+        self.assertEqual(v["input"], self.input)
+        self.assertEqual(v["codec"], "h264")
+        self.assertEqual(v["klv_source"], "stream")
+        received, ttls = [], set()
+        feeder = threading.Thread(target=self.feed, args=(w, FPS))
+        feeder.start()
+        deadline = time.monotonic() + 3.0
+        while time.monotonic() < deadline and (feeder.is_alive() or len(received) < 5):
+            try:
+                data, ancillary, _, _ = self.rx.recvmsg(65536, socket.CMSG_SPACE(4))
+            except socket.timeout:
+                continue
+            received.append(data)
+            for level, kind, value in ancillary:
+                if level == socket.IPPROTO_IP and kind == 2:  # IP_TTL
+                    ttls.add(int.from_bytes(value[:4], "little"))
+        feeder.join()
+        reader = vt.TsReader()
+        for d in received:
+            reader.push(d)
+        reader.flush()
+        self.assertGreater(reader.video_units, FPS // 2)
+        self.assertGreater(len(reader.klv), FPS // 2)
+        self.assertEqual(ttls, {3})
 
 
 if __name__ == "__main__":
