@@ -3,6 +3,7 @@
 - an RTSP source served in the test by GStreamer's RTSP server (rtsp_server.py, Debian's
   python3-gi): gimbald reads rtsp://, its output has h264 + klv (ffprobe); the server going
   away is `video_down`, its return `video_up` again (reconnect with backoff);
+- KLV in a synchronous metadata stream (ST 1402) is read like the asynchronous one;
 - an MPEG-TS over UDP with KLV sets whose checksum is wrong: counted in
   `klv_bad_checksums`, never shown or relayed;
 - junk between packets, lost packets, a PID change and a restarted encoder: the video and
@@ -133,15 +134,15 @@ class Feeder:
     dest, pts, frame)."""
 
     def feed(self, writer, frames, bad_every=0, junk=False, drop_every=0, lat=45.7):
-        """Sends `frames` frames (PAT/PMT each second, a KLV set per frame; every
+        """Sends `frames` frames (PAT/PMT first and each second, a KLV set per frame; every
         `bad_every`-th set with a wrong checksum and latitude 10) at FPS; returns
         (good sets, bad sets) sent."""
         cls = type(self)
         rng = random.Random(cls.frame)
         good = bad = 0
         next_t = time.monotonic()
-        for _ in range(frames):
-            ts = writer.psi() if cls.frame % FPS == 0 else b""
+        for n in range(frames):
+            ts = writer.psi() if n == 0 or cls.frame % FPS == 0 else b""
             ts += writer.video(cls.units[cls.frame % len(cls.units)], cls.pts)
             is_bad = bad_every and cls.frame % bad_every == 0
             k = vt.klv_set(int(time.time() * 1e6), 10.0 if is_bad else lat, -121.5,
@@ -198,8 +199,12 @@ class TsFaults(Feeder, gt.GimbaldTestCase):
         """(video units, KLV PES) gimbald sent to the TS output, and the klv-udp sets, since
         the given collector counts."""
         time.sleep(0.3)  # the last datagrams in flight
+        everything = self.ts.data()
         reader = vt.TsReader()
-        for d in self.ts.data(since_ts):
+        for d in everything[:since_ts]:  # the PIDs from the PAT/PMT seen so far
+            reader.push(d)
+        reader.pending, reader.klv, reader.video_units = {}, [], 0
+        for d in everything[since_ts:]:
             reader.push(d)
         reader.flush()
         return reader, self.klv.data(since_klv)
@@ -227,6 +232,23 @@ class TsFaults(Feeder, gt.GimbaldTestCase):
         self.assertEqual(len(relayed_klv), good)
         self.assertTrue(self.daemon.wait_log(lambda e: e.get("event") == "klv_bad_checksum",
                                              5.0), "no klv_bad_checksum log")
+
+    def test_synchronous_metadata_stream_is_read_and_relayed(self):
+        self.feed(vt.TsWriter(), FPS // 2)
+        before = state_video(self.c)
+        ts0, klv0 = self.ts.count(), self.klv.count()
+        good, _ = self.feed(vt.TsWriter(sync=True, version=2), 2 * FPS, lat=45.71)
+        time.sleep(0.3)
+        after = state_video(self.c)
+        self.assertEqual(after["klv_sets"] - before["klv_sets"], good)
+        self.assertEqual(after["klv_source"], "stream")
+        self.assertAlmostEqual(after["klv"]["sensor_latitude"], 45.71, places=5)
+        reader, sets = self.relayed(ts0, klv0)
+        self.assertEqual(len(sets), good)
+        # Out of gimbald, the same sets ride its asynchronous KLVA stream.
+        relayed = [s for _, payload in reader.klv for s in vt.split_sets(payload)]
+        self.assertEqual(relayed, sets)
+        self.assertEqual(st0601.decode(relayed[-1])[0], "ok")
 
     def test_junk_lost_packets_pid_change_and_restart_keep_working(self):
         w = vt.TsWriter()
