@@ -41,8 +41,8 @@ inline constexpr std::string_view video_keys[] = {"input", "klv", "klv_rate_hz",
                                                   "mission_id"};
 
 // Reads one gimbal's `video` object at JSON path `path` ("gimbals[0].video"); every problem
-// of a known key goes to `problem(path, message)`. Returns the section as far as it could be read (only
-// meaningful when no problem was reported).
+// of a known key goes to `problem(path, message)`. Returns the section as far as it could be read
+// (only meaningful when no problem was reported).
 using ProblemSink = std::function<void(std::string path, std::string message)>;
 VideoConfig read_video_config(const nlohmann::json& value, const std::string& path,
                               const ProblemSink& problem);
