@@ -4,6 +4,7 @@
   python3-gi): gimbald reads rtsp://, its output has h264 + klv (ffprobe); the server going
   away is `video_down`, its return `video_up` again (reconnect with backoff);
 - KLV in a synchronous metadata stream (ST 1402) is read like the asynchronous one;
+- `"klv": "off"` relays the video alone, `"generate"` ignores the stream's KLV;
 - an MPEG-TS over UDP with KLV sets whose checksum is wrong: counted in
   `klv_bad_checksums`, never shown or relayed;
 - junk between packets, lost packets, a PID change and a restarted encoder: the video and
@@ -157,7 +158,8 @@ class Feeder:
                 d = b"".join(packets[i:i + 7])
                 if junk:
                     d = bytes(rng.randrange(256) for _ in range(rng.randrange(1, 40))) + d
-                cls.sock.sendto(d, cls.dest)
+                for dest in getattr(cls, "also", []) + [cls.dest]:
+                    cls.sock.sendto(d, dest)
             cls.frame += 1
             cls.pts += vt.PTS_HZ // FPS
             next_t += 1.0 / FPS
@@ -179,12 +181,24 @@ class TsFaults(Feeder, gt.GimbaldTestCase):
         cls.addClassCleanup(cls.klv.close)
         cls.blocked_port = gt.free_port()
         cls.blocked = "udp://255.255.255.255:%d" % cls.blocked_port
+        # Two more gimbals for the other KLV modes, fed the same stream when a test asks.
+        cls.off_port, cls.own_port = gt.free_port(), gt.free_port()
+        cls.off_ts = vt.UdpCollector()
+        cls.own_ts = vt.UdpCollector()
+        cls.addClassCleanup(cls.off_ts.close)
+        cls.addClassCleanup(cls.own_ts.close)
         cls.daemon = cls.start_class_daemon({"gimbals": [{
             "name": "cam", "protocol": "viewpro", "link": {"type": "sim"},
             "video": {"input": "udp://127.0.0.1:%d?timeout_s=1" % cls.in_port,
                       "klv": "parse",
                       "outputs": [cls.blocked, "udp://127.0.0.1:%d" % cls.ts.port,
-                                  "klv-udp://127.0.0.1:%d" % cls.klv.port]}}]})
+                                  "klv-udp://127.0.0.1:%d" % cls.klv.port]}}, {
+            "name": "off", "protocol": "viewpro", "link": {"type": "sim"},
+            "video": {"input": "udp://127.0.0.1:%d" % cls.off_port, "klv": "off",
+                      "outputs": ["udp://127.0.0.1:%d" % cls.off_ts.port]}}, {
+            "name": "own", "protocol": "viewpro", "link": {"type": "sim"},
+            "video": {"input": "udp://127.0.0.1:%d" % cls.own_port, "klv": "generate",
+                      "outputs": ["udp://127.0.0.1:%d" % cls.own_ts.port]}}]})
         cls.sock = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
         cls.addClassCleanup(cls.sock.close)
         cls.dest = ("127.0.0.1", cls.in_port)
@@ -232,6 +246,39 @@ class TsFaults(Feeder, gt.GimbaldTestCase):
         self.assertEqual(len(relayed_klv), good)
         self.assertTrue(self.daemon.wait_log(lambda e: e.get("event") == "klv_bad_checksum",
                                              5.0), "no klv_bad_checksum log")
+
+    def test_klv_off_and_generate_ignore_the_streams_klv(self):
+        type(self).also = [("127.0.0.1", self.off_port), ("127.0.0.1", self.own_port)]
+        self.addCleanup(lambda: setattr(type(self), "also", []))
+        self.feed(vt.TsWriter(), FPS)
+        off0, own0 = self.off_ts.count(), self.own_ts.count()
+        self.feed(vt.TsWriter(), 2 * FPS, lat=10.5)  # the stream's sets: latitude 10.5
+        time.sleep(0.3)
+        # "off": video only - no KLV stream in the output's PMT, nothing counted, no klv.
+        off = state_video(self.c, "off")
+        self.assertTrue(off["connected"])
+        self.assertEqual((off["klv_source"], off["klv"], off["klv_sets"]), (None, None, 0))
+        self.assertError(self.c.request("klv", gimbal="off"), "unavailable")
+        reader = vt.TsReader()
+        for d in self.off_ts.data(off0):
+            reader.push(d)
+        reader.flush()
+        self.assertGreater(reader.video_units, FPS)
+        self.assertIsNone(reader.klv_pid)
+        self.assertEqual(reader.klv, [])
+        # "generate": the sets come from STATE (the simulated Viewpro's position), the
+        # stream's are not used.
+        own = state_video(self.c, "own")
+        self.assertEqual(own["klv_source"], "generated")
+        self.assertGreater(own["klv_sets"], 0)
+        self.assertNotAlmostEqual(own["klv"]["sensor_latitude"], 10.5, places=3)
+        reader = vt.TsReader()
+        for d in self.own_ts.data():
+            reader.push(d)
+        reader.flush()
+        relayed = [st0601.decode(s)[2] for _, p in reader.klv for s in vt.split_sets(p)]
+        self.assertTrue(relayed)
+        self.assertFalse([k for k in relayed if abs(k["sensor_latitude"] - 10.5) < 1e-3])
 
     def test_synchronous_metadata_stream_is_read_and_relayed(self):
         self.feed(vt.TsWriter(), FPS // 2)
