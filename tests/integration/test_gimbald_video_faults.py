@@ -1,8 +1,9 @@
 """Video inputs under trouble, through a real gimbald (contract section 17, issue 20):
 
 - an RTSP source served in the test by GStreamer's RTSP server (rtsp_server.py, Debian's
-  python3-gi): gimbald reads rtsp://, its output has h264 + klv (ffprobe); the server going
-  away is `video_down`, its return `video_up` again (reconnect with backoff);
+  python3-gi): gimbald reads rtsp://, its output has h264 + klv (ffprobe), its recording the
+  access units muxed into TS; the server going away is `video_down`, its return `video_up`
+  again (reconnect with backoff);
 - KLV in a synchronous metadata stream (ST 1402) is read like the asynchronous one;
 - `"klv": "off"` relays the video alone, `"generate"` ignores the stream's KLV;
 - an MPEG-TS over UDP with KLV sets whose checksum is wrong: counted in
@@ -17,6 +18,7 @@ The TS is crafted here (videotest.TsWriter, libx264 units made by ffmpeg); what 
 is read back by the test's own TS reader and st0601.py.
 """
 
+import glob
 import os
 import random
 import socket
@@ -28,6 +30,8 @@ import unittest
 import gimbaltest as gt
 import st0601
 import videotest as vt
+from pcapng_test_writer import INBOUND, OUTBOUND
+from test_gimbal_replay_export import read_pcapng
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 SYSTEM_PYTHON = "/usr/bin/python3"  # Debian's, with python3-gi
@@ -113,6 +117,35 @@ class RtspSource(gt.GimbaldTestCase):
         self.assertOk(reply)
         status, reason, _ = st0601.decode(bytes.fromhex(reply["klv_hex"]))
         self.assertEqual(status, "ok", reason)
+
+    def test_rtsp_input_recorded_as_ts(self):
+        # An RTSP input has no TS of its own: the recording gets its access units muxed.
+        rec = os.path.join(self.workdir, "rec")
+        os.mkdir(rec)
+        daemon = self.start_daemon({
+            "gimbals": [{"name": "cam", "protocol": "viewpro", "link": {"type": "sim"},
+                         "video": {"input": self.input}}],
+            "record": {"dir": rec}})
+        c = self.client(daemon)
+        self.assertTrue(gt.wait_for(lambda: (state_video(c) or {}).get("width"), 20.0),
+                        state_video(c))
+        self.assertTrue(gt.wait_for(lambda: state_video(c)["klv_sets"] >= 10, 10.0))
+        self.assertEqual(daemon.stop(), 0)
+        records = [r for p in glob.glob(os.path.join(rec, "*.pcapng")) for r in read_pcapng(p)]
+        ts = [pdu for name, _, d, dissector, pdu in records
+              if name == "video:cam" and d == INBOUND and dissector == "mp2t"]
+        generated = [pdu for name, _, d, dissector, pdu in records
+                     if name == "video:cam" and d == OUTBOUND and dissector == "data"]
+        reader = vt.TsReader()
+        for pdu in ts:
+            self.assertEqual(len(pdu) % 188, 0)
+            reader.push(pdu)
+        reader.flush()
+        self.assertEqual(reader.video_type, 0x1B)
+        self.assertGreater(reader.video_units, 10)
+        self.assertEqual(reader.klv, [])  # generated sets are recorded on their own
+        self.assertGreaterEqual(len(generated), 10)
+        self.assertEqual(st0601.decode(generated[0])[0], "ok")
 
     def test_server_lost_is_video_down_then_reconnected(self):
         self.wait_up()
