@@ -426,7 +426,7 @@ class GimbalctlTest(unittest.TestCase):
             (["bogus"], "gimbalctl: unknown command 'bogus'"),
             (["bogus", "--port", "5"], "gimbalctl: unknown command 'bogus'"),
             ([], "gimbalctl: a COMMAND is required"),
-            (["geopoint", "1", "2"], "gimbalctl: ALT is required (see gimbalctl geopoint --help)"),
+            (["geopoint", "1"], "gimbalctl: LON is required (see gimbalctl geopoint --help)"),
             (["ping", "--no-such-option"], "--no-such-option"),
             (["watch", "--count", "0"], "gimbalctl: --count: '0' is not a whole number"),
             (["--timeout", "-1", "ping"], "gimbalctl: --timeout: '-1' is not a number above 0"),
