@@ -12,6 +12,7 @@
   its KLV keep flowing to the outputs;
 - an output that cannot send (a broadcast address without SO_BROADCAST: EACCES on every
   send) is logged once and retried, and does not hold up the input or the other outputs;
+  one without a route (in a network namespace) sends again once a route appears;
 - a silent UDP input is `video_down`, and `video_up` when data comes back.
 
 The TS is crafted here (videotest.TsWriter, libx264 units made by ffmpeg); what gimbald sends
@@ -21,8 +22,10 @@ is read back by the test's own TS reader and st0601.py.
 import glob
 import os
 import random
+import shutil
 import socket
 import subprocess
+import sys
 import threading
 import time
 import unittest
@@ -466,5 +469,73 @@ class Multicast(Feeder, gt.GimbaldTestCase):
         self.assertEqual(ttls, {3})
 
 
+class OutputRecovers(gt.GimbaldTestCase):
+    """An output with no route (ENETUNREACH) is logged, and `video_output_ok` (with the
+    datagrams dropped meanwhile) once a route appears - in a network namespace of its own
+    (unshare --net, root), where the route can be added: no_route_child() below."""
+
+    def test_no_route_then_route(self):
+        if not shutil.which("unshare") or not shutil.which("ip") or \
+                subprocess.run(["unshare", "--net", "true"], capture_output=True).returncode:
+            self.skipTest("no network namespace here (needs root, unshare and ip)")
+        r = subprocess.run(["unshare", "--net", sys.executable, os.path.abspath(__file__),
+                            "--no-route-child", self.workdir],
+                           capture_output=True, text=True, timeout=120)
+        print(r.stdout.strip())
+        self.assertEqual(r.returncode, 0, r.stdout + r.stderr[-3000:])
+
+
+def no_route_child(workdir):
+    """Runs inside the new namespace: lo up, gimbald with an output to 10.77.0.1 (no route),
+    a feed; then the route; returns an exit code."""
+    subprocess.run(["ip", "link", "set", "lo", "up"], check=True)
+    units = vt.h264_access_units(workdir, fps=FPS)
+    in_port, rx = gt.free_port(), vt.UdpCollector()
+    blocked = "udp://10.77.0.1:5000"
+    daemon = gt.Daemon(workdir, {"gimbals": [{
+        "name": "cam", "protocol": "viewpro", "link": {"type": "sim"},
+        "video": {"input": "udp://127.0.0.1:%d" % in_port, "klv": "parse",
+                  "outputs": [blocked, "udp://127.0.0.1:%d" % rx.port]}}]})
+    sock = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
+    writer = vt.TsWriter()
+
+    def feed(frames, first):
+        for n in range(frames):
+            i = first + n
+            ts = (writer.psi() if i % FPS == 0 else b"") + \
+                writer.video(units[i % len(units)], vt.PTS_HZ + i * (vt.PTS_HZ // FPS))
+            for d in vt.datagrams(ts):
+                sock.sendto(d, ("127.0.0.1", in_port))
+            time.sleep(1.0 / FPS)
+
+    try:
+        feed(FPS, 0)
+        error = daemon.wait_log(lambda e: e.get("event") == "video_output_error", 5.0)
+        if not error or error.get("output") != blocked or \
+                "unreachable" not in error.get("error", "").lower():
+            print("no video_output_error for the unroutable output: %s" % error)
+            return 1
+        got_before = rx.count()
+        if got_before < FPS // 2:
+            print("the other output was held up: %d datagrams" % got_before)
+            return 1
+        subprocess.run(["ip", "route", "add", "10.77.0.0/24", "dev", "lo"], check=True)
+        feed(2 * FPS, FPS)  # the pause after a failure is 1 s: then it sends again
+        ok = daemon.wait_log(lambda e: e.get("event") == "video_output_ok", 5.0)
+        if not ok or ok.get("output") != blocked or not ok.get("dropped"):
+            print("no video_output_ok after the route appeared: %s" % ok)
+            return 1
+        errors = [e for e in daemon.events("video_output_error") if e.get("output") == blocked]
+        print("video_output_error once (%s), video_output_ok after %d dropped datagrams"
+              % (errors[0]["error"], ok["dropped"]))
+        return 0 if len(errors) == 1 else 1
+    finally:
+        sock.close()
+        rx.close()
+        print("gimbald exit %s" % daemon.stop())
+
+
 if __name__ == "__main__":
+    if len(sys.argv) == 3 and sys.argv[1] == "--no-route-child":
+        sys.exit(no_route_child(sys.argv[2]))
     gt.main()
