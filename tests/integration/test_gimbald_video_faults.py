@@ -1,9 +1,9 @@
 """Video inputs under trouble, through a real gimbald (contract section 17, issue 20):
 
 - an RTSP source served in the test by GStreamer's RTSP server (rtsp_server.py, Debian's
-  python3-gi): gimbald reads rtsp://, its output has h264 + klv (ffprobe), its recording the
-  access units muxed into TS; the server going away is `video_down`, its return `video_up`
-  again (reconnect with backoff);
+  python3-gi): gimbald reads rtsp:// (H.264 over TCP, H.265 over UDP), its output has the
+  video + klv (ffprobe), its recording the access units muxed into TS; the server going
+  away is `video_down`, its return `video_up` again (reconnect with backoff);
 - KLV in a synchronous metadata stream (ST 1402) is read like the asynchronous one;
 - `"klv": "off"` relays the video alone, `"generate"` ignores the stream's KLV;
 - an MPEG-TS over UDP with KLV sets whose checksum is wrong: counted in
@@ -55,12 +55,13 @@ def have_rtsp_server():
 
 
 class RtspServer:
-    """rtsp_server.py on `port` (0: a free one), H.264 320x240 at 15 fps, SPS/PPS only in
-    the SDP."""
+    """rtsp_server.py on `port` (0: a free one), H.264 (or H.265) 320x240 at 15 fps,
+    parameter sets only in the SDP."""
 
-    def __init__(self, port=0):
+    def __init__(self, port=0, codec="h264"):
         self.proc = subprocess.Popen(
-            [SYSTEM_PYTHON, os.path.join(HERE, "rtsp_server.py"), "--port", str(port)],
+            [SYSTEM_PYTHON, os.path.join(HERE, "rtsp_server.py"), "--port", str(port),
+             "--codec", codec],
             stdout=subprocess.PIPE, stderr=subprocess.PIPE, stdin=subprocess.DEVNULL,
             text=True)
         line = gt.read_line(self.proc.stdout, 15.0)
@@ -149,6 +150,24 @@ class RtspSource(gt.GimbaldTestCase):
         self.assertEqual(reader.klv, [])  # generated sets are recorded on their own
         self.assertGreaterEqual(len(generated), 10)
         self.assertEqual(st0601.decode(generated[0])[0], "ok")
+
+    def test_h265_over_rtp_on_udp(self):
+        server = RtspServer(codec="h265")
+        self.addCleanup(server.stop)
+        out = gt.free_port()
+        daemon = self.start_daemon({"gimbals": [{
+            "name": "cam", "protocol": "viewpro", "link": {"type": "sim"},
+            "video": {"input": "rtsp://127.0.0.1:%d/test?transport=udp" % server.port,
+                      "outputs": ["udp://127.0.0.1:%d" % out]}}]})
+        c = self.client(daemon)
+        v = gt.wait_for(lambda: (lambda v: v if v and v["width"] else None)(state_video(c)),
+                        20.0)
+        self.assertTrue(v, state_video(c))
+        self.assertEqual((v["codec"], v["width"], v["height"]), ("h265", 320, 240))
+        streams = vt.ffprobe_streams("udp://127.0.0.1:%d" % out)
+        kinds = {(s.get("codec_type"), s.get("codec_name")) for s in streams}
+        self.assertIn(("video", "hevc"), kinds, streams)
+        self.assertIn(("data", "klv"), kinds, streams)
 
     def test_server_lost_is_video_down_then_reconnected(self):
         self.wait_up()
