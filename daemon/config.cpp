@@ -432,11 +432,16 @@ void read_feed(Fields& f, GimbalConfig& gimbal) {
 
 // `video` (contract section 17): its reading is daemon/video/video_config.cpp's.
 void read_video(Fields& f, GimbalConfig& gimbal) {
-    if (const json* video = f.find("video"); video != nullptr && !video->is_null())
-        gimbal.video = gimbald::video::read_video_config(
-            *video, f.path("video"), [&f](std::string path, std::string message) {
-                f.problems().add(std::move(path), std::move(message));
-            });
+    const json* video = f.find("video");
+    if (video == nullptr || video->is_null()) return;
+    gimbal.video = gimbald::video::read_video_config(
+        *video, f.path("video"), [&f](std::string path, std::string message) {
+            f.problems().add(std::move(path), std::move(message));
+        });
+    if (!video->is_object()) return;  // reported by read_video_config
+    Fields keys(*video, f.path("video"), f.problems());
+    for (const auto key : gimbald::video::video_keys) keys.find(key);
+    keys.finish();
 }
 
 // Under --sim the file's gimbals are replaced, but their `video` sections still apply to

@@ -2,12 +2,14 @@
 # The README's first command: install what is missing, build the release binaries and run
 # gimbald on its embedded simulated gimbal (`gimbald --sim`), with config/sim.json's `http`
 # section (the operator console at http://127.0.0.1:8761/) and `terrain` section: the
-# simulator's terrain, written here by `gimbal-sim --write-dem` as build/release/sim-dem.tif.
+# simulator's terrain, written here by `gimbal-sim --write-dem` as build/release/sim-dem.tif,
+# and `video` section: the simulated Orion's H.264 + KLV relayed to udp://127.0.0.1:15010.
 # Extra arguments go to gimbald, e.g. `scripts/run-sim.sh orion,viewpro` or
 # `scripts/run-sim.sh --log-format text`. In another terminal:
 #   build/release/tools/gimbalctl elevation 45.7 -121.5
 #   build/release/tools/gimbalctl locate 0.5 -0.3
 #   build/release/tools/gimbalctl point 0.5 -0.3 --stare
+#   ffplay -fflags nobuffer udp://127.0.0.1:15010      (the video; gimbalctl klv: its KLV)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -28,5 +30,6 @@ if [ $# -gt 0 ] && [[ "$1" != -* ]]; then
 fi
 echo "gimbald --sim ${sim_arg[*]:-} on udp://127.0.0.1:8760 - stop with Ctrl-C" >&2
 echo "operator console: http://127.0.0.1:8761/  (metrics: /metrics, health: /healthz)" >&2
+echo "video with KLV: ffplay -fflags nobuffer udp://127.0.0.1:15010" >&2
 # --sim replaces the file's gimbals; the file brings the http section.
 exec build/release/daemon/gimbald --sim "${sim_arg[@]}" -c config/sim.json "$@"

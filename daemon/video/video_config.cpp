@@ -1,6 +1,5 @@
 #include "video/video_config.hpp"
 
-#include <algorithm>
 #include <set>
 
 #include <fmt/format.h>
@@ -14,8 +13,6 @@ namespace gv = gimbal::video;
 using nlohmann::json;
 
 namespace {
-
-constexpr std::string_view keys[] = {"input", "klv", "klv_rate_hz", "outputs", "mission_id"};
 
 bool is_address(const std::string& text) {
     boost::system::error_code ec;
@@ -101,13 +98,6 @@ VideoConfig read_video_config(const json& value, const std::string& path,
         problem(path, "must be an object with at least \"input\"");
         return config;
     }
-    for (const auto& item : value.items()) {
-        if (std::find(std::begin(keys), std::end(keys), item.key()) == std::end(keys))
-            problem(at(item.key()),
-                    "unknown key (video takes input, klv, klv_rate_hz, outputs, "
-                    "mission_id)");
-    }
-
     std::optional<gv::VideoUrl> input;
     if (const auto it = value.find("input"); it == value.end()) {
         problem(at("input"), "required: udp://HOST:PORT or rtsp://HOST/PATH");

@@ -35,9 +35,14 @@ inline constexpr double max_klv_rate_hz = 60;
 inline constexpr std::size_t max_outputs = 8;
 inline constexpr std::size_t max_mission_id_bytes = 127;  // ST 0601 tag 3
 
+// The section's keys. Unknown ones are reported by daemon/config.cpp, in the wording (and
+// with the "did you mean" of) every other section.
+inline constexpr std::string_view video_keys[] = {"input", "klv", "klv_rate_hz", "outputs",
+                                                  "mission_id"};
+
 // Reads one gimbal's `video` object at JSON path `path` ("gimbals[0].video"); every problem
-// goes to `problem(path, message)`. Returns the section as far as it could be read (only
-// meaningful when no problem was reported).
+// of a known key goes to `problem(path, message)`. Returns the section as far as it could be read
+// (only meaningful when no problem was reported).
 using ProblemSink = std::function<void(std::string path, std::string message)>;
 VideoConfig read_video_config(const nlohmann::json& value, const std::string& path,
                               const ProblemSink& problem);

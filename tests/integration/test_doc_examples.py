@@ -13,7 +13,8 @@ rot (issue 17). The convention is in docs/architecture.md ("Examples that are ru
 ```sh blocks run in bash (`set -e`) from a scratch directory, ```python blocks in python3,
 each within 30 s; a failing one fails the test. A line `# => TEXT` under a command says
 that its output (stdout and stderr) contains TEXT, and lets the command exit non-zero.
-The daemon runs on free ports: 8760 and 8761 in a block become those ports, and
+The daemon runs on free ports: 8760 and 8761 in a block become those ports, 15010 (the
+video output of config/sim.json) the daemon's video output port, and
 `gimbalctl` (also as build/release/tools/gimbalctl) is the one under test, pointed at the
 daemon's port. The Wireshark filters docs/wireshark.md names are compiled by tshark with
 dissectors/gimbald.lua.
@@ -161,6 +162,7 @@ class DocExamples(gt.GimbaldTestCase):
                     if r.returncode != 0:
                         raise RuntimeError("gimbal-sim --write-dem: %s" % r.stderr)
                 config["terrain"]["files"] = [dem]
+            video_out = cls.free_video_ports(config)
             daemon = cls.start_class_daemon(config, ["--" + args[0]] + args[1:])
             c = daemon.client()
 
@@ -175,15 +177,39 @@ class DocExamples(gt.GimbaldTestCase):
             c.close()
             if not ok:
                 raise RuntimeError("the %s daemon has no telemetry" % kind)
-            cls.daemons[kind] = (daemon.port, http)
+            cls.daemons[kind] = (daemon.port, http, video_out)
         return cls.daemons[kind]
+
+    @staticmethod
+    def free_video_ports(config):
+        """Moves config/sim.json's video input and outputs to free ports (each daemon its
+        own), returning the port of the output that stood at 15010 (None without one)."""
+        replaced = None
+        for g in config.get("gimbals", []):
+            video = g.get("video")
+            if not video:
+                continue
+            host = video["input"].split("//", 1)[1].rsplit(":", 1)[0]
+            video["input"] = "udp://%s:%d" % (host, gt.free_port())
+            outputs = []
+            for url in video.get("outputs", []):
+                scheme, rest = url.split("://", 1)
+                host, port = rest.rsplit(":", 1)
+                new_port = gt.free_port()
+                if port == "15010":
+                    replaced = new_port
+                outputs.append("%s://%s:%d" % (scheme, host, new_port))
+            video["outputs"] = outputs
+        return replaced
 
     def run_block(self, path, line, kind, language, text):
         where = "%s:%d" % (os.path.relpath(path, SOURCE), line)
         port = http = None
         if kind.startswith("sim"):
-            port, http = self.daemon_for(kind)
+            port, http, video_out = self.daemon_for(kind)
             text = text.replace("8760", str(port)).replace("8761", str(http))
+            if video_out:
+                text = text.replace("15010", str(video_out))
         elif kind not in ("", "config", "mosquitto.conf"):
             self.fail("%s: unknown example kind %r" % (where, kind))
         if kind == "mosquitto.conf":

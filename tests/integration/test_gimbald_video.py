@@ -17,6 +17,7 @@ import time
 import gimbaltest as gt
 import st0601
 import videotest as vt
+from test_gimbald_terrain import terrain_section, write_dem
 
 
 def ecef_distance(lat1, lon1, alt1, lat2, lon2, alt2):
@@ -211,7 +212,9 @@ class SimulatorVideo(gt.GimbaldTestCase):
 
 class GeneratedKlv(gt.GimbaldTestCase):
     """The stream carries no KLV (gimbal-sim --no-video-klv): gimbald generates ST 0601 from
-    STATE, for an Orion and for a Viewpro whose video comes from elsewhere."""
+    STATE, for an Orion and for a Viewpro whose video comes from elsewhere. With a `terrain`
+    section (the simulator's own DEM), so the Orion's frame centre and corners are where the
+    line of sight meets the terrain (`telemetry.ground`, `footprint_surface` terrain)."""
 
     @classmethod
     def setUpClass(cls):
@@ -220,12 +223,14 @@ class GeneratedKlv(gt.GimbaldTestCase):
         cls.nose_port = gt.free_port()
         cls.sim = cls.start_class_sim("--video", "udp://127.0.0.1:%d" % cls.video_port,
                                       "--no-video-klv", "--speed", "0", want=("tcp", "video"))
+        dem = write_dem(cls.class_workdir)
         cls.daemon = cls.start_class_daemon({"gimbals": [
             dict(gt.orion_tcp("main", cls.sim.port),
                  video={"input": "udp://127.0.0.1:%d" % cls.video_port, "klv_rate_hz": 10,
                         "mission_id": "M1"}),
             {"name": "nose", "protocol": "viewpro", "link": {"type": "sim"},
-             "video": {"input": "udp://127.0.0.1:%d" % cls.nose_port}}]})
+             "video": {"input": "udp://127.0.0.1:%d" % cls.nose_port}}],
+            "terrain": terrain_section(dem)})
         # The Viewpro's picture: a crafted TS without KLV, 15 frames a second.
         cls.stop_feed = threading.Event()
         units = vt.h264_access_units(cls.class_workdir)
@@ -274,9 +279,11 @@ class GeneratedKlv(gt.GimbaldTestCase):
                                  180 / 65535 + 1e-4)
             self.assertLessEqual(abs(decoded["sensor_vertical_field_of_view"] - t["vfov"]),
                                  180 / 65535 + 1e-4)
-            # Frame centre: on `telemetry.ground` when gimbald has it (terrain), else on the
-            # gimbal's own target; elevations above mean sea level.
-            ground = t.get("ground") or t["target"]
+            # Frame centre: on `telemetry.ground`, the terrain's hit (not the gimbal's own
+            # target); elevations above mean sea level.
+            self.assertEqual(t["ground"]["surface"], "terrain")
+            self.assertEqual(t["footprint_surface"], "terrain")
+            ground = t["ground"]
             n = t["alt"] - t["alt_msl"]
             self.assertLess(ecef_distance(decoded["frame_center_latitude"],
                                           decoded["frame_center_longitude"],

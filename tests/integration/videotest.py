@@ -86,13 +86,17 @@ def _timestamp(prefix, ts):
 
 
 class TsWriter:
-    """One program: H.264 video and (unless klv=False) an asynchronous KLVA data stream."""
+    """One program: H.264 video and (unless klv=False) KLV - an asynchronous KLVA data
+    stream, or with sync=True a synchronous metadata stream (ST 1402; ISO 13818-1 2.12:
+    stream_type 0x15, a metadata_descriptor naming KLVA, PES stream_id 0xFC carrying
+    metadata access unit cells)."""
 
     def __init__(self, video_pid=0x100, klv_pid=0x101, pmt_pid=0x1000, program=1,
-                 version=0, klv=True):
+                 version=0, klv=True, sync=False):
         self.video_pid, self.klv_pid, self.pmt_pid = video_pid, klv_pid, pmt_pid
-        self.program, self.version, self.klv = program, version, klv
+        self.program, self.version, self.klv, self.sync = program, version, klv, sync
         self.cc = {}
+        self.cell_sequence = 0
 
     def _packet(self, pid, payload, start, adaptation=b""):
         cc = self.cc.get(pid, 0)
@@ -120,7 +124,13 @@ class TsWriter:
         pat = bytes([0x00]) + struct.pack(">H", 0xB000 | (5 + len(pat_body) + 4)) + \
             struct.pack(">H", 1) + bytes([0xC1 | (self.version << 1), 0, 0]) + pat_body
         streams = bytes([0x1B]) + struct.pack(">HH", 0xE000 | self.video_pid, 0xF000)
-        if self.klv:
+        if self.klv and self.sync:
+            # metadata_descriptor: application format 0xFFFF + "KLVA", format 0xFF + "KLVA",
+            # service id 0, no decoder config, no DSM-CC.
+            body_26 = struct.pack(">H", 0xFFFF) + b"KLVA" + b"\xFF" + b"KLVA" + bytes([0, 0x0F])
+            desc = bytes([0x26, len(body_26)]) + body_26
+            streams += bytes([0x15]) + struct.pack(">HH", 0xE000 | self.klv_pid, 0xF000 | len(desc)) + desc
+        elif self.klv:
             reg = bytes([0x05, 4]) + b"KLVA"
             streams += bytes([0x06]) + struct.pack(">HH", 0xE000 | self.klv_pid, 0xF000 | len(reg)) + reg
         body = struct.pack(">HH", 0xE000 | self.video_pid, 0xF000) + streams
@@ -152,6 +162,12 @@ class TsWriter:
         return self._pes(self.video_pid, 0xE0, au, pts, pcr=pts - 9000)
 
     def klv_pes(self, data, pts):
+        if self.sync:
+            # One whole cell (fragment indication 11, random access): service id 0, sequence
+            # number, flags, 16-bit length.
+            cell = bytes([0, self.cell_sequence & 0xFF, 0xDF]) + struct.pack(">H", len(data))
+            self.cell_sequence += 1
+            return self._pes(self.klv_pid, 0xFC, cell + data, pts, bounded=True)
         return self._pes(self.klv_pid, 0xBD, data, pts, bounded=True)
 
 

@@ -1,4 +1,5 @@
-// Section 4.1 of the interface contract: commands every gimbal (or the daemon) answers.
+// Section 4.1 of the interface contract: commands every gimbal (or the daemon) answers; and
+// section 17's `klv` (the latest KLV set of a gimbal's video).
 #include <memory>
 
 #include "command_table.hpp"
@@ -28,6 +29,8 @@ void add_common_commands(CommandTable& table) {
              "only these top-level STATE keys (protocol, link and stale always come), e.g. "
              "--keys telemetry,gps")
         ->default_str("every key");
+
+    table.add("klv", "klv");  // group and summary from the catalogue
 }
 
 }  // namespace gimbalctl

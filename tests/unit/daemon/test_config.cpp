@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "config.hpp"
+#include "video/video_config.hpp"
 
 using namespace gimbal::daemon;
 using nlohmann::json;
@@ -131,6 +132,7 @@ TEST_CASE("the example configuration is valid and holds every default", "[config
     // same configuration: every other value in the file is the default.
     json minimal = valid_config();
     minimal["gimbals"].erase(2);
+    minimal["gimbals"][0]["video"] = {{"input", "udp://0.0.0.0:15004"}};  // its required key
     minimal["vehicle"] = json::object();
     minimal["mqtt"] = {{"station", "ground-1"}};  // the station default is the host name
     minimal["http"] = json::object();
@@ -541,6 +543,52 @@ TEST_CASE("unknown keys are rejected in every object", "[config]") {
           std::vector<std::string>{"laser.allow_fir: unknown key (did you mean \"allow_fire\"?)"});
     CHECK(problems_after([](json& c) { c["gimbals"][1]["link"]["buad"] = 9600; }) ==
           std::vector<std::string>{"gimbals[1].link.buad: unknown key (did you mean \"baud\"?)"});
+}
+
+TEST_CASE("gimbals[].video: read with its defaults, every problem named", "[config][video]") {
+    const auto read = parse_config(R"({"gimbals": [{"name": "a", "protocol": "orion",
+        "link": {"type": "sim"}, "video": {"input": "rtsp://10.0.0.5/live?transport=tcp"}}]})");
+    INFO(joined(problem_texts(read)));
+    REQUIRE(read.ok());
+    REQUIRE(read.config.gimbals[0].video.has_value());
+    const auto& video = *read.config.gimbals[0].video;
+    CHECK(video.input == "rtsp://10.0.0.5/live?transport=tcp");
+    CHECK(video.klv == gimbald::video::KlvMode::automatic);
+    CHECK(video.klv_rate_hz == 10);
+    CHECK(video.outputs.empty());
+    CHECK_FALSE(video.mission_id.has_value());
+
+    auto problems = problems_after([](json& c) {
+        c["gimbals"][0]["video"] = {
+            {"input", "udp://0.0.0.0:15004"},
+            {"klv", "maybe"},
+            {"klv_rate_hz", 0},
+            {"outputs",
+             {"udp://127.0.0.1:15004", "rtsp://10.0.0.5/x", "udp://gs.local:5000",
+              "klv-udp://127.0.0.1:15011", "klv-udp://127.0.0.1:15011", "udp://0.0.0.0:5000"}},
+            {"mission_id", ""},
+            {"outptus", 1}};
+        c["gimbals"][1]["video"] = {{"input", "klv-udp://127.0.0.1:15011"}};
+        c["gimbals"][2]["video"] = {{"klv", "off"}};
+    });
+    std::sort(problems.begin(), problems.end());
+    std::vector<std::string> expected = {
+        "gimbals[0].video.klv: must be one of \"auto\", \"parse\", \"generate\", \"off\"",
+        "gimbals[0].video.klv_rate_hz: must be a number between 0.1 and 60",
+        "gimbals[0].video.outputs[0]: sends to the input's own port: the relay would feed itself",
+        "gimbals[0].video.outputs[1]: an output is udp:// (MPEG-TS) or klv-udp:// (KLV only), "
+        "not rtsp://",
+        "gimbals[0].video.outputs[2]: \"gs.local\" is not a numeric IP address (names are not "
+        "resolved for video)",
+        "gimbals[0].video.outputs[4]: listed twice",
+        "gimbals[0].video.outputs[5]: an output needs a destination address, not 0.0.0.0",
+        "gimbals[0].video.mission_id: must be 1 to 127 bytes (ST 0601 tag 3)",
+        "gimbals[0].video.outptus: unknown key (did you mean \"outputs\"?)",
+        "gimbals[1].video.input: an input is udp:// (MPEG-TS) or rtsp://, not klv-udp://",
+        "gimbals[2].video.input: required: udp://HOST:PORT or rtsp://HOST/PATH",
+    };
+    std::sort(expected.begin(), expected.end());
+    CHECK(problems == expected);
 }
 
 TEST_CASE("duplicate keys are rejected with their path", "[config]") {
