@@ -296,8 +296,9 @@ RequestPath::Executed RequestPath::execute_request(const json& request, const Re
         o.cmd = o.env.cmd;
         run(o, from);
     }
+    nlohmann::json results = o.error ? nlohmann::json() : o.results;
     finish(o, from, text);
-    return {o.error};
+    return {o.error, std::move(results)};
 }
 
 void RequestPath::run(Outcome& o, const RequestSource& from) {

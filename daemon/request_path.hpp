@@ -88,6 +88,7 @@ class RequestPath {
     // the reply is not parsed back into an object.
     struct Executed {
         std::optional<gimbal::command::Error> error;
+        nlohmann::json results;  // the reply's results on success (e.g. `point`'s located point)
     };
     Executed execute_request(const nlohmann::json& request, const RequestSource& from);
 
