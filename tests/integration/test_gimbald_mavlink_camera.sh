@@ -16,4 +16,4 @@ if ! command -v ffprobe >/dev/null; then
     exit 77
 fi
 : "${GIMBALD:?GIMBALD not set}" "${GIMBAL_SIM:?GIMBAL_SIM not set}"
-exec timeout 150 node "$dir/camera.js"
+exec timeout 180 node "$dir/camera.js"

@@ -301,9 +301,51 @@ async function reportOnly(dir) {
   child.kill('SIGTERM');
 }
 
+async function signedOnly(dir) {
+  // Signing (contract section 14): with mavlink.signing_key_file the camera, like the gimbal
+  // managers, ignores unsigned commands and answers signed ones.
+  const key = Buffer.alloc(32);
+  for (let i = 0; i < 32; i++) key[i] = (i * 7 + 3) & 255;
+  const keyFile = path.join(dir, 'mavlink.key');
+  fs.writeFileSync(keyFile, key.toString('hex'), { mode: 0o600 });
+  const commandPort = await freePort();
+  const vehiclePort = await freePort();
+  const cfg = path.join(dir, 'signed.json');
+  fs.writeFileSync(cfg, JSON.stringify({
+    command: { port: commandPort },
+    vehicle: { source: { type: 'udp', bind: '127.0.0.1', port: vehiclePort } },
+    mavlink: { gimbal_manager: true, system_id: 1, signing_key_file: keyFile,
+      signing_state_file: path.join(dir, 'signing-state.json') },
+  }));
+  const child = startGimbald(['--sim', '-c', cfg], []);
+  const gcs = new Gcs(vehiclePort);
+  await gcs.bind();
+  const hb = new minimal.Heartbeat();
+  Object.assign(hb, { type: 6, autopilot: 8, baseMode: 0, customMode: 0, systemStatus: 4, mavlinkVersion: 3 });
+  const beating = setInterval(() => gcs.send(hb), 500);
+  await gcs.waitFor((x) => x.name === 'HEARTBEAT' && x.data.type === MAV_TYPE_CAMERA, 8000);
+  const unsigned = await gcs.command(100, CMD.REQUEST_MESSAGE, [MSG.CAMERA_INFORMATION], MSG.CAMERA_INFORMATION);
+  check(unsigned.result === null && unsigned.replies.length === 0, `signing on: an unsigned REQUEST_MESSAGE is ignored (${unsigned.result})`);
+  const msg = new common.CommandLong();
+  [msg._param1, msg._param2, msg._param3, msg._param4, msg._param5, msg._param6, msg._param7] = [MSG.CAMERA_INFORMATION, 0, 0, 0, 0, 0, 0];
+  msg.command = CMD.REQUEST_MESSAGE; msg.targetSystem = 1; msg.targetComponent = 100; msg.confirmation = 0;
+  const since = Date.now();
+  // MAVLINK_IFLAG_SIGNED is in the header the checksum covers: set before serializing.
+  const signing = new MavLinkProtocolV2(255, 190, 1);
+  const signed = signing.sign(signing.serialize(msg, gcs.seq++ & 255), 1, key);
+  await new Promise((r) => gcs.socket.send(signed, vehiclePort, '127.0.0.1', () => r()));
+  const ack = await gcs.waitFor((x) => x.name === 'COMMAND_ACK' && x.compid === 100, 3000, since);
+  const info = await gcs.waitFor((x) => x.msgid === MSG.CAMERA_INFORMATION && x.compid === 100, 1000, since);
+  check(ack !== null && ack.data.result === RESULT.ACCEPTED && info !== null,
+    `signing on: a signed REQUEST_MESSAGE is answered (${ack && ack.data.result})`);
+  clearInterval(beating);
+  gcs.socket.close();
+  child.kill('SIGTERM');
+}
+
 async function main() {
   const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'gimbald-camera-'));
-  const overall = setTimeout(() => { console.log('FAIL timeout'); cleanup(); process.exit(1); }, 110000);
+  const overall = setTimeout(() => { console.log('FAIL timeout'); cleanup(); process.exit(1); }, 140000);
   try {
     const dem = path.join(dir, 'sim-dem.tif');
     const w = spawnSync(GIMBAL_SIM, ['--write-dem', dem], { encoding: 'utf8' });
@@ -356,6 +398,7 @@ async function main() {
     cleanup();
     await sleep(300);
     await reportOnly(dir);
+    await signedOnly(dir);
   } catch (e) {
     console.log(`FAIL exception: ${e.stack}`);
     failures++;
