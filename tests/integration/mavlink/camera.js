@@ -254,6 +254,27 @@ async function clickToTrack(gcs, cam, commandPort, logs) {
   check(more === 0, `no ACTIVE status after the stop (${more})`);
 }
 
+// Another steering ends click-to-track: the gimbal manager's PITCHYAW at once, a JSON command
+// once the gimbal reports it left geopoint mode.
+async function otherSteeringEndsTracking(gcs, cam, commandPort) {
+  const idleAfter = async (since, ms) => gcs.waitFor((x) => x.msgid === MSG.CAMERA_TRACKING_GEO_STATUS && x.compid === cam && x.data.trackingStatus === 0, ms, since);
+  const activeAfter = async (since) => gcs.waitFor((x) => x.msgid === MSG.CAMERA_TRACKING_GEO_STATUS && x.compid === cam && x.data.trackingStatus === 1, 3000, since);
+  let t = Date.now();
+  check((await gcs.command(cam, CMD.TRACK_POINT, [0.3, 0.6, 0])).result === RESULT.ACCEPTED && await activeAfter(t) !== null, 'TRACK_POINT (0.3, 0.6): tracking');
+  t = Date.now();
+  const py = await gcs.command(154, 1000, [-20, 10, NaN, NaN, 0, 0, 1]);
+  const idle = await idleAfter(t, 1500);
+  check(py.result === RESULT.ACCEPTED && idle !== null, `GIMBAL_MANAGER_PITCHYAW ends tracking (${py.result}, IDLE after ${idle ? idle.at - t : '-'} ms)`);
+  t = Date.now();
+  check((await gcs.command(cam, CMD.TRACK_POINT, [0.5, 0.7, 0])).result === RESULT.ACCEPTED && await activeAfter(t) !== null, 'TRACK_POINT (0.5, 0.7): tracking');
+  await sleep(1000);
+  const rate = await request(commandPort, { cmd: 'rate', gimbal: 'sim', pan: 2, tilt: 0 });
+  check(rate && rate.ok, `JSON rate: ${JSON.stringify(rate)}`);
+  const ended = await idleAfter(t, 6000);
+  check(ended !== null, `a JSON rate command ends tracking (IDLE ${ended ? ((ended.at - t) / 1000).toFixed(1) : '-'} s after the click)`);
+  await request(commandPort, { cmd: 'rate', gimbal: 'sim', pan: 0, tilt: 0 });
+}
+
 async function refusals(gcs, cam) {
   const cases = [
     ['TRACK_POINT outside the image', CMD.TRACK_POINT, [1.5, 0.5, 0], RESULT.DENIED],
@@ -392,6 +413,7 @@ async function main() {
         `ffprobe ${url}: ${JSON.stringify(found)}`);
     }
     await clickToTrack(gcs, cam, commandPort, logs);
+    await otherSteeringEndsTracking(gcs, cam, commandPort);
     await refusals(gcs, cam);
     clearInterval(beating);
     gcs.socket.close();
