@@ -4,6 +4,7 @@
 #include <csignal>
 #include <cstdlib>
 #include <filesystem>
+#include <map>
 
 #include <unistd.h>
 
@@ -132,8 +133,13 @@ App::App(const cfg::Config& config, std::unique_ptr<gimbal::terrain::ElevationMo
         // The signing streams live in systemd's state directory unless configured elsewhere.
         mavlink.signing_state_file =
             signing_state_path(mavlink.signing_state_file, std::getenv("STATE_DIRECTORY"));
-        mavlink_ = std::make_unique<MavlinkEndpoint>(io_, mavlink, mavlink_key, *vehicle_,
-                                                     *request_path_, request_path_->sessions());
+        // Each gimbal's camera component announces the outputs of its video (section 16).
+        std::map<std::string, video::VideoConfig> videos;
+        for (const auto& g : config_.gimbals)
+            if (g.video) videos.emplace(g.name, *g.video);
+        mavlink_ =
+            std::make_unique<MavlinkEndpoint>(io_, mavlink, mavlink_key, *vehicle_, *request_path_,
+                                              request_path_->sessions(), videos);
         for (auto& session : sessions_)
             session->add_state_key(
                 "mavlink", [this, name = session->name()] { return mavlink_->snapshot(name); });

@@ -4,12 +4,15 @@
 #include <boost/asio/ip/udp.hpp>
 #include <boost/asio/post.hpp>
 #include <cmath>
+#include <map>
 #include <stdexcept>
 
 #include "gimbal_protocol/status.hpp"
 #include "logging.hpp"
 #include "mavlink/framing.hpp"
+#include "mavlink_camera.hpp"
 #include "secret_file.hpp"
+#include "session/image_commands.hpp"
 #include "signing_state.hpp"
 
 namespace gimbald {
@@ -64,13 +67,15 @@ mav::SigningKey load_signing_key(const std::string& path) {
 MavlinkEndpoint::MavlinkEndpoint(boost::asio::io_context& io,
                                  const gimbal::daemon::MavlinkConfig& config,
                                  std::optional<mav::SigningKey> key, VehicleFeed& feed,
-                                 RequestPath& path, const std::vector<GimbalSession*>& sessions)
+                                 RequestPath& path, const std::vector<GimbalSession*>& sessions,
+                                 const std::map<std::string, video::VideoConfig>& videos)
     : config_(config),
       key_(key),
       feed_(feed),
       path_(path),
       sessions_(sessions),
       manager_(exposed(sessions, config.component_id)),
+      cameras_(expose_cameras(manager_.gimbals(), sessions, videos)),
       timer_(io),
       epoch_(std::chrono::steady_clock::now()) {
     if (!feed_.source()) throw std::runtime_error("mavlink.gimbal_manager needs vehicle.source");
@@ -134,6 +139,12 @@ void MavlinkEndpoint::start() {
     log::info("mavlink_start", "MAVLink gimbal manager on the vehicle endpoint",
               {{"component_id", config_.component_id},
                {"components", manager_.components()},
+               {"cameras",
+                [this] {
+                    std::vector<int> ids;
+                    for (const auto& c : cameras_.cameras()) ids.push_back(c.component_id);
+                    return ids;
+                }()},
                {"gimbals", manager_.gimbals().size()},
                {"commands", config_.commands},
                {"signing", key_.has_value()}});
@@ -191,6 +202,13 @@ nlohmann::json MavlinkEndpoint::state_of(const std::string& gimbal) const {
     return nlohmann::json::object();
 }
 
+nlohmann::json MavlinkEndpoint::camera_state_of(const std::string& gimbal) const {
+    // The camera also reports the video (STATE `video`, a key the daemon adds).
+    for (const auto* s : sessions_)
+        if (s->name() == gimbal) return s->snapshot();
+    return nlohmann::json::object();
+}
+
 bool MavlinkEndpoint::signature_ok(const mav::Message& m) {
     if (!key_) return true;
     if (!m.signature || !m.signature->verified ||
@@ -216,10 +234,20 @@ void MavlinkEndpoint::on_message(const mav::Message& m) {
     };
     std::optional<gp::CommandView> command;
     if (const auto* c = std::get_if<mav::CommandLong>(&m.payload)) {
-        if (addressed(c->target_system, c->target_component)) command = gp::view(*c);
+        command = gp::view(*c);
     } else if (const auto* ci = std::get_if<mav::CommandInt>(&m.payload)) {
-        if (addressed(ci->target_system, ci->target_component)) command = gp::view(*ci);
+        command = gp::view(*ci);
     }
+    // A camera component's own commands (contract section 16); broadcasts (component 0) are
+    // the gimbal managers' to answer.
+    if (command && command->target_system == *sysid) {
+        if (const auto* camera = cameras_.find(command->target_component)) {
+            if (!signature_ok(m)) return;
+            on_camera_command(*command, *camera, from);
+            return;
+        }
+    }
+    if (command && !addressed(command->target_system, command->target_component)) command.reset();
     const gp::StateLookup lookup = [this](const std::string& g) { return state_of(g); };
     if (command) {
         if (!signature_ok(m)) return;
@@ -231,8 +259,12 @@ void MavlinkEndpoint::on_message(const mav::Message& m) {
             run(refused(mav::MavResult::denied, commands_off), from, command->command, answering);
             return;
         }
-        run(manager_.command(*command, from, vehicle_view(), lookup, time_boot_ms()), from,
-            command->command, answering);
+        gp::Mapped mapped =
+            manager_.command(*command, from, vehicle_view(), lookup, time_boot_ms());
+        const auto steered = steered_gimbals(mapped);
+        if (run(std::move(mapped), from, command->command, answering).result ==
+            mav::MavResult::accepted)
+            release_steered(steered);
         return;
     }
     std::optional<std::uint8_t> setpoint_component;
@@ -254,8 +286,134 @@ void MavlinkEndpoint::on_message(const mav::Message& m) {
         run(refused(mav::MavResult::denied, commands_off), from, std::nullopt, answering, m.msgid);
         return;
     }
-    run(manager_.message(m.payload, from, vehicle_view(), lookup), from, std::nullopt, answering,
-        m.msgid);
+    gp::Mapped mapped = manager_.message(m.payload, from, vehicle_view(), lookup);
+    const auto steered = steered_gimbals(mapped);
+    if (run(std::move(mapped), from, std::nullopt, answering, m.msgid).result ==
+        mav::MavResult::accepted)
+        release_steered(steered);
+}
+
+std::vector<std::string> MavlinkEndpoint::steered_gimbals(const gp::Mapped& mapped) {
+    std::vector<std::string> out;
+    for (const auto& r : mapped.requests) out.push_back(r.gimbal);
+    return out;
+}
+
+void MavlinkEndpoint::release_steered(const std::vector<std::string>& gimbals) {
+    for (const auto& g : manager_.gimbals())
+        if (std::find(gimbals.begin(), gimbals.end(), g.name) != gimbals.end())
+            release(g.device_id, "the gimbal manager steered the gimbal");
+}
+
+void MavlinkEndpoint::on_camera_command(const gp::CommandView& command,
+                                        const gp::ExposedCamera& camera, const gp::MavId& from) {
+    ++counters_.commands;
+    if (!config_.commands) {  // contract section 14: every command, requests for reports too
+        run(refused(mav::MavResult::denied, commands_off), from, command.command,
+            camera.component_id);
+        return;
+    }
+    const gp::StateLookup lookup = [this](const std::string& g) { return camera_state_of(g); };
+    // Zoom is the gimbal manager's mapping, for this camera's gimbal only.
+    if (command.command == mav::mav_cmd::set_camera_zoom) {
+        gp::CommandView as_manager = command;
+        as_manager.target_component = camera.gimbal.component_id;
+        as_manager.param[2] = camera.gimbal.device_id;
+        run(manager_.command(as_manager, from, vehicle_view(), lookup, time_boot_ms()), from,
+            command.command, camera.component_id);
+        return;
+    }
+    gp::CameraMapped mapped = cameras_.command(command, camera, lookup, time_boot_ms());
+    // Steering from MAVLink obeys the gimbal manager's control (DO_GIMBAL_MANAGER_CONFIGURE).
+    if (mapped.track != gp::TrackChange::none &&
+        !manager_.control(camera.gimbal.device_id).allows(from)) {
+        run(refused(mav::MavResult::denied,
+                    "another system is in control of " + camera.gimbal.name),
+            from, command.command, camera.component_id);
+        return;
+    }
+    const Ran ran = run(std::move(mapped.mapped), from, command.command, camera.component_id);
+    if (ran.result != mav::MavResult::accepted) return;
+    if (mapped.track == gp::TrackChange::start) hold(camera, ran.results, mapped.radius);
+    if (mapped.track == gp::TrackChange::stop)
+        release(camera.gimbal.device_id, "MAV_CMD_CAMERA_STOP_TRACKING");
+}
+
+void MavlinkEndpoint::hold(const gp::ExposedCamera& camera, const nlohmann::json& located,
+                           float radius) {
+    const auto number = [&](const char* key) -> std::optional<double> {
+        const auto it = located.is_object() ? located.find(key) : located.end();
+        if (!located.is_object() || it == located.end() || !it->is_number()) return std::nullopt;
+        return it->get<double>();
+    };
+    const auto lat = number("lat"), lon = number("lon"), alt = number("alt");
+    if (!lat || !lon || !alt) return;  // `point` always says where; nothing to hold otherwise
+    Held h;
+    h.point.lat = *lat;
+    h.point.lon = *lon;
+    h.point.alt = *alt;
+    h.point.radius = radius;
+    const nlohmann::json state = state_of(camera.gimbal.name);
+    const auto* t =
+        state.is_object() && state.contains("telemetry") ? &state["telemetry"] : nullptr;
+    if (t && t->is_object() && t->contains("geoid_undulation") &&
+        (*t)["geoid_undulation"].is_number())
+        h.point.alt_msl = *alt - (*t)["geoid_undulation"].get<double>();
+    h.since_tick = h.next_geo_tick = h.next_image_tick = ticks_ + 1;
+    held_[camera.gimbal.device_id] = h;
+    log::info("mavlink_track", "click-to-track: holding a point",
+              {{"gimbal", camera.gimbal.name},
+               {"lat", *lat},
+               {"lon", *lon},
+               {"alt", *alt},
+               {"component", camera.component_id}});
+}
+
+void MavlinkEndpoint::release(std::uint8_t device_id, const char* why) {
+    const auto it = held_.find(device_id);
+    if (it == held_.end()) return;
+    held_.erase(it);
+    for (const auto& c : cameras_.cameras()) {
+        if (c.gimbal.device_id != device_id) continue;
+        log::info("mavlink_track", std::string("click-to-track ended: ") + why,
+                  {{"gimbal", c.gimbal.name}, {"component", c.component_id}});
+        // One IDLE status, so a ground station stops drawing the point.
+        send(gp::tracking_geo_status(std::nullopt, nlohmann::json()), c.component_id);
+        if (cameras_.intervals(c.component_id).image_ms != 0)
+            send(gp::tracking_image_status(std::nullopt, std::nullopt), c.component_id);
+    }
+}
+
+void MavlinkEndpoint::check_held() {
+    constexpr std::uint64_t settle_ticks = 30;  // the gimbal reports its new mode within 3 s
+    std::vector<std::uint8_t> ended;
+    for (const auto& [device_id, h] : held_) {
+        if (ticks_ < h.since_tick + settle_ticks) continue;
+        for (const auto& c : cameras_.cameras()) {
+            if (c.gimbal.device_id != device_id) continue;
+            const nlohmann::json state = state_of(c.gimbal.name);
+            const auto* t =
+                state.is_object() && state.contains("telemetry") ? &state["telemetry"] : nullptr;
+            if (t && t->is_object() && t->contains("mode") && (*t)["mode"].is_string() &&
+                (*t)["mode"] != "geopoint")
+                ended.push_back(device_id);
+        }
+    }
+    for (const auto id : ended) release(id, "the gimbal left geopoint mode");
+}
+
+std::optional<gp::ImageAt> MavlinkEndpoint::image_at(const std::string& gimbal,
+                                                     const gp::HeldPoint& held) const {
+    for (const auto* s : sessions_) {
+        if (s->name() != gimbal) continue;
+        const auto view = s->capabilities().image(s->gimbal_state());
+        if (!view) return std::nullopt;
+        const nlohmann::json p = gimbal::session::project_reply(
+            *view, gimbal::geo::Lla{held.lat, held.lon, held.alt}, nullptr);
+        if (!p["x"].is_number() || !p["y"].is_number()) return std::nullopt;
+        return gp::ImageAt{p["x"].get<double>(), p["y"].get<double>()};
+    }
+    return std::nullopt;
 }
 
 std::uint8_t MavlinkEndpoint::first_component() const {
@@ -270,17 +428,19 @@ gp::Mapped MavlinkEndpoint::refused(mav::MavResult result, std::string reason) {
     return m;
 }
 
-void MavlinkEndpoint::run(gp::Mapped mapped, const gp::MavId& from,
-                          std::optional<std::uint16_t> ack_command, std::uint8_t component,
-                          std::uint32_t msgid) {
+MavlinkEndpoint::Ran MavlinkEndpoint::run(gp::Mapped mapped, const gp::MavId& from,
+                                          std::optional<std::uint16_t> ack_command,
+                                          std::uint8_t component, std::uint32_t msgid) {
     mav::MavResult result = mapped.result;
     std::string reason = mapped.reason;
+    nlohmann::json first_results;
     if (!mapped.requests.empty()) {
         const RequestSource source{"mavlink", source_address(from), std::nullopt};
         std::vector<mav::MavResult> results;
         for (const auto& r : mapped.requests) {
-            const RequestPath::Executed outcome = path_.execute_request(r.request, source);
+            RequestPath::Executed outcome = path_.execute_request(r.request, source);
             if (!outcome.error) {
+                if (results.empty()) first_results = std::move(outcome.results);
                 results.push_back(mav::MavResult::accepted);
             } else {
                 const std::string code(gimbal::command::to_string(outcome.error->code));
@@ -310,7 +470,7 @@ void MavlinkEndpoint::run(gp::Mapped mapped, const gp::MavId& from,
         out.push_back({component, ack});
     }
     for (auto& reply : mapped.replies) out.push_back(std::move(reply));
-    if (out.empty()) return;
+    if (out.empty()) return {result, std::move(first_results)};
     // Sent from the io_context after the gimbal link's write of what the command queued (the
     // link posts its writes too), as the JSON socket sends its replies: the ACK is not part of
     // the command's latency - its sendto() wakes the ground station before the gimbal's
@@ -318,6 +478,7 @@ void MavlinkEndpoint::run(gp::Mapped mapped, const gp::MavId& from,
     boost::asio::post(timer_.get_executor(), [this, out = std::move(out)] {
         for (const auto& reply : out) send(reply.payload, reply.component_id);
     });
+    return {result, std::move(first_results)};
 }
 
 void MavlinkEndpoint::send(const mav::Payload& payload, std::uint8_t component) {
@@ -357,11 +518,43 @@ void MavlinkEndpoint::on_tick() {
         if (status) send(gp::manager_status(g, manager_.control(g.device_id), t), g.component_id);
         if (fov) send(gp::fov_status(g, state, t), g.component_id);
     }
+    // Each gimbal's camera component (contract section 16).
+    check_held();
+    for (const auto& c : cameras_.cameras()) {
+        if (ticks_ % 10 == 1) send(gp::camera_heartbeat(), c.component_id);
+        const auto it = held_.find(c.gimbal.device_id);
+        if (ticks_ % 5 != 0 && it == held_.end()) continue;
+        const nlohmann::json state = state_of(c.gimbal.name);
+        if (ticks_ % 5 == 0) send(gp::camera_fov_status(c, state, t), c.component_id);
+        if (it == held_.end()) continue;
+        Held& h = it->second;
+        const auto& intervals = cameras_.intervals(c.component_id);
+        const auto every = [](std::uint32_t ms) { return std::max<std::uint64_t>(1, ms / 100); };
+        if (intervals.geo_ms != 0 && ticks_ >= h.next_geo_tick) {
+            send(gp::tracking_geo_status(h.point, state), c.component_id);
+            h.next_geo_tick = ticks_ + every(intervals.geo_ms);
+        }
+        if (intervals.image_ms != 0 && ticks_ >= h.next_image_tick) {
+            send(gp::tracking_image_status(h.point, image_at(c.gimbal.name, h.point)),
+                 c.component_id);
+            h.next_image_tick = ticks_ + every(intervals.image_ms);
+        }
+    }
 }
 
 nlohmann::json MavlinkEndpoint::snapshot(const std::string& gimbal) const {
     nlohmann::json primary = nullptr;
+    nlohmann::json camera = nullptr;
     std::uint8_t component = config_.component_id;
+    for (const auto& c : cameras_.cameras()) {
+        if (c.gimbal.name != gimbal) continue;
+        nlohmann::json tracking = nullptr;
+        if (const auto it = held_.find(c.gimbal.device_id); it != held_.end())
+            tracking = {{"lat", it->second.point.lat},
+                        {"lon", it->second.point.lon},
+                        {"alt", it->second.point.alt}};
+        camera = {{"component_id", c.component_id}, {"tracking", tracking}};
+    }
     for (const auto& g : manager_.gimbals()) {
         if (g.name != gimbal) continue;
         component = g.component_id;
@@ -372,6 +565,7 @@ nlohmann::json MavlinkEndpoint::snapshot(const std::string& gimbal) const {
     return {{"peers", feed_.source()->peers()},
             {"system_id", sysid ? nlohmann::json(*sysid) : nlohmann::json(nullptr)},
             {"component_id", component},
+            {"camera", camera},
             {"primary_control", primary},
             {"commands", counters_.commands},
             {"denied", counters_.denied},

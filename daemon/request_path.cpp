@@ -269,7 +269,7 @@ void RequestPath::authorize(Outcome& o) {
 }
 
 std::string RequestPath::execute_object(const json& request, const RequestSource& from,
-                                        Outcome& o) {
+                                        Outcome& o, json* results) {
     ++counters_.requests;
     const std::string text = request.dump(-1, ' ', false, json::error_handler_t::replace);
     if (auto bad = cmdns::parse_envelope(text, known_command, o.env)) {
@@ -280,6 +280,7 @@ std::string RequestPath::execute_object(const json& request, const RequestSource
         o.cmd = o.env.cmd;
         run(o, from);
     }
+    if (results && !o.error) *results = o.results;  // finish() may consume them
     return finish(o, from, text);
 }
 
@@ -290,8 +291,9 @@ json RequestPath::execute(const json& request, const RequestSource& from) {
 
 RequestPath::Executed RequestPath::execute_request(const json& request, const RequestSource& from) {
     Outcome o;
-    execute_object(request, from, o);
-    return {o.error};
+    nlohmann::json results;
+    execute_object(request, from, o, &results);
+    return {o.error, std::move(results)};
 }
 
 void RequestPath::run(Outcome& o, const RequestSource& from) {

@@ -88,6 +88,7 @@ class RequestPath {
     // the reply is not parsed back into an object.
     struct Executed {
         std::optional<gimbal::command::Error> error;
+        nlohmann::json results;  // the reply's results on success (e.g. `point`'s located point)
     };
     Executed execute_request(const nlohmann::json& request, const RequestSource& from);
 
@@ -107,9 +108,10 @@ class RequestPath {
   private:
     struct Outcome;
     void run(Outcome& o, const RequestSource& from);
-    // execute()'s work: the envelope check, run and finish; returns the reply text.
+    // execute()'s work: the envelope check, run and finish; returns the reply text and,
+    // when `results` is given, copies a success's results there.
     std::string execute_object(const nlohmann::json& request, const RequestSource& from,
-                               Outcome& o);
+                               Outcome& o, nlohmann::json* results = nullptr);
     nlohmann::json dispatch(Outcome& o, const RequestSource& from);
     nlohmann::json subscription(Outcome& o, const RequestSource& from);
     std::string finish(Outcome& o, const RequestSource& from, std::string_view request_bytes);

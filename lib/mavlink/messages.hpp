@@ -9,6 +9,7 @@
 #include <optional>
 #include <variant>
 
+#include "mavlink/camera_messages.hpp"
 #include "mavlink/gimbal_messages.hpp"
 
 namespace gimbal::mavlink {
@@ -85,10 +86,11 @@ struct RcChannels {
 
 using Payload =
     std::variant<Heartbeat, SystemTime, Attitude, GlobalPositionInt, RcChannels, CommandInt,
-                 CommandLong, CommandAck, CameraInformation, CameraFovStatus,
-                 GimbalManagerInformation, GimbalManagerStatus, GimbalManagerSetAttitude,
-                 GimbalDeviceInformation, GimbalDeviceSetAttitude, GimbalDeviceAttitudeStatus,
-                 GimbalManagerSetPitchyaw>;
+                 CommandLong, CommandAck, CameraInformation, CameraSettings, StorageInformation,
+                 CameraCaptureStatus, VideoStreamInformation, VideoStreamStatus, CameraFovStatus,
+                 CameraTrackingImageStatus, CameraTrackingGeoStatus, GimbalManagerInformation,
+                 GimbalManagerStatus, GimbalManagerSetAttitude, GimbalDeviceInformation,
+                 GimbalDeviceSetAttitude, GimbalDeviceAttitudeStatus, GimbalManagerSetPitchyaw>;
 
 // The 13 bytes after a signed v2 frame. `verified`: the framer had the key and the 48-bit
 // signature matched (replay is checked by SigningStreams, which needs the local clock).

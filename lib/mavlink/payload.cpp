@@ -163,6 +163,26 @@ void fields(IO& io, Q& m) {
         io(m.time_boot_ms, m.firmware_version, m.focal_length, m.sensor_size_h, m.sensor_size_v,
            m.flags, m.resolution_h, m.resolution_v, m.cam_definition_version, m.vendor_name,
            m.model_name, m.lens_id, m.cam_definition_uri, m.gimbal_device_id, m.camera_device_id);
+    } else if constexpr (std::is_same_v<M, CameraSettings>) {
+        io(m.time_boot_ms, m.mode_id, m.zoom_level, m.focus_level, m.camera_device_id);
+    } else if constexpr (std::is_same_v<M, StorageInformation>) {
+        io(m.time_boot_ms, m.total_capacity, m.used_capacity, m.available_capacity, m.read_speed,
+           m.write_speed, m.storage_id, m.storage_count, m.status, m.type, m.name, m.storage_usage);
+    } else if constexpr (std::is_same_v<M, CameraCaptureStatus>) {
+        io(m.time_boot_ms, m.image_interval, m.recording_time_ms, m.available_capacity,
+           m.image_status, m.video_status, m.image_count, m.camera_device_id);
+    } else if constexpr (std::is_same_v<M, VideoStreamInformation>) {
+        io(m.framerate, m.bitrate, m.flags, m.resolution_h, m.resolution_v, m.rotation, m.hfov,
+           m.stream_id, m.count, m.type, m.name, m.uri, m.encoding, m.camera_device_id);
+    } else if constexpr (std::is_same_v<M, VideoStreamStatus>) {
+        io(m.framerate, m.bitrate, m.flags, m.resolution_h, m.resolution_v, m.rotation, m.hfov,
+           m.stream_id, m.camera_device_id);
+    } else if constexpr (std::is_same_v<M, CameraTrackingImageStatus>) {
+        io(m.point_x, m.point_y, m.radius, m.rec_top_x, m.rec_top_y, m.rec_bottom_x, m.rec_bottom_y,
+           m.tracking_status, m.tracking_mode, m.target_data, m.camera_device_id);
+    } else if constexpr (std::is_same_v<M, CameraTrackingGeoStatus>) {
+        io(m.lat, m.lon, m.alt, m.h_acc, m.v_acc, m.vel_n, m.vel_e, m.vel_d, m.vel_acc, m.dist,
+           m.hdg, m.hdg_acc, m.tracking_status, m.camera_device_id);
     } else if constexpr (std::is_same_v<M, CameraFovStatus>) {
         io(m.time_boot_ms, m.lat_camera, m.lon_camera, m.alt_camera, m.lat_image, m.lon_image,
            m.alt_image, m.q, m.hfov, m.vfov, m.camera_device_id);

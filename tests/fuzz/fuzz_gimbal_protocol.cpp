@@ -1,11 +1,13 @@
-// libFuzzer target for the MAVLink gimbal manager's mapping: arbitrary bytes through the
-// framer, every command and set-point message through GimbalManager (two gimbals, fixed STATE).
-// Nothing may crash, no request may name the laser or a gimbal we do not have, and a request
-// always carries finite numbers.
+// libFuzzer target for the MAVLink gimbal manager's and camera components' mapping: arbitrary
+// bytes through the framer, every command and set-point message through GimbalManager and
+// every command through CameraComponents (two gimbals, fixed STATE). Nothing may crash, no
+// request may name the laser or a gimbal we do not have, a request always carries finite
+// numbers, and a `point` stays inside the image (-1..1).
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 
+#include "gimbal_protocol/camera.hpp"
 #include "gimbal_protocol/commands.hpp"
 #include "mavlink/mavlink.hpp"
 
@@ -37,24 +39,48 @@ void check(const gp::Mapped& mapped) {
         for (const auto& [key, value] : r.request.items())
             if (value.is_number_float() && !std::isfinite(value.get<double>()))
                 fail("a request carries a non-finite number");
+        if (r.request.value("cmd", "") == "point")
+            for (const char* k : {"x", "y"})
+                if (!r.request[k].is_number() || std::abs(r.request[k].get<double>()) > 1)
+                    fail("a point outside the image");
     }
+}
+
+std::vector<gp::ExposedCamera> cameras(const std::vector<gp::ExposedGimbal>& gimbals) {
+    std::vector<gp::ExposedCamera> out;
+    for (const auto& g : gimbals) {
+        gp::ExposedCamera c;
+        c.gimbal = g;
+        c.component_id = gp::camera_component(g.device_id);
+        c.video = c.can_point = c.can_zoom = g.protocol == "orion";
+        if (c.video) c.streams = {{"main", "15010", m::video_stream::type_mpeg_ts}};
+        out.push_back(std::move(c));
+    }
+    return out;
 }
 
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-    gp::GimbalManager manager(gp::expose({{"main", "orion"}, {"nose", "viewpro"}}));
+    const auto gimbals = gp::expose({{"main", "orion"}, {"nose", "viewpro"}});
+    gp::GimbalManager manager(gimbals);
+    gp::CameraComponents camera_components(cameras(gimbals));
     const gp::StateLookup lookup = state_of;
     const gp::VehicleView vehicle{90.0, 100.0};
     m::Framer framer;
     framer.push(std::span<const std::uint8_t>(data, size), [&](const m::Message& msg) {
         const gp::MavId from{msg.sysid, msg.compid};
-        if (const auto* c = std::get_if<m::CommandLong>(&msg.payload))
-            check(manager.command(gp::view(*c), from, vehicle, lookup, 0));
-        else if (const auto* ci = std::get_if<m::CommandInt>(&msg.payload))
-            check(manager.command(gp::view(*ci), from, vehicle, lookup, 0));
-        else
+        std::optional<gp::CommandView> command;
+        if (const auto* c = std::get_if<m::CommandLong>(&msg.payload)) command = gp::view(*c);
+        if (const auto* ci = std::get_if<m::CommandInt>(&msg.payload)) command = gp::view(*ci);
+        if (command) {
+            check(manager.command(*command, from, vehicle, lookup, 0));
+            // The camera of the gimbal the sender's component id picks.
+            const auto& camera = camera_components.cameras()[msg.compid % 2];
+            check(camera_components.command(*command, camera, lookup, 0).mapped);
+        } else {
             check(manager.message(msg.payload, from, vehicle, lookup));
+        }
     });
     return 0;
 }
