@@ -1,7 +1,8 @@
 // The video panel: follows GET /api/video/{gimbal} (docs/http.md "Video"), decodes the H.264
 // access units in the browser with WebCodecs' VideoDecoder (Annex B, parameter sets in-band:
-// no description) and draws each frame on a canvas at the video's own size, scaled by CSS to
-// fit the pane. Falling behind, it drops frames up to the next key frame. Reconnects by
+// no description) - or, where the browser has no VideoDecoder, with Media Source Extensions
+// (mse_player.js; `?video=mse` in the page's URL forces it) - and draws each frame on a
+// canvas at the video's own size, scaled by CSS to fit the pane. Falling behind, it drops frames up to the next key frame. Reconnects by
 // itself. Optionally reads the simulator's time code from each drawn frame (glass-to-glass
 // latency, docs/simulator.md "Time code"). Exposed as window.GimbaldVideoPanel.
 'use strict';
@@ -84,7 +85,21 @@
       this.latencies = [];
       this.stats = { messages: 0, decoded: 0, drawn: 0, skipped: 0, errors: 0, reconnects: 0,
         lastDrawnAt: 0, lastTimestamp: null, lastCode: null, state: 'idle' };
-      this.supported = typeof global.VideoDecoder === 'function';
+      const forced = new URLSearchParams(location.search).get('video');
+      const webcodecs = typeof global.VideoDecoder === 'function' && forced !== 'mse';
+      this.mode = webcodecs ? 'webcodecs' : typeof global.MediaSource === 'function' ? 'mse' : null;
+      this.supported = this.mode !== null;
+      this.mse = null;
+      if (this.mode === 'mse') {
+        const video = document.createElement('video');
+        video.muted = true;
+        video.playsInline = true;
+        video.className = 'mse-video';
+        canvas.parentNode.append(video);
+        this.mse = new global.GimbaldMsePlayer(video, () => {
+          if (video.videoWidth > 0) this.drawSource(video, video.videoWidth, video.videoHeight);
+        });
+      }
     }
 
     // Follows `gimbal`'s video (null: none).
@@ -94,8 +109,7 @@
       this.gimbal = gimbal;
       if (!gimbal) return;
       if (!this.supported) {
-        this.status('no WebCodecs VideoDecoder in this browser (it needs a secure context: ' +
-          'http://localhost, http://127.0.0.1 or HTTPS); no video', 'bad');
+        this.status('this browser has neither WebCodecs nor Media Source Extensions: no video', 'bad');
         return;
       }
       this.connect();
@@ -153,6 +167,16 @@
       const same = this.config && this.config.codec === c.codec && this.config.width === c.width &&
         this.config.height === c.height;
       this.config = c;
+      if (this.mode === 'mse') {
+        if (!global.GimbaldMsePlayer.supported(c.codec)) {
+          this.status(`${c.codec}: not playable with Media Source Extensions here (no WebCodecs: ` +
+            'load the page from http://localhost, http://127.0.0.1 or over HTTPS)', 'bad');
+          return;
+        }
+        if (!same || !this.mse.config) this.mse.configure(c);
+        this.status(`${c.codec} ${c.width}\u00d7${c.height} (MSE)`, 'good');
+        return;
+      }
       if (same && this.decoder && this.decoder.state === 'configured') return;
       this.closeDecoder();
       this.openDecoder();
@@ -181,6 +205,7 @@
     }
 
     closeDecoder() {
+      if (this.mse) { this.mse.reset(); this.mse.config = null; }
       if (this.decoder && this.decoder.state !== 'closed') {
         try { this.decoder.close(); } catch (e) { /* already closed */ }
       }
@@ -192,6 +217,11 @@
       const view = new DataView(buffer);
       const timestamp = Number(view.getBigUint64(0));
       const key = (view.getUint8(8) & 1) === 1;
+      if (this.mse) {
+        this.mse.push(timestamp, key, new Uint8Array(buffer, 9));
+        this.stats.skipped = this.mse.skipped;
+        return;
+      }
       if (!this.decoder && this.config && key) this.openDecoder();
       if (!this.decoder || this.decoder.state !== 'configured') return;
       // Behind (a slow machine, a hidden tab): skip to the next key frame rather than lag.
@@ -207,16 +237,19 @@
     }
 
     draw(frame) {
+      this.stats.lastTimestamp = frame.timestamp;
+      this.drawSource(frame, frame.displayWidth, frame.displayHeight);
+      frame.close();
+    }
+
+    // A decoded picture (a VideoFrame, or the MSE player's <video>) onto the canvas.
+    drawSource(source, w, h) {
       this.stats.decoded++;
-      const w = frame.displayWidth;
-      const h = frame.displayHeight;
       if (this.canvas.width !== w || this.canvas.height !== h) {
         this.canvas.width = w;
         this.canvas.height = h;
       }
-      this.ctx.drawImage(frame, 0, 0, w, h);
-      this.stats.lastTimestamp = frame.timestamp;
-      frame.close();
+      this.ctx.drawImage(source, 0, 0, w, h);
       const now = Date.now();
       this.stats.drawn++;
       this.stats.lastDrawnAt = now;
