@@ -27,7 +27,8 @@ VideoClient::VideoClient(beast::tcp_stream&& stream, VideoFeeds& feeds, std::str
       feeds_(feeds),
       gimbal_(std::move(gimbal)),
       address_(std::move(address)),
-      slot_(std::move(slot)) {}
+      slot_(std::move(slot)),
+      queue_(feeds.options().backlog_frames) {}
 
 VideoClient::~VideoClient() {
     feeds_.leave(*this);
@@ -79,39 +80,19 @@ void VideoClient::do_read() {
 
 void VideoClient::offer(const VideoMessage& config, const VideoMessage& frame, bool key) {
     if (closed_ || !joined_) return;
-    const auto now = SteadyClock::now();
-    if (writing_ &&
-        now - write_started_ > std::chrono::duration<double>(feeds_.options().stall_s)) {
+    if (queue_.writing() && SteadyClock::now() - write_started_ >
+                                std::chrono::duration<double>(feeds_.options().stall_s)) {
         feeds_.stalled(*this);
         return close();
     }
-    const std::size_t waiting = queue_.size() - (writing_ ? 1 : 0);
-    if (waiting >= feeds_.options().backlog_frames) {
-        drop_backlog();
+    if (queue_.offer(config, frame, key) == ViewerQueue::Offer::backlog_dropped)
         feeds_.dropped_backlog();
-    }
-    if (waiting_key_) {
-        if (!key || !config) return;
-        waiting_key_ = false;
-    }
-    if (key && config != sent_config_) {
-        queue_.push_back({config, true});
-        sent_config_ = config;
-    }
-    queue_.push_back({frame, false});
-    if (!writing_) do_write();
-}
-
-void VideoClient::drop_backlog() {
-    // The message being written stays (a WebSocket message cannot be cut); the rest goes,
-    // and the viewer starts again at a key frame.
-    while (queue_.size() > (writing_ ? 1u : 0u)) queue_.pop_back();
-    waiting_key_ = true;
+    if (!queue_.writing()) do_write();
 }
 
 void VideoClient::do_write() {
     if (queue_.empty() || closed_) return;
-    writing_ = true;
+    queue_.start_write();
     write_started_ = SteadyClock::now();
     ws_.text(queue_.front().text);
     ws_.async_write(boost::asio::buffer(*queue_.front().bytes),
@@ -121,10 +102,12 @@ void VideoClient::do_write() {
 }
 
 void VideoClient::on_write(const boost::system::error_code& ec) {
-    writing_ = false;
-    if (ec) return fail(ec, "write");
+    if (ec) {
+        queue_.abort_write();
+        return fail(ec, "write");
+    }
+    queue_.written();
     if (closed_) return;
-    queue_.pop_front();
     do_write();
 }
 

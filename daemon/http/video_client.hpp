@@ -1,10 +1,9 @@
 // One viewer of GET /api/video/{gimbal} (contract section 18, format in docs/http.md): the
 // WebSocket handshake, a read loop that only serves control frames (anything the viewer
-// sends is ignored), and a send queue of whole messages - the configuration (text) and one
-// binary message per access unit. Falling behind costs the viewer, never the others: when
-// more than a second's worth of frames waits, everything not yet being written is dropped
-// and the viewer resumes at the next key frame (whole groups of pictures); a write that has
-// not finished for video_stall_s means the viewer stopped reading: it is dropped.
+// sends is ignored), and its ViewerQueue of whole messages - the configuration (text) and
+// one binary message per access unit. Falling behind costs the viewer, never the others: a
+// backlog is dropped up to the next key frame (ViewerQueue); a write that has not finished
+// for VideoFeedOptions::stall_s means the viewer stopped reading: it is dropped.
 #pragma once
 
 #include <boost/beast/core/flat_buffer.hpp>
@@ -13,18 +12,15 @@
 #include <boost/beast/http/string_body.hpp>
 #include <boost/beast/websocket/stream.hpp>
 #include <chrono>
-#include <deque>
 #include <memory>
 #include <string>
 
 #include "client_slots.hpp"
+#include "viewer_queue.hpp"
 
 namespace gimbald::http {
 
 class VideoFeeds;
-
-// Shared by every viewer of a gimbal: built once per access unit.
-using VideoMessage = std::shared_ptr<const std::string>;
 
 class VideoClient : public std::enable_shared_from_this<VideoClient> {
   public:
@@ -42,15 +38,10 @@ class VideoClient : public std::enable_shared_from_this<VideoClient> {
     const std::string& address() const { return address_; }
 
   private:
-    struct Item {
-        VideoMessage bytes;
-        bool text = false;
-    };
     void on_accept(const boost::system::error_code& ec);
     void do_read();
     void do_write();
     void on_write(const boost::system::error_code& ec);
-    void drop_backlog();
     void fail(const boost::system::error_code& ec, const char* what);
 
     boost::beast::websocket::stream<boost::beast::tcp_stream> ws_;
@@ -59,12 +50,9 @@ class VideoClient : public std::enable_shared_from_this<VideoClient> {
     std::string address_;
     ClientSlots::Slot slot_;
     boost::beast::flat_buffer buffer_;
-    std::deque<Item> queue_;  // front: being written while writing_
-    VideoMessage sent_config_;
+    ViewerQueue queue_;
     std::chrono::steady_clock::time_point write_started_{};
     bool joined_ = false;
-    bool waiting_key_ = true;  // nothing sent yet, or a backlog was dropped
-    bool writing_ = false;
     bool closed_ = false;
 };
 
