@@ -23,6 +23,7 @@ import json
 import os
 import re
 import select
+import shutil
 import socket
 import struct
 import subprocess
@@ -179,6 +180,8 @@ def main():
             v.ws.sock.close()
         stop(daemon)
         stop(sim)
+        log.close()
+        shutil.rmtree(workdir, ignore_errors=True)
 
 
 if __name__ == "__main__":
