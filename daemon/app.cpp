@@ -205,6 +205,7 @@ void App::start_http() {
     options.max_connections_per_client = h.max_connections_per_client;
     options.idle_timeout_s = h.idle_timeout_s;
     options.ws_queue_max = h.ws_queue_max;
+    options.video.idle_timeout_s = h.idle_timeout_s;
     options.api.console = h.console;
     options.api.web_root =
         h.web_root ? std::filesystem::path(*h.web_root) : http::default_web_root();
@@ -226,6 +227,12 @@ void App::start_http() {
         return config_.vehicle && vehicle_->vehicle_state().fresh(vehicle_->monotonic_s());
     };
     view.mqtt_up = [this] { return mqtt_ && mqtt_->state_key().value("connected", false); };
+    // Contract section 18; videos_ is filled after the server starts (start_video).
+    view.video = [this](const std::string& gimbal) -> video::VideoTap* {
+        for (std::size_t i = 0; i < sessions_.size() && i < videos_.size(); ++i)
+            if (sessions_[i]->name() == gimbal) return videos_[i].get();
+        return nullptr;
+    };
     http_ = std::make_unique<http::HttpServer>(io_, std::move(options), std::move(view));
     events_.add([this](const std::string& gimbal, const gimbal::state::Event& e) {
         http_->publish_event(gimbal, e);

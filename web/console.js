@@ -1,6 +1,7 @@
 // The operator console: loads /api/console and /api/state, follows /api/stream (WebSocket,
 // reconnecting), keeps a track per gimbal, fills the side panels, sends commands with
-// POST /api/command, and exposes what it drew as window.gimbaldConsole (docs/console.md).
+// POST /api/command, shows the gimbal's video with its overlays and click-to-point (video.js,
+// video_overlay.js), and exposes what it drew as window.gimbaldConsole (docs/console.md).
 'use strict';
 
 (function () {
@@ -26,6 +27,20 @@
     lastClick: null,
   };
   const map = new window.GimbaldPlanView($('map'));
+  const LAYOUTS = { side: 'side by side', video: 'video large', map: 'plan view large' };
+  const PROJECT_EVERY_MS = 500;
+  const video = {
+    panel: new window.GimbaldVideoPanel($('video'), (label, kind) => setBadge($('video-status'), label, kind)),
+    overlay: new window.GimbaldVideoOverlay($('video-overlay')),
+    points: [], // [{name, label, x, y}] from `project`
+    projecting: false,
+    projectedAt: 0,
+    lastClick: null, // the last click on the picture: {x, y, stare, reply}
+    located: {}, // gimbal name -> the ground point the last picture click located
+    layout: 'side',
+    zoomSentAt: 0,
+  };
+  window.gimbaldVideo = video.panel;
 
   // ---- formatting ----------------------------------------------------------------------
   const num = (v, d) => (typeof v === 'number' && Number.isFinite(v) ? v.toFixed(d) : '-');
@@ -85,6 +100,7 @@
 
   function render() {
     const view = app.selected ? viewOf(app.selected) : null;
+    layoutVideo();
     map.render(view);
     publishHook();
     renderPanels(view);
@@ -116,6 +132,8 @@
         m_per_deg_lat: p.m_per_deg_lat, m_per_deg_lon: p.m_per_deg_lon },
       drawn: map.drawn,
       lastClick: app.lastClick,
+      video: { shown: !$('video-pane').hidden, layout: video.layout, overlay: video.overlay.drawn,
+        points: video.points, lastClick: video.lastClick, located: video.located[app.selected] || null },
       toScreen: (lat, lon) => map.projection && map.projection.toScreen(lat, lon),
       toLatLon: (x, y) => map.projection && map.projection.toLatLon(x, y),
     };
@@ -557,7 +575,153 @@
     });
   }
 
+  // ---- video (contract section 18) ------------------------------------------------------
+  function hasVideo(name) {
+    const g = app.info && (app.info.gimbals || []).find((x) => x.name === name);
+    return !!(g && g.video);
+  }
+
+  // Shows the video pane when the selected gimbal has video, fits the picture into it
+  // (letterboxed, its own aspect ratio) and redraws the overlay.
+  function layoutVideo() {
+    const shown = !!app.selected && hasVideo(app.selected);
+    const pane = $('video-pane');
+    pane.hidden = !shown;
+    $('layout-toggle').hidden = !shown;
+    video.panel.show(shown ? app.selected : null);
+    if (!shown) return;
+    const r = pane.getBoundingClientRect();
+    const aspect = video.panel.width / video.panel.height || 16 / 9;
+    let w = r.width;
+    let h = w / aspect;
+    if (h > r.height) { h = r.height; w = h * aspect; }
+    const box = $('video-box');
+    box.style.width = w + 'px';
+    box.style.height = h + 'px';
+    box.style.left = (r.width - w) / 2 + 'px';
+    box.style.top = (r.height - h) / 2 + 'px';
+    video.overlay.render(app.states[app.selected], video.points, Number($('cam-zoom').value));
+    maybeProject();
+  }
+
+  function setLayout(name) {
+    video.layout = LAYOUTS[name] ? name : 'side';
+    $('main').className = 'layout-' + video.layout;
+    $('layout-toggle').textContent = 'layout: ' + LAYOUTS[video.layout];
+    try { localStorage.setItem('gimbald.layout', video.layout); } catch (e) { /* private mode */ }
+    render();
+  }
+  $('layout-toggle').addEventListener('click', () => {
+    const names = Object.keys(LAYOUTS);
+    setLayout(names[(names.indexOf(video.layout) + 1) % names.length]);
+  });
+
+  // A quiet command (not shown in the command panel): the reply, or null.
+  async function quietCommand(request) {
+    try {
+      const r = await fetch('api/command', { method: 'POST', headers: { 'Content-Type': 'application/json' },
+        body: JSON.stringify(Object.assign({ gimbal: app.selected }, request)) });
+      const reply = await r.json();
+      return reply && reply.ok ? reply : null;
+    } catch (e) { return null; }
+  }
+
+  // The plan view's points placed on the picture with `project`: the target, the track's
+  // start, the last map click and the last point located by a click on the picture.
+  async function maybeProject() {
+    const now = Date.now();
+    if (video.projecting || now - video.projectedAt < PROJECT_EVERY_MS) return;
+    const s = app.states[app.selected];
+    const t = s && s.telemetry;
+    if (!t) return;
+    const groundAlt = t.target && Number.isFinite(t.target.alt) ? t.target.alt : app.groundAlt[app.selected];
+    const wanted = [];
+    if (t.target) wanted.push({ name: 'target', label: 'target', lat: t.target.lat, lon: t.target.lon, alt: t.target.alt });
+    const track = app.tracks[app.selected] || [];
+    if (track.length > 1 && Number.isFinite(groundAlt)) wanted.push({ name: 'start', label: 'track start', lat: track[0].lat, lon: track[0].lon, alt: groundAlt });
+    const c = app.clicks[app.selected];
+    if (c && Number.isFinite(c.alt !== undefined ? c.alt : groundAlt)) wanted.push({ name: 'click', label: 'clicked', lat: c.lat, lon: c.lon, alt: c.alt !== undefined ? c.alt : groundAlt });
+    const gimbal = app.selected;
+    video.projecting = true;
+    video.projectedAt = now;
+    const points = [];
+    for (const w of wanted) {
+      const reply = await quietCommand({ cmd: 'project', lat: w.lat, lon: w.lon, alt: Number(w.alt.toFixed(2)) });
+      if (reply && reply.x !== null && reply.visible !== false) points.push({ name: w.name, label: w.label, x: reply.x, y: reply.y });
+    }
+    video.projecting = false;
+    if (gimbal !== app.selected) return;
+    video.points = points;
+    video.overlay.render(app.states[app.selected], video.points, Number($('cam-zoom').value));
+    publishHook();
+  }
+
+  // A click on the picture: `point` at that image position (shift: stare); the plan view
+  // marks the ground point gimbald located.
+  $('video').addEventListener('click', async (ev) => {
+    if (!app.selected) return;
+    const r = $('video').getBoundingClientRect();
+    const x = Number((((ev.clientX - r.left) / r.width) * 2 - 1).toFixed(5));
+    const y = Number((((ev.clientY - r.top) / r.height) * 2 - 1).toFixed(5));
+    const click = { gimbal: app.selected, x, y, stare: ev.shiftKey, reply: null };
+    video.lastClick = click;
+    publishHook();
+    const reply = await sendCommand({ cmd: 'point', x, y, stare: ev.shiftKey });
+    click.reply = reply;
+    if (reply && reply.ok && Number.isFinite(reply.lat)) {
+      video.located[click.gimbal] = { lat: reply.lat, lon: reply.lon, alt: reply.alt };
+      app.clicks[click.gimbal] = { lat: reply.lat, lon: reply.lon, alt: reply.alt };
+      video.projectedAt = 0;
+      render();
+    }
+    publishHook();
+  });
+
+  function cameraZoom(up) {
+    const zoomInput = $('cam-zoom');
+    zoomInput.value = up ? Number(zoomInput.value) * 2 : Math.max(1, Number(zoomInput.value) / 2);
+    sendCommand({ cmd: 'camera_zoom', zoom: Number(zoomInput.value) });
+  }
+  $('video').addEventListener('wheel', (ev) => {
+    ev.preventDefault();
+    // One step per notch burst: a trackpad sends dozens of small wheel events.
+    if (Date.now() - video.zoomSentAt < 300) return;
+    video.zoomSentAt = Date.now();
+    cameraZoom(ev.deltaY < 0);
+  }, { passive: false });
+  $('vzoom-in').addEventListener('click', () => cameraZoom(true));
+  $('vzoom-out').addEventListener('click', () => cameraZoom(false));
+
+  // Arrows: `rate` at the control panel's speed for its impulse time; space: stop.
+  const KEY_RATES = { ArrowLeft: [-1, 0], ArrowRight: [1, 0], ArrowUp: [0, 1], ArrowDown: [0, -1] };
+  document.addEventListener('keydown', (ev) => {
+    if (ev.target.closest && ev.target.closest('input, select, textarea')) return;
+    const s = app.states[app.selected];
+    if (!takes(s, 'rate')) return;
+    if (KEY_RATES[ev.key]) {
+      ev.preventDefault();
+      const [dp, dt] = KEY_RATES[ev.key];
+      const speed = Number($('rate-speed').value) || 0;
+      sendCommand({ cmd: 'rate', pan: dp * speed, tilt: dt * speed, impulse_time_s: Number($('rate-impulse').value) || 0 });
+    } else if (ev.key === ' ') {
+      ev.preventDefault();
+      // Not also a press of the focused button.
+      if (ev.target.closest && ev.target.closest('button')) ev.target.blur();
+      sendCommand({ cmd: 'rate', pan: 0, tilt: 0, impulse_time_s: 0 });
+    }
+  });
+  video.panel.onFrame = () => {
+    // The picture's size is known from the first frame: fit the pane to it once.
+    if (video.fittedTo !== video.panel.width + 'x' + video.panel.height) {
+      video.fittedTo = video.panel.width + 'x' + video.panel.height;
+      layoutVideo();
+    }
+  };
+  let savedLayout = 'side';
+  try { savedLayout = localStorage.getItem('gimbald.layout') || 'side'; } catch (e) { /* private mode */ }
+
   setInterval(updateStateAge, 500);
+  setLayout(savedLayout);
   publishHook();
   loadInfo().then(connect);
 })();

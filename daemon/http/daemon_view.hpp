@@ -7,9 +7,11 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <string>
 
 #include "config.hpp"
 #include "request_path.hpp"
+#include "video/video_tap.hpp"
 
 namespace gimbald::http {
 
@@ -20,6 +22,8 @@ struct DaemonView {
     std::function<std::uint64_t()> udp_dropped_sources;
     std::function<bool()> vehicle_up;  // false without a vehicle section
     std::function<bool()> mqtt_up;     // false without an mqtt section
+    // Contract section 18: a gimbal's video, null for no such gimbal or one without video.
+    std::function<video::VideoTap*(const std::string& gimbal)> video;
 };
 
 // The HTTP server's own counters (metrics).
@@ -32,6 +36,9 @@ struct HttpStats {
     std::size_t websocket_clients = 0;
     std::uint64_t websocket_dropped_total = 0;          // send queue full
     std::map<unsigned, std::uint64_t> responses_total;  // by HTTP status
+    std::size_t video_viewers = 0;                      // GET /api/video/{gimbal} streams
+    std::uint64_t video_dropped_total = 0;              // viewers that stopped reading
+    std::uint64_t video_backlogs_dropped_total = 0;     // frames skipped to the next key frame
 };
 
 }  // namespace gimbald::http

@@ -70,6 +70,14 @@ Response HttpApi::error(status code, unsigned version, std::string text) {
     return json_response(code, version, {{"error", std::move(text)}});
 }
 
+std::optional<std::string> video_gimbal(std::string_view path) {
+    constexpr std::string_view prefix = "/api/video/";
+    if (!path.starts_with(prefix)) return std::nullopt;
+    auto name = percent_decode(path.substr(prefix.size()));
+    if (!name || name->empty() || name->find('/') != std::string::npos) return std::nullopt;
+    return name;
+}
+
 std::optional<std::string> HttpApi::cross_site_problem(const Request& request) const {
     const auto text = [&](field f) {
         const auto value = request[f];
@@ -78,7 +86,9 @@ std::optional<std::string> HttpApi::cross_site_problem(const Request& request) c
     const auto host = text(field::host);
     auto problem = host_problem(host, options_.site);
     const std::string path(target_path(std::string(request.target())));
-    const bool acts = path == "/api/command" || path == "/api/stream";
+    // The video WebSocket too: a page of another site must not watch the gimbal's video.
+    const bool acts =
+        path == "/api/command" || path == "/api/stream" || video_gimbal(path).has_value();
     if (!problem && acts) problem = origin_problem(text(field::origin), host);
     return problem;
 }
@@ -115,6 +125,15 @@ Response HttpApi::handle(const Request& request, const std::string& source) {
         return json_response(status::ok, version, {{"gimbals", std::move(gimbals)}});
     }
     if (path == "/api/console") return json_response(status::ok, version, console_info());
+    if (const auto gimbal = video_gimbal(path)) {
+        if (!read_only(method)) return method_not_allowed(version, "GET, HEAD");
+        if (!daemon_.video || !daemon_.video(*gimbal))
+            return error(status::not_found, version,
+                         "no gimbal '" + *gimbal + "' with a video section");
+        return error(
+            status::upgrade_required, version,
+            "/api/video/" + *gimbal + " is a WebSocket: send a GET with Upgrade: websocket");
+    }
     if (path == "/api/stream")
         return error(status::upgrade_required, version,
                      "/api/stream is a WebSocket: send a GET with Upgrade: websocket");
@@ -166,8 +185,10 @@ Response HttpApi::static_file(const Request& request) {
 json HttpApi::console_info() const {
     json gimbals = json::array();
     for (auto* session : daemon_.path->sessions())
-        gimbals.push_back(
-            {{"name", session->name()}, {"protocol", std::string(session->protocol())}});
+        gimbals.push_back({{"name", session->name()},
+                           {"protocol", std::string(session->protocol())},
+                           // Contract section 18: GET /api/video/{name} serves its video.
+                           {"video", daemon_.video && daemon_.video(session->name()) != nullptr}});
     const auto& config = *daemon_.config;
     return {{"version", GIMBALD_VERSION},
             {"gimbals", std::move(gimbals)},

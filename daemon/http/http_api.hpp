@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include "command_metrics.hpp"
 #include "daemon_view.hpp"
@@ -23,6 +24,9 @@ struct ApiOptions {
     std::optional<std::string> tiles_url;
     SiteRules site;  // Host and Origin checks (site_check.hpp)
 };
+
+// The gimbal named by a /api/video/{gimbal} path (percent-decoded), else nullopt.
+std::optional<std::string> video_gimbal(std::string_view path);
 
 class HttpApi {
   public:

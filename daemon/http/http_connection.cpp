@@ -15,6 +15,7 @@
 #include "http_server.hpp"
 #include "logging.hpp"
 #include "static_files.hpp"
+#include "video_client.hpp"
 #include "ws_client.hpp"
 
 namespace gimbald::http {
@@ -174,6 +175,17 @@ void HttpConnection::on_read(const boost::system::error_code& ec, std::size_t) {
         // The stream continues as a WebSocket; this connection object ends here.
         stream_.expires_never();
         std::make_shared<WsClient>(std::move(stream_), server_.hub(), address_, std::move(slot_))
+            ->start(std::move(request));
+        closed_ = true;
+        return;
+    }
+    if (const auto gimbal = video_gimbal(target_path(target));
+        gimbal && beast::websocket::is_upgrade(request) && server_.video().tap(*gimbal)) {
+        // Contract section 18: the gimbal's video; an unknown gimbal or one without video
+        // is answered 404 by HttpApi below.
+        stream_.expires_never();
+        std::make_shared<VideoClient>(std::move(stream_), server_.video(), *gimbal, address_,
+                                      std::move(slot_))
             ->start(std::move(request));
         closed_ = true;
         return;

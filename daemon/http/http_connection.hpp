@@ -1,6 +1,7 @@
 // One HTTP/1.1 connection: read a request (bounded header and body; the idle deadline until
 // its first byte, then 10 s for the header), answer it through HttpApi, keep the connection alive
-// when the client asks, hand a WebSocket upgrade of /api/stream to a WsClient. Every error ends in
+// when the client asks, hand a WebSocket upgrade of /api/stream to a WsClient and one of
+// /api/video/{gimbal} to a VideoClient. Every error ends in
 // fail(); a request the parser refuses gets its status (400, 413, 431) and the connection closes.
 #pragma once
 

@@ -28,6 +28,7 @@ HttpServer::HttpServer(asio::io_context& io, HttpServerOptions options, DaemonVi
       options_(std::move(options)),
       api_(daemon, options_.api, stats_),
       hub_(io, *daemon.path, stats_, options_.ws_queue_max, options_.idle_timeout_s),
+      video_(daemon.video, stats_, options_.video),
       acceptor_(io),
       slots_(options_.max_connections_per_client),
       refused_(log::Level::warn, "dropped_source",
@@ -58,6 +59,7 @@ void HttpServer::stop() {
     acceptor_.close(ignored);
     for (auto* c : std::set<HttpConnection*>(connections_)) c->close();
     hub_.stop();
+    video_.stop();
 }
 
 void HttpServer::add(HttpConnection* c) {
@@ -96,7 +98,7 @@ void HttpServer::on_accept(const boost::system::error_code& ec, tcp::socket sock
         socket.close(peer_ec);
         return do_accept();
     }
-    if (connections_.size() + hub_.clients() >= options_.max_connections) {
+    if (connections_.size() + hub_.clients() + video_.clients() >= options_.max_connections) {
         ++stats_.over_capacity_total;
         over_capacity_.hit("HTTP connection closed: http.max_connections are open",
                            {{"src", http_source(peer)}, {"max", options_.max_connections}});

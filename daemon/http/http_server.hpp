@@ -18,6 +18,7 @@
 #include "logging.hpp"
 #include "state/event.hpp"
 #include "stream_hub.hpp"
+#include "video_feeds.hpp"
 
 namespace gimbald::http {
 
@@ -30,6 +31,7 @@ struct HttpServerOptions {
     std::size_t max_connections_per_client = 16;  // HTTP and WebSocket together
     double idle_timeout_s = 30;
     std::size_t ws_queue_max = 64;
+    VideoFeedOptions video;
     ApiOptions api;
     std::function<bool(const boost::asio::ip::address&)> allowed;
 };
@@ -52,6 +54,7 @@ class HttpServer {
     // For HttpConnection.
     HttpApi& api() { return api_; }
     StreamHub& hub() { return hub_; }
+    VideoFeeds& video() { return video_; }
     HttpStats& stats() { return stats_; }
     double idle_timeout_s() const { return options_.idle_timeout_s; }
     void add(HttpConnection* c);
@@ -70,6 +73,7 @@ class HttpServer {
     HttpStats stats_;
     HttpApi api_;
     StreamHub hub_;
+    VideoFeeds video_;
     boost::asio::ip::tcp::acceptor acceptor_;
     std::set<HttpConnection*> connections_;
     ClientSlots slots_;

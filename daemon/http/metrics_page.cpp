@@ -114,7 +114,8 @@ std::string render_metrics(const DaemonView& daemon, const CommandMetrics& comma
     e.sample({}, daemon.mqtt_up && daemon.mqtt_up() ? 1 : 0);
 
     e.family("gimbald_http_connections", Type::gauge, "Open HTTP and WebSocket connections.");
-    e.sample({}, static_cast<double>(http.open_connections + http.websocket_clients));
+    e.sample({}, static_cast<double>(http.open_connections + http.websocket_clients +
+                                     http.video_viewers));
     e.family("gimbald_http_connections_total", Type::counter, "HTTP connections accepted.");
     e.sample({}, static_cast<double>(http.connections_total));
     e.family("gimbald_http_connections_rejected_total", Type::counter,
@@ -132,6 +133,14 @@ std::string render_metrics(const DaemonView& daemon, const CommandMetrics& comma
     e.family("gimbald_websocket_dropped_total", Type::counter,
              "WebSocket clients dropped because their send queue was full.");
     e.sample({}, static_cast<double>(http.websocket_dropped_total));
+    e.family("gimbald_video_viewers", Type::gauge, "Open video WebSockets (/api/video/{gimbal}).");
+    e.sample({}, static_cast<double>(http.video_viewers));
+    e.family("gimbald_video_viewers_dropped_total", Type::counter,
+             "Video viewers dropped because they stopped reading.");
+    e.sample({}, static_cast<double>(http.video_dropped_total));
+    e.family("gimbald_video_backlogs_dropped_total", Type::counter,
+             "Times a video viewer fell behind and skipped to the next key frame.");
+    e.sample({}, static_cast<double>(http.video_backlogs_dropped_total));
     return e.text();
 }
 

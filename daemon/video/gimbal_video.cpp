@@ -120,6 +120,21 @@ void GimbalVideo::on_access_unit(const gv::AccessUnit& au) {
     clock_.video(au.dts ? au.dts : au.pts);
     for (auto& out : outputs_) out->write_video(au);
     if (record_mux_) record_mux_->write_video(au);
+    if (viewers_.empty()) return;
+    // A copy: a viewer may add or remove viewers while it runs.
+    const auto viewers = viewers_;
+    for (const auto& [id, viewer] : viewers)
+        if (viewers_.contains(id)) viewer(au);
+}
+
+std::uint64_t GimbalVideo::add_viewer(Viewer viewer) {
+    const auto id = next_viewer_++;
+    viewers_.emplace(id, std::move(viewer));
+    return id;
+}
+
+void GimbalVideo::remove_viewer(std::uint64_t id) {
+    viewers_.erase(id);
 }
 
 void GimbalVideo::on_klv(const gv::KlvUnit& unit) {

@@ -5,10 +5,12 @@
 // (lib/klv_state) - and, when recording, the recorder (the input's TS packets inbound, the
 // generated sets outbound). STATE `video` and the `klv` command read it. Nothing is decoded
 // or re-encoded; no thread of its own (an RTSP input has its reader thread, which only posts).
+// The console's video WebSocket taps the access units (VideoTap).
 #pragma once
 
 #include <chrono>
 #include <functional>
+#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -30,6 +32,7 @@
 #include "video/video_config.hpp"
 #include "video/video_input.hpp"
 #include "video/video_output.hpp"
+#include "video/video_tap.hpp"
 
 namespace gimbald::video {
 
@@ -48,11 +51,11 @@ struct GimbalVideoOptions {
     double klv_stream_fresh_s = 2.0;  // "auto" generates when no stream set came this long
 };
 
-class GimbalVideo {
+class GimbalVideo final : public VideoTap {
   public:
     // Throws std::invalid_argument when a URL does not parse (the configuration checked it).
     GimbalVideo(boost::asio::io_context& io, GimbalVideoOptions options);
-    ~GimbalVideo();
+    ~GimbalVideo() override;
 
     void start();
     void stop();
@@ -64,6 +67,9 @@ class GimbalVideo {
 
     const KlvTrack& klv() const { return track_; }
     std::uint64_t generated_sets() const { return generated_; }
+
+    std::uint64_t add_viewer(Viewer viewer) override;
+    void remove_viewer(std::uint64_t id) override;
 
   private:
     double now_s() const;
@@ -97,6 +103,8 @@ class GimbalVideo {
     std::uint64_t reported_bad_ = 0;
     gimbal::log::RateLimitedLog bad_checksum_log_;
     gimbal::log::RateLimitedLog generate_error_log_;
+    std::map<std::uint64_t, Viewer> viewers_;
+    std::uint64_t next_viewer_ = 1;
 };
 
 }  // namespace gimbald::video
