@@ -383,14 +383,32 @@ SerialLink read_serial(Fields& f) {
     return link;
 }
 
+UdpLink read_udp(Fields& f) {
+    UdpLink link;
+    if (f.string("host", link.host, Presence::required)) {
+        const bool has_space = std::any_of(link.host.begin(), link.host.end(),
+                                           [](char c) { return c <= ' ' || c > '~'; });
+        if (link.host.empty() || link.host.size() > 253 || has_space)
+            f.problem("host", "must be a host name or an IP address");
+    }
+    f.integer("port", link.port, {1, 65535}, Presence::required);
+    if (const json* local = f.find("local_port"); local != nullptr && !local->is_null()) {
+        std::uint16_t port = 0;
+        if (f.integer("local_port", port, {1, 65535})) link.local_port = port;
+    }
+    read_reconnect(f, link.reconnect_min_s, link.reconnect_max_s);
+    return link;
+}
+
 std::optional<Link> read_link(Fields& f) {
     std::string type;
-    if (!f.choice("type", type, {"tcp", "serial", "sim"}, Presence::required)) {
+    if (!f.choice("type", type, {"tcp", "serial", "sim", "udp"}, Presence::required)) {
         f.keep_unknown_keys();  // which keys belong here depends on the type
         return std::nullopt;
     }
     if (type == "tcp") return read_tcp(f);
     if (type == "serial") return read_serial(f);
+    if (type == "udp") return read_udp(f);
     return SimLink{};
 }
 
@@ -1048,7 +1066,7 @@ std::span<const std::uint32_t> standard_baud_rates() {
 }
 
 std::string_view link_type(const Link& link) {
-    static constexpr std::string_view names[] = {"tcp", "serial", "sim"};
+    static constexpr std::string_view names[] = {"tcp", "serial", "sim", "udp"};
     return names[link.index()];
 }
 
@@ -1064,6 +1082,11 @@ std::string describe(const Link& link) {
     }
     if (const auto* serial = std::get_if<SerialLink>(&link)) {
         return fmt::format("{}@{}", serial->device, serial->baud);
+    }
+    if (const auto* udp = std::get_if<UdpLink>(&link)) {
+        if (udp->host.find(':') != std::string::npos)
+            return fmt::format("udp [{}]:{}", udp->host, udp->port);
+        return fmt::format("udp {}:{}", udp->host, udp->port);
     }
     return "sim";
 }
@@ -1280,6 +1303,14 @@ json link_to_json(const Link& link) {
                 {"baud", serial->baud},
                 {"reconnect_min_s", serial->reconnect_min_s},
                 {"reconnect_max_s", serial->reconnect_max_s}};
+    }
+    if (const auto* udp = std::get_if<UdpLink>(&link)) {
+        return {{"type", "udp"},
+                {"host", udp->host},
+                {"port", udp->port},
+                {"local_port", udp->local_port ? json(*udp->local_port) : json(nullptr)},
+                {"reconnect_min_s", udp->reconnect_min_s},
+                {"reconnect_max_s", udp->reconnect_max_s}};
     }
     return {{"type", "sim"}};
 }

@@ -56,8 +56,19 @@ struct SimLink {
     bool operator==(const SimLink&) const = default;
 };
 
-using Link = std::variant<TcpLink, SerialLink, SimLink>;
-std::string_view link_type(const Link& link);  // "tcp", "serial", "sim"
+// Datagrams to host:port from local_port (an ephemeral port when unset); only host's are
+// taken (contract section 19, MAVLink gimbal devices).
+struct UdpLink {
+    std::string host;
+    std::uint16_t port = 0;
+    std::optional<std::uint16_t> local_port;
+    double reconnect_min_s = 0.2;
+    double reconnect_max_s = 5.0;
+    bool operator==(const UdpLink&) const = default;
+};
+
+using Link = std::variant<TcpLink, SerialLink, SimLink, UdpLink>;
+std::string_view link_type(const Link& link);  // "tcp", "serial", "sim", "udp"
 // "192.168.1.20:8747", "[fe80::1]:8747", "discover via 255.255.255.255:8745",
 // "/dev/ttyUSB0@115200", "sim"
 std::string describe(const Link& link);
