@@ -209,6 +209,79 @@ class MavlinkDeviceTest(gt.GimbaldTestCase):
         self.assertGreater(len(errors), 50)
         self.assertLess(p95, 0.5)
 
+    def test_udp_device_state_position_and_stare(self):
+        sim = self.start_sim("--protocol", "mavlink", "--udp", "0", tcp=False, want=("udp",))
+        sim_port = int(sim.endpoints["udp"].rsplit(":", 1)[1])
+        vport = gt.free_port()
+        daemon = self.start_daemon({
+            "gimbals": [{"name": "cam", "protocol": "mavlink",
+                         "link": {"type": "udp", "host": "127.0.0.1", "port": sim_port,
+                                  "local_port": None}}],
+            "vehicle": {"source": {"type": "udp", "bind": "127.0.0.1", "port": vport}},
+        })
+        client = self.client(daemon)
+        aircraft = Aircraft(vport)
+        self.addCleanup(aircraft.close)
+        s = self.wait_state(client, lambda s: s["device"]["vendor"] == "gimbald" and
+                            s["telemetry"] and s["telemetry"]["lat"] is not None,
+                            "device information and telemetry over UDP")
+        self.assertEqual(s["link"]["type"], "udp")
+        self.assertEqual(s["link"]["endpoint"], "127.0.0.1:%d" % sim_port)
+        self.assertFalse(s["stale"])
+
+        start = len(sim.rx())
+        self.assertOk(client.request("position", gimbal="cam", pan=-60, tilt=-20))
+        entry = sim.wait_rx(lambda e: e["kind"] == "gimbal_device_set_attitude", start=start)
+        self.assertIsNotNone(entry)
+        self.assertEqual(entry["src"], "udp")
+        self.assertAlmostEqual(entry["message"]["yaw"], -60, places=3)
+        self.assertAlmostEqual(entry["message"]["pitch"], -20, places=3)
+        self.wait_state(client, lambda s: abs(s["telemetry"]["pan"] + 60) < 0.5, "pan -60")
+
+        self.assertOk(client.request("geopoint", gimbal="cam", lat=POINT[0], lon=POINT[1],
+                                     alt=POINT[2], alt_ref="msl"))
+        begin = time.monotonic()
+        errors = []
+        while time.monotonic() - begin < 8:
+            s = self.state(client)
+            if time.monotonic() - begin > 2:
+                errors.append(los_error_deg(s))
+            time.sleep(0.05)
+        errors.sort()
+        p95 = errors[int(len(errors) * 0.95)]
+        print("stare over UDP: %d samples, p95 %.3f deg" % (len(errors), p95))
+        self.assertLess(p95, 0.5)
+
+    def test_udp_link_takes_frames_only_from_its_host(self):
+        # The device is at 127.0.0.2: datagrams from 127.0.0.1 (a stranger's) are dropped.
+        stranger = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
+        self.addCleanup(stranger.close)
+        device = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
+        self.addCleanup(device.close)
+        try:
+            device.bind(("127.0.0.2", 0))
+        except OSError:
+            self.skipTest("127.0.0.2 is not a local address here")
+        local = gt.free_port()
+        daemon = self.start_daemon({
+            "gimbals": [{"name": "cam", "protocol": "mavlink",
+                         "link": {"type": "udp", "host": "127.0.0.2",
+                                  "port": device.getsockname()[1], "local_port": local}}]})
+        client = self.client(daemon)
+        device.settimeout(5)
+        data, sender = device.recvfrom(2048)  # the REQUEST_MESSAGE gimbald sends at once
+        self.assertEqual(sender[1], local)
+        self.assertEqual(data[0], 0xFD)
+        status = struct.pack("<I4ffffIHBB", 0, 1, 0, 0, 0, 0, 0, 0, 0, 32, 0, 0)
+        CRC_EXTRA[285] = 137
+        frame = mavlink_v2(285, status, sysid=1, compid=154)
+        stranger.sendto(frame, ("127.0.0.1", local))
+        time.sleep(0.5)
+        self.assertIsNone(self.state(client)["device"]["attitude"])
+        device.sendto(frame, ("127.0.0.1", local))
+        self.wait_state(client, lambda s: s["device"]["attitude"] is not None,
+                        "the attitude from the device's host")
+
     def test_pty_device_goes_stale_and_recovers(self):
         sim, daemon, vport = self.start_pty(stale_after_s=0.5)
         client = self.client(daemon)
