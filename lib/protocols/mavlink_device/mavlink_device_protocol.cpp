@@ -23,13 +23,33 @@ MavlinkDeviceProtocol::MavlinkDeviceProtocol(const MavlinkDeviceOptions& options
     : options_(options), state_(options), sender_(options.system_id, options.component_id) {}
 
 void MavlinkDeviceProtocol::receive(std::span<const std::uint8_t> bytes, double now_s,
-                                    std::vector<state::Event>&, std::vector<session::Bytes>&) {
+                                    std::vector<state::Event>&,
+                                    std::vector<session::Bytes>& replies) {
     framer_.push(bytes, [&](const mavlink::Message& m) {
         const bool had_information = state_.has_information();
         state_.apply(m, now_s);
         if (!had_information && state_.has_information())
             steering_.set_earth_frame(state_.earth_frame_supported());
     });
+    // Without a vehicle feed there are no steering ticks: the device's own reports pace the
+    // heartbeat and the information request then.
+    if (state_.device_system()) housekeeping(now_s, replies);
+}
+
+void MavlinkDeviceProtocol::housekeeping(double now_s, std::vector<session::Bytes>& out) {
+    if (!last_heartbeat_s_ || now_s - *last_heartbeat_s_ >= heartbeat_period_s) {
+        mavlink::Heartbeat hb;
+        hb.type = mav_type_onboard_controller;
+        hb.autopilot = mavlink::mav_autopilot_invalid;
+        hb.system_status = mav_state_active;
+        out.push_back(sender_.frame(hb));
+        last_heartbeat_s_ = now_s;
+    }
+    if (!state_.has_information() &&
+        (!last_request_s_ || now_s - *last_request_s_ >= request_period_s)) {
+        out.push_back(request_information());
+        last_request_s_ = now_s;
+    }
 }
 
 void MavlinkDeviceProtocol::tick(double now_s, std::vector<state::Event>& events) {
@@ -48,7 +68,7 @@ session::Bytes MavlinkDeviceProtocol::request_information() {
 
 std::vector<session::Bytes> MavlinkDeviceProtocol::on_connect() {
     framer_.reset();
-    last_request_s_.reset();
+    last_request_s_ = std::nullopt;
     return {request_information()};
 }
 
@@ -71,19 +91,7 @@ std::optional<mavlink::GimbalDeviceSetAttitude> MavlinkDeviceProtocol::set_attit
 void MavlinkDeviceProtocol::steer(const vehicle::VehicleState& vehicle, double vehicle_now_s,
                                   double now_s, std::vector<session::Bytes>& out) {
     state_.set_vehicle(vehicle_fix(vehicle, vehicle_now_s));
-    if (!last_heartbeat_s_ || now_s - *last_heartbeat_s_ >= heartbeat_period_s) {
-        mavlink::Heartbeat hb;
-        hb.type = mav_type_onboard_controller;
-        hb.autopilot = mavlink::mav_autopilot_invalid;
-        hb.system_status = mav_state_active;
-        out.push_back(sender_.frame(hb));
-        last_heartbeat_s_ = now_s;
-    }
-    if (!state_.has_information() &&
-        (!last_request_s_ || now_s - *last_request_s_ >= request_period_s)) {
-        out.push_back(request_information());
-        last_request_s_ = now_s;
-    }
+    housekeeping(now_s, out);
     if (const auto m = set_attitude(now_s)) out.push_back(sender_.frame(*m));
 }
 

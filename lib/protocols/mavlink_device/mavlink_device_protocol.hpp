@@ -2,7 +2,7 @@
 // device's gimbal manager. It asks for GIMBAL_DEVICE_INFORMATION, reads
 // GIMBAL_DEVICE_ATTITUDE_STATUS, and steers with GIMBAL_DEVICE_SET_ATTITUDE, recomputed at
 // every vehicle-feed tick (steer) from what it holds the device to; a heartbeat goes out once
-// a second from the same ticks.
+// a second from the same ticks, or with the device's reports when there is no vehicle feed.
 #pragma once
 
 #include "mavlink/framer.hpp"
@@ -38,6 +38,8 @@ class MavlinkDeviceProtocol final : public session::Protocol {
 
   private:
     session::Bytes request_information();
+    // The heartbeat (1 Hz) and, until it arrives, the information request (every 2 s).
+    void housekeeping(double now_s, std::vector<session::Bytes>& out);
     std::optional<mavlink::GimbalDeviceSetAttitude> set_attitude(double now_s);
 
     MavlinkDeviceOptions options_;

@@ -154,6 +154,28 @@ TEST_CASE("geopoint and path need the vehicle's fix; refused commands change not
         CHECK_FALSE(std::holds_alternative<mavlink::GimbalDeviceSetAttitude>(msg.payload));
 }
 
+TEST_CASE("without a vehicle feed the device's reports pace the heartbeat and the request") {
+    MavlinkDeviceProtocol p(MavlinkDeviceOptions{});
+    std::vector<state::Event> events;
+    const auto replies_at = [&](double t) {
+        std::vector<session::Bytes> replies;
+        p.receive(device_frame(status(0, 0, 0, 32)), t, events, replies);
+        return decode(replies);
+    };
+    auto r = replies_at(1.0);
+    REQUIRE(r.size() == 2);
+    CHECK(std::holds_alternative<mavlink::Heartbeat>(r[0].payload));
+    const auto& request = std::get<mavlink::CommandLong>(r[1].payload);
+    CHECK(request.command == 512);
+    CHECK(request.param[0] == 283.0f);
+    CHECK(request.target_system == 7);  // the device as heard
+    CHECK(replies_at(1.5).empty());
+    r = replies_at(2.1);
+    REQUIRE(r.size() == 1);
+    CHECK(std::holds_alternative<mavlink::Heartbeat>(r[0].payload));
+    CHECK(replies_at(3.1).size() == 2);  // a second heartbeat, the request again after 2 s
+}
+
 TEST_CASE("STATE device: information and attitude, yaw frames per common.xml") {
     MavlinkDeviceProtocol p(MavlinkDeviceOptions{});
     auto s0 = p.snapshot(0);
