@@ -13,6 +13,7 @@
 #include "link/serial_link.hpp"
 #include "link/sim_link.hpp"
 #include "link/tcp_link.hpp"
+#include "link/udp_link.hpp"
 #include "logging.hpp"
 #include "notify.hpp"
 #include "protocols/registry.hpp"
@@ -328,6 +329,15 @@ std::unique_ptr<Link> App::make_link(const cfg::GimbalConfig& g) {
         o.reconnect_min_s = serial->reconnect_min_s;
         o.reconnect_max_s = serial->reconnect_max_s;
         return std::make_unique<SerialLink>(io_, o);
+    }
+    if (const auto* udp = std::get_if<cfg::UdpLink>(&g.link)) {
+        UdpLinkOptions o;
+        o.host = udp->host;
+        o.port = udp->port;
+        o.local_port = udp->local_port;
+        o.reconnect_min_s = udp->reconnect_min_s;
+        o.reconnect_max_s = udp->reconnect_max_s;
+        return std::make_unique<UdpLink>(io_, o);
     }
     // The models read no clock: start their time at now so reported times are current.
     protocols::SimScenario scenario;

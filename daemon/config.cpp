@@ -383,14 +383,32 @@ SerialLink read_serial(Fields& f) {
     return link;
 }
 
+UdpLink read_udp(Fields& f) {
+    UdpLink link;
+    if (f.string("host", link.host, Presence::required)) {
+        const bool has_space = std::any_of(link.host.begin(), link.host.end(),
+                                           [](char c) { return c <= ' ' || c > '~'; });
+        if (link.host.empty() || link.host.size() > 253 || has_space)
+            f.problem("host", "must be a host name or an IP address");
+    }
+    f.integer("port", link.port, {1, 65535}, Presence::required);
+    if (const json* local = f.find("local_port"); local != nullptr && !local->is_null()) {
+        std::uint16_t port = 0;
+        if (f.integer("local_port", port, {1, 65535})) link.local_port = port;
+    }
+    read_reconnect(f, link.reconnect_min_s, link.reconnect_max_s);
+    return link;
+}
+
 std::optional<Link> read_link(Fields& f) {
     std::string type;
-    if (!f.choice("type", type, {"tcp", "serial", "sim"}, Presence::required)) {
+    if (!f.choice("type", type, {"tcp", "serial", "sim", "udp"}, Presence::required)) {
         f.keep_unknown_keys();  // which keys belong here depends on the type
         return std::nullopt;
     }
     if (type == "tcp") return read_tcp(f);
     if (type == "serial") return read_serial(f);
+    if (type == "udp") return read_udp(f);
     return SimLink{};
 }
 
@@ -413,20 +431,39 @@ ViewproOptions read_viewpro(Fields& f) {
     return options;
 }
 
+MavlinkDeviceConfig read_mavlink_device(Fields& f) {
+    MavlinkDeviceConfig m;
+    f.integer("system_id", m.system_id, {1, 255});
+    f.integer("component_id", m.component_id, {1, 255});
+    f.integer("device_component_id", m.device_component_id, {1, 255});
+    f.number("hfov_deg", m.hfov_deg, {0.1, 179.9});
+    f.number("vfov_deg", m.vfov_deg, {0.1, 179.9});
+    f.number("geoid_undulation_m", m.geoid_undulation_m, {-200, 200});
+    f.number("ground_alt_m", m.ground_alt_m, {-2000, 10000});
+    return m;
+}
+
 void read_feed(Fields& f, GimbalConfig& gimbal) {
-    if (gimbal.protocol == Protocol::orion) {
-        if (auto feed = f.object("feed")) {
-            feed->boolean("autopilot", gimbal.orion_feed.autopilot);
-            feed->boolean("gps", gimbal.orion_feed.gps);
-            feed->finish();
+    switch (gimbal.protocol) {
+        case Protocol::orion:
+            if (auto feed = f.object("feed")) {
+                feed->boolean("autopilot", gimbal.orion_feed.autopilot);
+                feed->boolean("gps", gimbal.orion_feed.gps);
+                feed->finish();
+            }
+            return;
+        case Protocol::viewpro: {
+            std::string feed;
+            if (f.choice("feed", feed, {"in2", "in1", "mavlink"})) {
+                gimbal.viewpro_feed = feed == "in2"   ? ViewproFeed::in2
+                                      : feed == "in1" ? ViewproFeed::in1
+                                                      : ViewproFeed::mavlink;
+            }
+            return;
         }
-        return;
-    }
-    std::string feed;
-    if (f.choice("feed", feed, {"in2", "in1", "mavlink"})) {
-        gimbal.viewpro_feed = feed == "in2"   ? ViewproFeed::in2
-                              : feed == "in1" ? ViewproFeed::in1
-                                              : ViewproFeed::mavlink;
+        case Protocol::mavlink:
+            // AUTOPILOT_STATE_FOR_GIMBAL_DEVICE is the one feed a device takes: no `feed`.
+            return;
     }
 }
 
@@ -473,7 +510,7 @@ GimbalConfig read_gimbal(Fields& f) {
     }
     std::string protocol;
     const bool known_protocol =
-        f.choice("protocol", protocol, {"orion", "viewpro"}, Presence::required);
+        f.choice("protocol", protocol, {"orion", "viewpro", "mavlink"}, Presence::required);
     if (known_protocol) gimbal.protocol = *parse_protocol(protocol);
 
     if (auto link = f.object("link", Presence::required)) {
@@ -492,6 +529,14 @@ GimbalConfig read_gimbal(Fields& f) {
         }
     } else if (f.find("viewpro") != nullptr) {
         f.problem("viewpro", "only for protocol \"viewpro\"");
+    }
+    if (gimbal.protocol == Protocol::mavlink) {
+        if (auto mavlink = f.object("mavlink")) {
+            gimbal.mavlink = read_mavlink_device(*mavlink);
+            mavlink->finish();
+        }
+    } else if (f.find("mavlink") != nullptr) {
+        f.problem("mavlink", "only for protocol \"mavlink\"");
     }
     read_feed(f, gimbal);
     read_video(f, gimbal);
@@ -1021,7 +1066,7 @@ std::span<const std::uint32_t> standard_baud_rates() {
 }
 
 std::string_view link_type(const Link& link) {
-    static constexpr std::string_view names[] = {"tcp", "serial", "sim"};
+    static constexpr std::string_view names[] = {"tcp", "serial", "sim", "udp"};
     return names[link.index()];
 }
 
@@ -1037,6 +1082,11 @@ std::string describe(const Link& link) {
     }
     if (const auto* serial = std::get_if<SerialLink>(&link)) {
         return fmt::format("{}@{}", serial->device, serial->baud);
+    }
+    if (const auto* udp = std::get_if<UdpLink>(&link)) {
+        if (udp->host.find(':') != std::string::npos)
+            return fmt::format("udp [{}]:{}", udp->host, udp->port);
+        return fmt::format("udp {}:{}", udp->host, udp->port);
     }
     return "sim";
 }
@@ -1254,6 +1304,14 @@ json link_to_json(const Link& link) {
                 {"reconnect_min_s", serial->reconnect_min_s},
                 {"reconnect_max_s", serial->reconnect_max_s}};
     }
+    if (const auto* udp = std::get_if<UdpLink>(&link)) {
+        return {{"type", "udp"},
+                {"host", udp->host},
+                {"port", udp->port},
+                {"local_port", udp->local_port ? json(*udp->local_port) : json(nullptr)},
+                {"reconnect_min_s", udp->reconnect_min_s},
+                {"reconnect_max_s", udp->reconnect_max_s}};
+    }
     return {{"type", "sim"}};
 }
 
@@ -1261,18 +1319,34 @@ json gimbal_to_json(const GimbalConfig& gimbal) {
     json out = {{"name", gimbal.name},
                 {"protocol", to_string(gimbal.protocol)},
                 {"link", link_to_json(gimbal.link)}};
-    if (gimbal.protocol == Protocol::orion) {
-        out["feed"] = {{"autopilot", gimbal.orion_feed.autopilot}, {"gps", gimbal.orion_feed.gps}};
-    } else {
-        static constexpr std::string_view feeds[] = {"in2", "in1", "mavlink"};
-        static constexpr std::string_view formats[] = {"out1", "out2", "out3", "out4"};
-        const auto& o = gimbal.viewpro.output;
-        out["feed"] = feeds[static_cast<std::size_t>(gimbal.viewpro_feed)];
-        out["viewpro"] = {{"output",
-                           {{"osd", o.osd == ViewproOsd::target ? "target" : "uav"},
-                            {"serial", o.serial},
-                            {"network", o.network},
-                            {"format", formats[static_cast<std::size_t>(o.format)]}}}};
+    switch (gimbal.protocol) {
+        case Protocol::orion:
+            out["feed"] = {{"autopilot", gimbal.orion_feed.autopilot},
+                           {"gps", gimbal.orion_feed.gps}};
+            break;
+        case Protocol::viewpro: {
+            static constexpr std::string_view feeds[] = {"in2", "in1", "mavlink"};
+            static constexpr std::string_view formats[] = {"out1", "out2", "out3", "out4"};
+            const auto& o = gimbal.viewpro.output;
+            out["feed"] = feeds[static_cast<std::size_t>(gimbal.viewpro_feed)];
+            out["viewpro"] = {{"output",
+                               {{"osd", o.osd == ViewproOsd::target ? "target" : "uav"},
+                                {"serial", o.serial},
+                                {"network", o.network},
+                                {"format", formats[static_cast<std::size_t>(o.format)]}}}};
+            break;
+        }
+        case Protocol::mavlink: {
+            const auto& m = gimbal.mavlink;
+            out["mavlink"] = {{"system_id", m.system_id},
+                              {"component_id", m.component_id},
+                              {"device_component_id", m.device_component_id},
+                              {"hfov_deg", m.hfov_deg},
+                              {"vfov_deg", m.vfov_deg},
+                              {"geoid_undulation_m", m.geoid_undulation_m},
+                              {"ground_alt_m", m.ground_alt_m}};
+            break;
+        }
     }
     if (gimbal.video) out["video"] = gimbald::video::to_json(*gimbal.video);
     return out;

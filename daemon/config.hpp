@@ -56,8 +56,19 @@ struct SimLink {
     bool operator==(const SimLink&) const = default;
 };
 
-using Link = std::variant<TcpLink, SerialLink, SimLink>;
-std::string_view link_type(const Link& link);  // "tcp", "serial", "sim"
+// Datagrams to host:port from local_port (an ephemeral port when unset); only host's are
+// taken (contract section 19, MAVLink gimbal devices).
+struct UdpLink {
+    std::string host;
+    std::uint16_t port = 0;
+    std::optional<std::uint16_t> local_port;
+    double reconnect_min_s = 0.2;
+    double reconnect_max_s = 5.0;
+    bool operator==(const UdpLink&) const = default;
+};
+
+using Link = std::variant<TcpLink, SerialLink, SimLink, UdpLink>;
+std::string_view link_type(const Link& link);  // "tcp", "serial", "sim", "udp"
 // "192.168.1.20:8747", "[fe80::1]:8747", "discover via 255.255.255.255:8745",
 // "/dev/ttyUSB0@115200", "sim"
 std::string describe(const Link& link);
@@ -89,11 +100,26 @@ struct OrionFeed {
 // How the vehicle feed reaches a Viewpro: which input frame carries it.
 enum class ViewproFeed { in2, in1, mavlink };
 
+// `mavlink` of a MAVLink gimbal device (contract section 19): gimbald's ids on its link, the
+// device's component, and what the device does not report (fields of view, the geoid and
+// flat ground heights).
+struct MavlinkDeviceConfig {
+    std::uint8_t system_id = 1;
+    std::uint8_t component_id = 1;
+    std::uint8_t device_component_id = 154;
+    double hfov_deg = 60;
+    double vfov_deg = 34;
+    double geoid_undulation_m = 0;
+    double ground_alt_m = 0;
+    bool operator==(const MavlinkDeviceConfig&) const = default;
+};
+
 struct GimbalConfig {
     std::string name;
     Protocol protocol = Protocol::orion;
     Link link = SimLink{};
     ViewproOptions viewpro;                       // Viewpro only
+    MavlinkDeviceConfig mavlink;                  // MAVLink gimbal devices only
     OrionFeed orion_feed;                         // `feed` of an Orion gimbal
     ViewproFeed viewpro_feed = ViewproFeed::in2;  // `feed` of a Viewpro gimbal
     // `video` (contract section 17, daemon/video/video_config.hpp); off unless set.

@@ -152,6 +152,13 @@ void GimbalSession::schedule_tick() {
     });
 }
 
+void GimbalSession::steer(const gimbal::vehicle::VehicleState& vehicle, double vehicle_now_s) {
+    std::vector<gimbal::session::Bytes> out;
+    protocol_->steer(vehicle, vehicle_now_s, now_s(), out);
+    if (!link_->connected()) return;
+    for (auto& bytes : out) link_->send(std::move(bytes));
+}
+
 GimbalSession::Outcome GimbalSession::execute(std::string_view cmd, const nlohmann::json& request) {
     Outcome out;
     if (const auto local = commands_.find(std::string(cmd)); local != commands_.end()) {

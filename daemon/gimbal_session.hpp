@@ -66,6 +66,9 @@ class GimbalSession {
     // The vehicle feed: writes one feed packet when the link is up (false otherwise), beside
     // the commands on the same ordered queue.
     bool send_feed(std::vector<std::uint8_t> bytes);
+    // The vehicle feed's tick: what the protocol sends from the vehicle's state itself
+    // (session::Protocol::steer), written like the feed when the link is up.
+    void steer(const gimbal::vehicle::VehicleState& vehicle, double vehicle_now_s);
     // Fills STATE's top-level `vehicle` key.
     void set_vehicle_snapshot(std::function<nlohmann::json()> vehicle_snapshot) {
         vehicle_snapshot_ = std::move(vehicle_snapshot);

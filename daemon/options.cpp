@@ -67,8 +67,9 @@ std::string examples() {
            " -c my.json\n"
            "      Simulated gimbals " +
            joined(", ", "\"sim-", "\"", false) +
-           " with the command,\n"
-           "      laser, log ... settings of my.json (its gimbals are ignored).\n\n";
+           ",\n"
+           "      with the command, laser, log ... settings of my.json (its gimbals are\n"
+           "      ignored).\n\n";
 }
 
 constexpr const char* footer = R"(EXIT STATUS

@@ -1239,8 +1239,34 @@ local mavlink_messages = {
     [280] = { "GIMBAL_MANAGER_INFORMATION", 70 }, [281] = { "GIMBAL_MANAGER_STATUS", 48 },
     [282] = { "GIMBAL_MANAGER_SET_ATTITUDE", 123 }, [283] = { "GIMBAL_DEVICE_INFORMATION", 74 },
     [284] = { "GIMBAL_DEVICE_SET_ATTITUDE", 99 }, [285] = { "GIMBAL_DEVICE_ATTITUDE_STATUS", 137 },
-    [287] = { "GIMBAL_MANAGER_SET_PITCHYAW", 1 },
+    [286] = { "AUTOPILOT_STATE_FOR_GIMBAL_DEVICE", 210 }, [287] = { "GIMBAL_MANAGER_SET_PITCHYAW", 1 },
 }
+
+-- The payload fields of the gimbal device messages (common.xml), in wire order (MAVLink 2:
+-- base fields by type size, then extensions): { name, type, count }. A v2 payload may be
+-- truncated; the fields are read from it zero-extended.
+local mavlink_payload_fields = {
+    [283] = { { "uid", "u64" }, { "time_boot_ms", "u32" }, { "firmware_version", "u32" },
+              { "hardware_version", "u32" }, { "roll_min", "f32" }, { "roll_max", "f32" },
+              { "pitch_min", "f32" }, { "pitch_max", "f32" }, { "yaw_min", "f32" },
+              { "yaw_max", "f32" }, { "cap_flags", "u16" }, { "custom_cap_flags", "u16" },
+              { "vendor_name", "str", 32 }, { "model_name", "str", 32 },
+              { "custom_name", "str", 32 }, { "gimbal_device_id", "u8" }, { "cap_flags2", "u32" } },
+    [284] = { { "q", "f32", 4 }, { "angular_velocity_x", "f32" }, { "angular_velocity_y", "f32" },
+              { "angular_velocity_z", "f32" }, { "flags", "u16" }, { "target_system", "u8" },
+              { "target_component", "u8" } },
+    [285] = { { "time_boot_ms", "u32" }, { "q", "f32", 4 }, { "angular_velocity_x", "f32" },
+              { "angular_velocity_y", "f32" }, { "angular_velocity_z", "f32" },
+              { "failure_flags", "u32" }, { "flags", "u16" }, { "target_system", "u8" },
+              { "target_component", "u8" }, { "delta_yaw", "f32" },
+              { "delta_yaw_velocity", "f32" }, { "gimbal_device_id", "u8" } },
+    [286] = { { "time_boot_us", "u64" }, { "q", "f32", 4 }, { "q_estimated_delay_us", "u32" },
+              { "vx", "f32" }, { "vy", "f32" }, { "vz", "f32" }, { "v_estimated_delay_us", "u32" },
+              { "feed_forward_angular_velocity_z", "f32" }, { "estimator_status", "u16" },
+              { "target_system", "u8" }, { "target_component", "u8" }, { "landed_state", "u8" },
+              { "angular_velocity_z", "f32" } },
+}
+local mavlink_type_size = { u64 = 8, u32 = 4, f32 = 4, u16 = 2, u8 = 1, str = 1 }
 
 local mavlink_proto = Proto("mavlink", "MAVLink (gimbald)")
 local mf = {
@@ -1259,6 +1285,32 @@ local mf = {
     crc_status = ProtoField.string("mavlink.crc.status", "CRC status"),
     signature = ProtoField.bytes("mavlink.signature", "Signature"),
 }
+-- One ProtoField per payload field name of mavlink_payload_fields: mavlink.<name>.
+local mavlink_field_of = {}
+for _, fields in pairs(mavlink_payload_fields) do
+    for _, f in ipairs(fields) do
+        local name, kind = f[1], f[2]
+        if not mavlink_field_of[name] then
+            local abbr = "mavlink." .. name
+            local field
+            if kind == "f32" then
+                field = ProtoField.float(abbr, name)
+            elseif kind == "u64" then
+                field = ProtoField.uint64(abbr, name)
+            elseif kind == "str" then
+                field = ProtoField.string(abbr, name)
+            elseif kind == "u32" then
+                field = ProtoField.uint32(abbr, name)
+            elseif kind == "u16" then
+                field = ProtoField.uint16(abbr, name, base.DEC)
+            else
+                field = ProtoField.uint8(abbr, name)
+            end
+            mavlink_field_of[name] = field
+            mf["payload_" .. name] = field
+        end
+    end
+end
 local mavlink_expert = {
     bad_crc = ProtoExpert.new("mavlink.crc.bad", "Bad MAVLink CRC", expert.group.CHECKSUM,
                               expert.severity.WARN),
@@ -1316,6 +1368,34 @@ function mavlink_proto.dissector(tvb, pinfo, tree)
         return tvb:len()
     end
     if len > 0 then t:add(mf.payload, tvb(header, len)) end
+    local layout = mavlink_payload_fields[msgid]
+    if layout and len > 0 then
+        -- Zero-extended to the full length: a truncated v2 payload's missing bytes are 0.
+        local size = 0
+        for _, f in ipairs(layout) do size = size + mavlink_type_size[f[2]] * (f[3] or 1) end
+        local bytes = tvb(header, len):bytes()
+        if len < size then
+            bytes:set_size(size)
+            for i = len, size - 1 do bytes:set_index(i, 0) end
+        end
+        local ptvb = len < size and bytes:tvb("MAVLink payload (zero-extended)") or tvb(header, len):tvb()
+        local pt = t:add(mavlink_proto, ptvb(), "Payload fields")
+        local at = 0
+        for _, f in ipairs(layout) do
+            local name, kind, count = f[1], f[2], f[3] or 1
+            local width = mavlink_type_size[kind]
+            if kind == "str" then
+                pt:add(mavlink_field_of[name], ptvb(at, count), ptvb(at, count):stringz())
+                at = at + count
+            else
+                for _ = 1, count do
+                    if at + width > ptvb:len() then break end
+                    pt:add_le(mavlink_field_of[name], ptvb(at, width))
+                    at = at + width
+                end
+            end
+        end
+    end
     local crc_range = tvb(header + len, 2)
     t:add_le(mf.crc, crc_range)
     if info then

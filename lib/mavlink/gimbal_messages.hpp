@@ -200,6 +200,28 @@ struct GimbalDeviceAttitudeStatus {
     bool operator==(const GimbalDeviceAttitudeStatus&) const = default;
 };
 
+// AUTOPILOT_STATE_FOR_GIMBAL_DEVICE (286): what a gimbal manager tells its gimbal device of the
+// vehicle. Wire order: time_boot_us, q[4], q_estimated_delay_us, vx, vy, vz,
+// v_estimated_delay_us, feed_forward_angular_velocity_z, estimator_status, target_system,
+// target_component, landed_state; extension angular_velocity_z.
+struct AutopilotStateForGimbalDevice {
+    static constexpr std::uint32_t id = 286;
+    static constexpr std::uint8_t length = 53;
+    static constexpr std::uint8_t max_length = 57;
+    static constexpr std::uint8_t crc_extra = 210;
+
+    std::uint64_t time_boot_us = 0;
+    std::array<float, 4> q{nan_f, nan_f, nan_f, nan_f};
+    std::uint32_t q_estimated_delay_us = 0;
+    float vx = nan_f, vy = nan_f, vz = nan_f;
+    std::uint32_t v_estimated_delay_us = 0;
+    float feed_forward_angular_velocity_z = nan_f;
+    std::uint16_t estimator_status = 0;
+    std::uint8_t target_system = 0, target_component = 0, landed_state = 0;
+    float angular_velocity_z = 0;
+    bool operator==(const AutopilotStateForGimbalDevice&) const = default;
+};
+
 // GIMBAL_MANAGER_SET_PITCHYAW (287). Wire order: flags, pitch, yaw, pitch_rate, yaw_rate,
 // target_system, target_component, gimbal_device_id.
 struct GimbalManagerSetPitchyaw {

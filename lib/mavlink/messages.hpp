@@ -90,7 +90,8 @@ using Payload =
                  CameraCaptureStatus, VideoStreamInformation, VideoStreamStatus, CameraFovStatus,
                  CameraTrackingImageStatus, CameraTrackingGeoStatus, GimbalManagerInformation,
                  GimbalManagerStatus, GimbalManagerSetAttitude, GimbalDeviceInformation,
-                 GimbalDeviceSetAttitude, GimbalDeviceAttitudeStatus, GimbalManagerSetPitchyaw>;
+                 GimbalDeviceSetAttitude, GimbalDeviceAttitudeStatus, AutopilotStateForGimbalDevice,
+                 GimbalManagerSetPitchyaw>;
 
 // The 13 bytes after a signed v2 frame. `verified`: the framer had the key and the 48-bit
 // signature matched (replay is checked by SigningStreams, which needs the local clock).

@@ -206,6 +206,10 @@ void fields(IO& io, Q& m) {
         io(m.time_boot_ms, m.q, m.angular_velocity_x, m.angular_velocity_y, m.angular_velocity_z,
            m.failure_flags, m.flags, m.target_system, m.target_component, m.delta_yaw,
            m.delta_yaw_velocity, m.gimbal_device_id);
+    } else if constexpr (std::is_same_v<M, AutopilotStateForGimbalDevice>) {
+        io(m.time_boot_us, m.q, m.q_estimated_delay_us, m.vx, m.vy, m.vz, m.v_estimated_delay_us,
+           m.feed_forward_angular_velocity_z, m.estimator_status, m.target_system,
+           m.target_component, m.landed_state, m.angular_velocity_z);
     } else if constexpr (std::is_same_v<M, GimbalManagerSetPitchyaw>) {
         io(m.flags, m.pitch, m.yaw, m.pitch_rate, m.yaw_rate, m.target_system, m.target_component,
            m.gimbal_device_id);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "protocols/mavlink_device/mavlink_device_entry.hpp"
 #include "protocols/orion/orion_entry.hpp"
 #include "protocols/viewpro/viewpro_entry.hpp"
 
@@ -13,6 +14,8 @@ const Entry& entry(ProtocolId id) {
             return orion_entry();
         case ProtocolId::viewpro:
             return viewpro_entry();
+        case ProtocolId::mavlink:
+            return mavlink_device_entry();
     }
     __builtin_unreachable();  // every enumerator returns above; -Wswitch names a missing one
 }

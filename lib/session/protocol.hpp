@@ -14,6 +14,7 @@
 #include "command/result.hpp"
 #include "session/capabilities.hpp"
 #include "state/event.hpp"
+#include "vehicle/vehicle_state.hpp"
 
 namespace gimbal::session {
 
@@ -44,6 +45,11 @@ class Protocol {
     virtual void receive(std::span<const std::uint8_t> bytes, double now_s,
                          std::vector<state::Event>& events, std::vector<Bytes>& replies) = 0;
     virtual void tick(double now_s, std::vector<state::Event>& events) = 0;
+    // The vehicle feed's 50 ms tick (protocols/vehicle_feeder.hpp) with the vehicle's state
+    // (on its own clock, vehicle_now_s), for a protocol that aims its gimbal from it itself (a
+    // MAVLink gimbal device): appends what to send. now_s is the session's clock.
+    virtual void steer(const vehicle::VehicleState& /*vehicle*/, double /*vehicle_now_s*/,
+                       double /*now_s*/, std::vector<Bytes>& /*out*/) {}
     // A new connection: forget partial frames; returns what to send first (requests).
     virtual std::vector<Bytes> on_connect() = 0;
 

@@ -5,6 +5,7 @@
 //   codec-json decode    reads such lines on stdin and prints, per line, the codec's JSON for
 //                        the frame: {"dissector","id","name","fields"} (Orion, Digits::exact)
 //                        or {"dissector","kind","fields"} (Viewpro)
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -143,12 +144,92 @@ int print_vectors() {
     return missing == 0 ? 0 : 1;
 }
 
+// A float as tshark shows it: NaN as "nan" (JSON has no NaN).
+json float_json(float v) {
+    return std::isnan(v) ? json("nan") : json(static_cast<double>(v));
+}
+
+std::string text_json(const std::array<std::uint8_t, 32>& chars) {
+    std::string s;
+    for (const auto c : chars) {
+        if (c == 0) break;
+        s.push_back(static_cast<char>(c));
+    }
+    return s;
+}
+
+// The payload fields the dissector shows for the gimbal device messages (283..286).
+void add_gimbal_device_fields(const gimbal::mavlink::Payload& p, json& f) {
+    namespace mav = gimbal::mavlink;
+    const auto quat = [](const std::array<float, 4>& q) {
+        json a = json::array();
+        for (const float c : q) a.push_back(float_json(c));
+        return a;
+    };
+    if (const auto* m = std::get_if<mav::GimbalDeviceInformation>(&p)) {
+        f["uid"] = m->uid;
+        f["time_boot_ms"] = m->time_boot_ms;
+        f["firmware_version"] = m->firmware_version;
+        f["hardware_version"] = m->hardware_version;
+        f["roll_min"] = float_json(m->roll_min);
+        f["roll_max"] = float_json(m->roll_max);
+        f["pitch_min"] = float_json(m->pitch_min);
+        f["pitch_max"] = float_json(m->pitch_max);
+        f["yaw_min"] = float_json(m->yaw_min);
+        f["yaw_max"] = float_json(m->yaw_max);
+        f["cap_flags"] = m->cap_flags;
+        f["custom_cap_flags"] = m->custom_cap_flags;
+        f["vendor_name"] = text_json(m->vendor_name);
+        f["model_name"] = text_json(m->model_name);
+        f["custom_name"] = text_json(m->custom_name);
+        f["gimbal_device_id"] = m->gimbal_device_id;
+        f["cap_flags2"] = m->cap_flags2;
+    } else if (const auto* a = std::get_if<mav::GimbalDeviceSetAttitude>(&p)) {
+        f["q"] = quat(a->q);
+        f["angular_velocity_x"] = float_json(a->angular_velocity_x);
+        f["angular_velocity_y"] = float_json(a->angular_velocity_y);
+        f["angular_velocity_z"] = float_json(a->angular_velocity_z);
+        f["flags"] = a->flags;
+        f["target_system"] = a->target_system;
+        f["target_component"] = a->target_component;
+    } else if (const auto* s = std::get_if<mav::GimbalDeviceAttitudeStatus>(&p)) {
+        f["time_boot_ms"] = s->time_boot_ms;
+        f["q"] = quat(s->q);
+        f["angular_velocity_x"] = float_json(s->angular_velocity_x);
+        f["angular_velocity_y"] = float_json(s->angular_velocity_y);
+        f["angular_velocity_z"] = float_json(s->angular_velocity_z);
+        f["failure_flags"] = s->failure_flags;
+        f["flags"] = s->flags;
+        f["target_system"] = s->target_system;
+        f["target_component"] = s->target_component;
+        f["delta_yaw"] = float_json(s->delta_yaw);
+        f["delta_yaw_velocity"] = float_json(s->delta_yaw_velocity);
+        f["gimbal_device_id"] = s->gimbal_device_id;
+    } else if (const auto* ap = std::get_if<mav::AutopilotStateForGimbalDevice>(&p)) {
+        f["time_boot_us"] = ap->time_boot_us;
+        f["q"] = quat(ap->q);
+        f["q_estimated_delay_us"] = ap->q_estimated_delay_us;
+        f["vx"] = float_json(ap->vx);
+        f["vy"] = float_json(ap->vy);
+        f["vz"] = float_json(ap->vz);
+        f["v_estimated_delay_us"] = ap->v_estimated_delay_us;
+        f["feed_forward_angular_velocity_z"] = float_json(ap->feed_forward_angular_velocity_z);
+        f["estimator_status"] = ap->estimator_status;
+        f["target_system"] = ap->target_system;
+        f["target_component"] = ap->target_component;
+        f["landed_state"] = ap->landed_state;
+        f["angular_velocity_z"] = float_json(ap->angular_velocity_z);
+    }
+}
+
 json decode_mavlink(const Bytes& frame) {
     json out = {{"dissector", "mavlink"}};
     gimbal::mavlink::Framer framer;
-    for (const auto& m : framer.push(frame))
+    for (const auto& m : framer.push(frame)) {
         out["fields"] = {{"version", m.version}, {"seq", m.seq},     {"sysid", m.sysid},
                          {"compid", m.compid},   {"msgid", m.msgid}, {"crc.status", "good"}};
+        add_gimbal_device_fields(m.payload, out["fields"]);
+    }
     return out;
 }
 

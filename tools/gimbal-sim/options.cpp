@@ -32,7 +32,7 @@ std::string description() {
            "SYNOPSIS\n"
            "       gimbal-sim [--protocol " +
            names +
-           "] [--port N] [--pty [--pty-link PATH]]\n"
+           "] [--port N] [--pty [--pty-link PATH]] [--udp PORT]\n"
            "                  [--no-tcp] [fault options] [gimbal options]\n"
            "\n"
            "DESCRIPTION\n"
@@ -71,7 +71,7 @@ TERRAIN
 RX LOG
        --rx-log FILE writes one JSON object per line for every valid frame
        received from the controller, flushed at once; t is seconds since
-       gimbal-sim started, src "tcp" or "pty".
+       gimbal-sim started, src "tcp", "pty" or "udp".
 )";
 
 constexpr const char* footer_end = R"(
@@ -214,6 +214,9 @@ ParsedOptions parse_options(int argc, char** argv) {
     app.add_option("--port", o.port, "TCP port; 0 picks a free one (printed)")
         ->capture_default_str();
     app.add_flag("--no-tcp", no_tcp, "Do not serve TCP");
+    app.add_option("--udp", o.udp_port,
+                   "Also serve UDP on --bind:PORT (0: a free one, printed); replies go to the "
+                   "latest sender");
     app.add_flag("--pty", o.pty, "Serve a pseudo-terminal; prints its device path");
     app.add_option("--pty-link", o.pty_link, "Also make a symlink at PATH to the pty device");
     app.add_option("--discovery-port", o.discovery_port,
@@ -308,8 +311,8 @@ ParsedOptions parse_options(int argc, char** argv) {
         if (v.option->count() > 0) scenario.options[std::string(f.key)] = flag_json(v);
     }
     if (!o.write_dem.empty()) return {o, 0};  // serves nothing
-    if (!o.tcp && !o.pty) {
-        std::cerr << "gimbal-sim: nothing to serve: --no-tcp needs --pty\n";
+    if (!o.tcp && !o.pty && !o.udp_port) {
+        std::cerr << "gimbal-sim: nothing to serve: --no-tcp needs --pty or --udp\n";
         return {std::nullopt, 1};
     }
     if (!o.pty_link.empty() && !o.pty) {

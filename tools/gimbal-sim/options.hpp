@@ -18,6 +18,7 @@ struct ToolOptions {
     std::string bind = "127.0.0.1";
     std::uint16_t port = 8747;  // 0: any free port (printed)
 
+    std::optional<std::uint16_t> udp_port;  // --udp: serve datagrams (0: any free port)
     bool pty = false;
     std::string pty_link;  // symlink to the pty device, if set
 

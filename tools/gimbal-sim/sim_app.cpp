@@ -75,6 +75,13 @@ SimApp::SimApp(asio::io_context& io, const ToolOptions& options)
         if (read_gate_.active()) pty_->set_read_policy([this] { return read_budget(); });
         std::cout << "pty: " << pty_->device() << std::endl;
     }
+    if (options_.udp_port) {
+        udp_.emplace(io, options_.bind, *options_.udp_port,
+                     [this](std::span<const std::uint8_t> b) { on_input("udp", b); });
+        const auto endpoint = udp_->local_endpoint();
+        std::cout << "udp: " << endpoint.address().to_string() << ":" << endpoint.port()
+                  << std::endl;
+    }
     if (!options_.video.url.empty()) {
         std::string error;
         auto video = video_sender_options(options_.video, options_.entry(), error);
@@ -103,6 +110,7 @@ double SimApp::now_s() const {
 void SimApp::start() {
     if (tcp_) tcp_->start();
     if (pty_) pty_->start();
+    if (udp_) udp_->start();
     if (discovery_) discovery_->start();
     if (video_) video_->start();
     next_tick_ = std::chrono::steady_clock::now();
@@ -114,6 +122,7 @@ void SimApp::stop() {
     tick_timer_.cancel();
     if (tcp_) tcp_->stop();
     if (pty_) pty_->stop();
+    if (udp_) udp_->stop();
     if (discovery_) discovery_->stop();
     if (video_) {
         video_->stop();
@@ -190,6 +199,7 @@ void SimApp::deliver(double now) {
     }
     if (tcp_) tcp_->write(wire);
     if (pty_) pty_->write(wire);
+    if (udp_) udp_->write(wire);
 }
 
 void SimApp::on_input(const std::string& src, std::span<const std::uint8_t> bytes) {

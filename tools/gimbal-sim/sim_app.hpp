@@ -19,6 +19,7 @@
 #include "sim/fault_injector.hpp"
 #include "sim/read_faults.hpp"
 #include "tcp_server.hpp"
+#include "udp_port.hpp"
 #include "video/sim_video_sender.hpp"
 
 namespace gimbal_sim {
@@ -53,6 +54,7 @@ class SimApp {
     std::optional<RxLog> rx_log_;
     std::optional<TcpServer> tcp_;
     std::optional<PtyPort> pty_;
+    std::optional<UdpPort> udp_;
     std::optional<DiscoveryResponder> discovery_;
     std::unique_ptr<gimbald::video::SimVideoSender> video_;  // --video
     double session_start_s_ = 0;  // the latest TCP connect, or the start: faults count from it

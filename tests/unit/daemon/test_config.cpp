@@ -346,13 +346,13 @@ TEST_CASE("each invalid value is reported with its path and message", "[config]"
         {"missing name", [](json& c) { c["gimbals"][0].erase("name"); },
          "gimbals[0].name: required"},
         {"protocol", [](json& c) { c["gimbals"][0]["protocol"] = "trillium"; },
-         "gimbals[0].protocol: must be one of \"orion\", \"viewpro\""},
+         "gimbals[0].protocol: must be one of \"orion\", \"viewpro\", \"mavlink\""},
         {"missing link", [](json& c) { c["gimbals"][0].erase("link"); },
          "gimbals[0].link: required"},
         {"link not an object", [](json& c) { c["gimbals"][0]["link"] = "tcp"; },
          "gimbals[0].link: must be an object"},
-        {"link type", [](json& c) { c["gimbals"][0]["link"]["type"] = "udp"; },
-         "gimbals[0].link.type: must be one of \"tcp\", \"serial\", \"sim\""},
+        {"link type", [](json& c) { c["gimbals"][0]["link"]["type"] = "ftp"; },
+         "gimbals[0].link.type: must be one of \"tcp\", \"serial\", \"sim\", \"udp\""},
         {"missing host", [](json& c) { c["gimbals"][0]["link"].erase("host"); },
          "gimbals[0].link.host: required"},
         {"host with space", [](json& c) { c["gimbals"][0]["link"]["host"] = "my host"; },
@@ -734,6 +734,51 @@ TEST_CASE("links describe themselves", "[config]") {
     CHECK(describe(serial) == "/dev/ttyUSB0@115200");
     CHECK(describe(SimLink{}) == "sim");
     CHECK(link_type(SerialLink{}) == "serial");
+}
+
+TEST_CASE("a MAVLink gimbal device: its mavlink section and a UDP link", "[config]") {
+    json config = valid_config();
+    config["gimbals"].push_back(json::parse(R"({
+        "name": "cam", "protocol": "mavlink",
+        "link": {"type": "udp", "host": "192.168.1.30", "port": 14570, "local_port": null},
+        "mavlink": {"hfov_deg": 45, "device_component_id": 155}})"));
+    const auto result = parse_config(config.dump());
+    INFO(joined(problem_texts(result)));
+    REQUIRE(result.ok());
+    const auto& g = result.config.gimbals.back();
+    CHECK(g.protocol == Protocol::mavlink);
+    CHECK(g.mavlink.hfov_deg == 45);
+    CHECK(g.mavlink.vfov_deg == 34);
+    CHECK(g.mavlink.device_component_id == 155);
+    const auto& udp = std::get<UdpLink>(g.link);
+    CHECK(udp.host == "192.168.1.30");
+    CHECK(udp.port == 14570);
+    CHECK_FALSE(udp.local_port);
+    CHECK(describe(g.link) == "udp 192.168.1.30:14570");
+    CHECK(link_type(g.link) == "udp");
+    // Written back with every default, and read again to the same.
+    const json written = to_json(result.config);
+    const json& cam = written["gimbals"][3];
+    CHECK(cam["mavlink"]["system_id"] == 1);
+    CHECK(cam["link"]["local_port"].is_null());
+    CHECK(cam.find("feed") == cam.end());
+    const auto again = parse_config(written.dump());
+    REQUIRE(again.ok());
+    CHECK(again.config == result.config);
+
+    CHECK(problems_after([](json& c) { c["gimbals"][0]["mavlink"] = json::object(); }) ==
+          std::vector<std::string>{"gimbals[0].mavlink: only for protocol \"mavlink\""});
+    const auto bad = [&](const std::function<void(json&)>& edit) {
+        json c = config;
+        edit(c["gimbals"][3]);
+        return problem_texts(parse_config(c.dump()));
+    };
+    CHECK(bad([](json& x) { x["link"]["local_port"] = 0; }) ==
+          std::vector<std::string>{"gimbals[3].link.local_port: must be between 1 and 65535"});
+    CHECK(bad([](json& x) { x["mavlink"]["hfov_deg"] = 180; }) ==
+          std::vector<std::string>{"gimbals[3].mavlink.hfov_deg: must be between 0.1 and 179.9"});
+    CHECK(bad([](json& x) { x["feed"] = "in2"; }) ==
+          std::vector<std::string>{"gimbals[3].feed: unknown key"});
 }
 
 TEST_CASE("standard baud rates", "[config]") {

@@ -123,7 +123,7 @@ TEST_CASE("command line options", "[options]") {
     SECTION("bad --sim lists are usage errors") {
         auto p = parse({"--sim", "orion,gopro"});
         CHECK(p.command_line.exit_code == exit_config_error);
-        CHECK(p.err == "gimbald: --sim: unknown protocol \"gopro\" (expected orion, viewpro)\n");
+        CHECK(p.err == "gimbald: --sim: unknown protocol \"gopro\" (expected orion, viewpro, mavlink)\n");
         p = parse({"--sim", "orion,orion"});
         CHECK(p.command_line.exit_code == exit_config_error);
         CHECK(p.err == "gimbald: --sim: protocol \"orion\" listed twice\n");
@@ -177,7 +177,7 @@ TEST_CASE("help output reads like a man page", "[options]") {
                              "--version",
                              "--help",
                              "Default: /etc/gimbald/gimbald.json",
-                             "\"sim-orion\", \"sim-viewpro\". Default: off.",
+                             "\"sim-orion\", \"sim-viewpro\", \"sim-mavlink\". Default: off.",
                              "1 if not. Opens every terrain file, no device. Default: off.",
                              "Default: the file's (info)",
                              "Default: the file's (json)",

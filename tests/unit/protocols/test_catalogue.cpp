@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 #include <set>
 
+#include "../vehicle/vehicle_fixtures.hpp"
 #include "auth/roles.hpp"
 #include "command/catalogue.hpp"
 #include "command/envelope.hpp"
@@ -21,9 +22,22 @@ struct Planned {
     std::optional<command::Error> error;
 };
 
+// The vehicle feed has told the session where the aircraft is (a protocol that aims its
+// gimbal from the vehicle's state needs it for geopoint and path).
 Planned plan(const protocols::Entry& e, std::string_view cmd, const json& request) {
     const json gimbal = {{"name", "g"}, {"protocol", e.name}};
     auto session = e.make_session(protocols::SessionSettings{}, gimbal);
+    vehicle::VehicleState v(vehicle_fixtures::options());
+    mavlink::Heartbeat hb;
+    v.apply(vehicle_fixtures::from(1, hb), 1.0);
+    v.apply(vehicle_fixtures::from(1, mavlink::Attitude{}), 1.0);
+    mavlink::GlobalPositionInt pos;
+    pos.lat = 457000000;
+    pos.lon = -1215000000;
+    pos.alt = 500000;
+    v.apply(vehicle_fixtures::from(1, pos), 1.0);
+    std::vector<session::Bytes> steering;
+    session->steer(v, 1.0, 1.0, steering);
     command::Plan p;
     return {session->plan(cmd, request, {1.0, 1'790'000'000.0}, p)};
 }

@@ -1,0 +1,59 @@
+#include "protocols/mavlink_device/mavlink_device_entry.hpp"
+
+#include "protocols/mavlink_device/mavlink_device_capabilities.hpp"
+#include "protocols/mavlink_device/mavlink_device_feed.hpp"
+#include "protocols/mavlink_device/mavlink_device_protocol.hpp"
+#include "protocols/mavlink_device/mavlink_device_track.hpp"
+#include "protocols/mavlink_device/mavlink_frame_scanner.hpp"
+
+namespace gimbal::protocols {
+
+namespace {
+
+// The catalogue commands a MAVLink gimbal device plans (mavlink_device_commands.cpp).
+constexpr PlannedCommand commands[] = {
+    {"geopoint", "GIMBAL_DEVICE_SET_ATTITUDE (284), recomputed at 20 Hz"},
+    {"path", "GIMBAL_DEVICE_SET_ATTITUDE (284) along the path, at 20 Hz"},
+    {"position", "GIMBAL_DEVICE_SET_ATTITUDE (284), yaw in the vehicle frame"},
+    {"rate", "GIMBAL_DEVICE_SET_ATTITUDE (284) with angular velocities"},
+};
+
+std::unique_ptr<session::Protocol> make_session(const SessionSettings& s,
+                                                const nlohmann::json& gimbal) {
+    MavlinkDeviceOptions options = read_mavlink_device_options(gimbal);
+    options.stale_after_s = s.stale_after_s;
+    options.terrain = s.terrain;
+    return std::make_unique<MavlinkDeviceProtocol>(options);
+}
+
+std::size_t frame_size(const ScannedFrame& f) {
+    return f.bytes.size();
+}
+
+Entry make_entry() {
+    Entry e;
+    e.id = ProtocolId::mavlink;
+    e.name = "mavlink";
+    e.display_name = "MAVLink";
+    e.dissector = "mavlink";
+    e.commands = commands;
+    e.capabilities = &mavlink_device_capabilities();
+    e.make_session = make_session;
+    e.make_feeder = make_mavlink_device_feeder;
+    e.make_splitter = [] {
+        return std::unique_ptr<framing::StreamSplitter>(
+            std::make_unique<framing::FramerSplitter<MavlinkFrameScanner, frame_size>>());
+    };
+    e.make_track_decoder = make_mavlink_device_track_decoder;
+    e.simulator = mavlink_device_simulator();
+    return e;
+}
+
+}  // namespace
+
+const Entry& mavlink_device_entry() {
+    static const Entry entry = make_entry();
+    return entry;
+}
+
+}  // namespace gimbal::protocols

@@ -1,0 +1,131 @@
+#include "protocols/mavlink_device/mavlink_device_protocol.hpp"
+
+#include "protocols/mavlink_device/mavlink_device_capabilities.hpp"
+#include "protocols/mavlink_device/mavlink_device_commands.hpp"
+
+namespace gimbal::protocols {
+
+namespace {
+
+constexpr double heartbeat_period_s = 1.0;
+// GIMBAL_DEVICE_INFORMATION is asked for again this often until it arrives.
+constexpr double request_period_s = 2.0;
+constexpr std::uint32_t information_id = mavlink::GimbalDeviceInformation::id;
+// MAV_TYPE_ONBOARD_CONTROLLER, MAV_AUTOPILOT_INVALID, MAV_STATE_ACTIVE.
+constexpr std::uint8_t mav_type_onboard_controller = 18;
+constexpr std::uint8_t mav_state_active = 4;
+// Decoded payloads only: the session never sees the device's messages as raw bytes.
+constexpr std::uint8_t set_attitude_length = mavlink::GimbalDeviceSetAttitude::length;
+
+}  // namespace
+
+MavlinkDeviceProtocol::MavlinkDeviceProtocol(const MavlinkDeviceOptions& options)
+    : options_(options), state_(options), sender_(options.system_id, options.component_id) {}
+
+void MavlinkDeviceProtocol::receive(std::span<const std::uint8_t> bytes, double now_s,
+                                    std::vector<state::Event>&,
+                                    std::vector<session::Bytes>& replies) {
+    framer_.push(bytes, [&](const mavlink::Message& m) {
+        const bool had_information = state_.has_information();
+        state_.apply(m, now_s);
+        if (!had_information && state_.has_information())
+            steering_.set_earth_frame(state_.earth_frame_supported());
+    });
+    // Without a vehicle feed there are no steering ticks: the device's own reports pace the
+    // heartbeat and the information request then.
+    if (state_.device_system()) housekeeping(now_s, replies);
+}
+
+void MavlinkDeviceProtocol::housekeeping(double now_s, std::vector<session::Bytes>& out) {
+    if (!last_heartbeat_s_ || now_s - *last_heartbeat_s_ >= heartbeat_period_s) {
+        mavlink::Heartbeat hb;
+        hb.type = mav_type_onboard_controller;
+        hb.autopilot = mavlink::mav_autopilot_invalid;
+        hb.system_status = mav_state_active;
+        out.push_back(sender_.frame(hb));
+        last_heartbeat_s_ = now_s;
+    }
+    if (!state_.has_information() &&
+        (!last_request_s_ || now_s - *last_request_s_ >= request_period_s)) {
+        out.push_back(request_information());
+        last_request_s_ = now_s;
+    }
+}
+
+void MavlinkDeviceProtocol::tick(double now_s, std::vector<state::Event>& events) {
+    state_.tick(now_s, events);
+}
+
+session::Bytes MavlinkDeviceProtocol::request_information() {
+    mavlink::CommandLong c;
+    c.command = mavlink::mav_cmd::request_message;
+    c.param[0] = static_cast<float>(information_id);
+    c.target_system = state_.device_system().value_or(0);
+    c.target_component =
+        state_.device_system() ? state_.device_component() : options_.device_component_id;
+    return sender_.frame(c);
+}
+
+std::vector<session::Bytes> MavlinkDeviceProtocol::on_connect() {
+    framer_.reset();
+    last_request_s_ = std::nullopt;
+    return {request_information()};
+}
+
+std::optional<mavlink::GimbalDeviceSetAttitude> MavlinkDeviceProtocol::set_attitude(double now_s) {
+    const auto& fix = state_.vehicle();
+    std::optional<geo::Lla> camera;
+    if (fix)
+        camera = geo::Lla{fix->lat_deg, fix->lon_deg,
+                          geo::ellipsoid_from_msl(fix->alt_msl_m, options_.geoid_undulation_m)};
+    std::optional<Aim> aim;
+    if (const auto los = state_.line_of_sight()) aim = Aim{*los};
+    auto m = steering_.command(fix, camera, aim, now_s);
+    if (!m) return std::nullopt;
+    m->target_system = state_.device_system().value_or(0);
+    m->target_component =
+        state_.device_system() ? state_.device_component() : options_.device_component_id;
+    return m;
+}
+
+void MavlinkDeviceProtocol::steer(const vehicle::VehicleState& vehicle, double vehicle_now_s,
+                                  double now_s, std::vector<session::Bytes>& out) {
+    state_.set_vehicle(vehicle_fix(vehicle, vehicle_now_s));
+    housekeeping(now_s, out);
+    if (const auto m = set_attitude(now_s)) out.push_back(sender_.frame(*m));
+}
+
+session::FrameCounters MavlinkDeviceProtocol::counters() const {
+    const auto& s = framer_.stats();
+    return {s.frames, s.bad_crc, s.dropped_bytes, 0};
+}
+
+bool MavlinkDeviceProtocol::supports(std::string_view cmd) const {
+    return is_device_command(cmd);
+}
+
+const session::Capabilities& MavlinkDeviceProtocol::capabilities() const {
+    return mavlink_device_capabilities();
+}
+
+std::optional<command::Error> MavlinkDeviceProtocol::plan(std::string_view cmd,
+                                                          const nlohmann::json& request,
+                                                          const session::Now& now,
+                                                          command::Plan& plan) {
+    DeviceCommandContext ctx;
+    ctx.now_s = now.mono_s;
+    ctx.has_vehicle_fix = state_.vehicle().has_value();
+    ctx.geoid_undulation_m = options_.geoid_undulation_m;
+    auto hold = plan_device_command(cmd, request, ctx);
+    if (!hold) return hold.error();
+    steering_.hold(std::move(hold).value());
+    if (const auto m = set_attitude(now.mono_s)) {
+        command::WirePacket w;
+        w.frame = sender_.frame(*m);
+        w.sent = {{"id", mavlink::GimbalDeviceSetAttitude::id}, {"len", set_attitude_length}};
+        plan.packets.push_back(std::move(w));
+    }
+    return std::nullopt;
+}
+
+}  // namespace gimbal::protocols

@@ -1,0 +1,54 @@
+// The MAVLink gimbal device side of a gimbal session (contract section 19): gimbald is the
+// device's gimbal manager. It asks for GIMBAL_DEVICE_INFORMATION, reads
+// GIMBAL_DEVICE_ATTITUDE_STATUS, and steers with GIMBAL_DEVICE_SET_ATTITUDE, recomputed at
+// every vehicle-feed tick (steer) from what it holds the device to; a heartbeat goes out once
+// a second from the same ticks, or with the device's reports when there is no vehicle feed.
+#pragma once
+
+#include "mavlink/framer.hpp"
+#include "protocols/mavlink_device/mavlink_device_options.hpp"
+#include "protocols/mavlink_device/mavlink_device_state.hpp"
+#include "protocols/mavlink_device/mavlink_device_steering.hpp"
+#include "protocols/mavlink_device/mavlink_device_wire.hpp"
+#include "session/protocol.hpp"
+
+namespace gimbal::protocols {
+
+class MavlinkDeviceProtocol final : public session::Protocol {
+  public:
+    explicit MavlinkDeviceProtocol(const MavlinkDeviceOptions& options);
+
+    std::string_view name() const override { return "mavlink"; }
+    void receive(std::span<const std::uint8_t> bytes, double now_s,
+                 std::vector<state::Event>& events, std::vector<session::Bytes>& replies) override;
+    void tick(double now_s, std::vector<state::Event>& events) override;
+    void steer(const vehicle::VehicleState& vehicle, double vehicle_now_s, double now_s,
+               std::vector<session::Bytes>& out) override;
+    std::vector<session::Bytes> on_connect() override;
+    bool stale(double now_s) const override { return state_.stale(now_s); }
+    std::uint64_t telemetry_count() const override { return state_.telemetry_count(); }
+    nlohmann::json snapshot(double now_s) const override { return state_.snapshot(now_s); }
+    session::FrameCounters counters() const override;
+    bool supports(std::string_view cmd) const override;
+    const session::Capabilities& capabilities() const override;
+    std::optional<command::Error> plan(std::string_view cmd, const nlohmann::json& request,
+                                       const session::Now& now, command::Plan& plan) override;
+
+    const MavlinkDeviceState& state() const { return state_; }
+
+  private:
+    session::Bytes request_information();
+    // The heartbeat (1 Hz) and, until it arrives, the information request (every 2 s).
+    void housekeeping(double now_s, std::vector<session::Bytes>& out);
+    std::optional<mavlink::GimbalDeviceSetAttitude> set_attitude(double now_s);
+
+    MavlinkDeviceOptions options_;
+    mavlink::Framer framer_;
+    MavlinkDeviceState state_;
+    MavlinkDeviceSteering steering_;
+    MavlinkSender sender_;
+    std::optional<double> last_heartbeat_s_;
+    std::optional<double> last_request_s_;
+};
+
+}  // namespace gimbal::protocols

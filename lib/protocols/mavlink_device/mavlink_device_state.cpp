@@ -1,0 +1,212 @@
+#include "protocols/mavlink_device/mavlink_device_state.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "geo/ground.hpp"
+#include "geo/wgs84.hpp"
+#include "protocols/mavlink_device/mavlink_device_flags.hpp"
+#include "session/capabilities.hpp"
+#include "state/ground_json.hpp"
+#include "state/precision.hpp"
+
+namespace gimbal::protocols {
+
+using nlohmann::json;
+using state::angle_deg;
+using state::latlon_deg;
+using state::metres;
+
+namespace {
+
+constexpr double rad_to_deg = 180.0 / 3.14159265358979323846;
+
+json degrees_or_null(float rad) {
+    return std::isfinite(rad) ? json(angle_deg(rad * rad_to_deg)) : json(nullptr);
+}
+
+// A fixed-size, possibly unterminated char[32] of the wire.
+std::string text_of(const std::array<std::uint8_t, 32>& chars) {
+    std::string s;
+    for (const auto c : chars) {
+        if (c == 0) break;
+        s.push_back(c >= 0x20 && c < 0x7F ? static_cast<char>(c) : '?');
+    }
+    return s;
+}
+
+// common.xml: (Dev & 0xff) << 24 + (Patch & 0xff) << 16 + (Minor & 0xff) << 8 + (Major & 0xff).
+std::string version_text(std::uint32_t v) {
+    return std::to_string(v & 0xFF) + "." + std::to_string((v >> 8) & 0xFF) + "." +
+           std::to_string((v >> 16) & 0xFF) + "." + std::to_string(v >> 24);
+}
+
+double radians_per_second(float v) {
+    return std::isfinite(v) ? v * rad_to_deg : 0.0;
+}
+
+}  // namespace
+
+std::optional<geo::EulerDeg> euler_of(const std::array<float, 4>& q) {
+    for (const float c : q)
+        if (!std::isfinite(c)) return std::nullopt;
+    if (q[0] == 0 && q[1] == 0 && q[2] == 0 && q[3] == 0) return std::nullopt;
+    return geo::quat_to_euler(geo::Quat{q[0], q[1], q[2], q[3]});
+}
+
+bool MavlinkDeviceState::apply(const mavlink::Message& message, double now_s) {
+    if (const auto* a = std::get_if<mavlink::GimbalDeviceAttitudeStatus>(&message.payload)) {
+        device_system_ = message.sysid;
+        device_component_ = message.compid;
+        on_attitude(*a, now_s);
+        return true;
+    }
+    if (const auto* i = std::get_if<mavlink::GimbalDeviceInformation>(&message.payload)) {
+        device_system_ = message.sysid;
+        device_component_ = message.compid;
+        on_information(*i, now_s);
+        return true;
+    }
+    return false;
+}
+
+void MavlinkDeviceState::on_attitude(const mavlink::GimbalDeviceAttitudeStatus& m, double now_s) {
+    const auto e = euler_of(m.q);
+    DeviceAttitude a = attitude_.value_or(DeviceAttitude{});
+    // A NaN quaternion keeps the last angles (the device says it has none now) but counts as
+    // a report: its failure flags and rates are current.
+    if (e) {
+        a.roll_deg = e->roll_deg;
+        a.pitch_deg = e->pitch_deg;
+        a.yaw_deg = e->yaw_deg;
+    }
+    a.earth_frame = yaw_in_earth_frame(m.flags);
+    a.angular_velocity_dps = {radians_per_second(m.angular_velocity_x),
+                              radians_per_second(m.angular_velocity_y),
+                              radians_per_second(m.angular_velocity_z)};
+    a.failure_flags = m.failure_flags;
+    a.received_s = now_s;
+    attitude_ = a;
+    ++attitudes_;
+    lost_reported_ = false;
+    telemetry_ = telemetry_json();
+}
+
+void MavlinkDeviceState::on_information(const mavlink::GimbalDeviceInformation& m, double) {
+    information_ = m;
+}
+
+bool MavlinkDeviceState::earth_frame_supported() const {
+    constexpr std::uint16_t supports_yaw_in_earth_frame = 4096;
+    return information_ && (information_->cap_flags & supports_yaw_in_earth_frame) != 0;
+}
+
+std::optional<double> MavlinkDeviceState::pan_deg() const {
+    if (!attitude_) return std::nullopt;
+    if (!attitude_->earth_frame) return session::wrap180(attitude_->yaw_deg);
+    if (!vehicle_) return std::nullopt;
+    return session::wrap180(attitude_->yaw_deg - vehicle_->yaw_deg);
+}
+
+std::optional<geo::Quat> MavlinkDeviceState::line_of_sight() const {
+    if (!attitude_) return std::nullopt;
+    double yaw = attitude_->yaw_deg;
+    if (!attitude_->earth_frame) {
+        if (!vehicle_) return std::nullopt;
+        yaw += vehicle_->yaw_deg;
+    }
+    return geo::normalized(geo::euler_to_quat(
+        geo::EulerDeg{attitude_->roll_deg, attitude_->pitch_deg, session::wrap180(yaw)}));
+}
+
+json MavlinkDeviceState::telemetry_json() const {
+    json t = json::object();
+    const auto pan = pan_deg();
+    t["pan"] = pan ? json(angle_deg(*pan)) : json(nullptr);
+    t["tilt"] = angle_deg(attitude_->pitch_deg);
+    t["hfov"] = angle_deg(options_.hfov_deg);
+    t["vfov"] = angle_deg(options_.vfov_deg);
+    const auto los = line_of_sight();
+    if (!vehicle_ || !los) {
+        for (const char* key : {"lat", "lon", "alt", "alt_msl", "geoid_undulation", "roll", "pitch",
+                                "yaw", "target", "footprint", "footprint_surface", "ground"})
+            t[key] = nullptr;
+        return t;
+    }
+    const VehicleFix& v = *vehicle_;
+    const geo::Lla camera_at{v.lat_deg, v.lon_deg,
+                             geo::ellipsoid_from_msl(v.alt_msl_m, options_.geoid_undulation_m)};
+    t["lat"] = latlon_deg(camera_at.lat_deg);
+    t["lon"] = latlon_deg(camera_at.lon_deg);
+    t["alt"] = metres(camera_at.alt_m);
+    t["alt_msl"] = metres(v.alt_msl_m);
+    t["geoid_undulation"] = metres(options_.geoid_undulation_m);
+    t["roll"] = angle_deg(v.roll_deg);
+    t["pitch"] = angle_deg(v.pitch_deg);
+    t["yaw"] = angle_deg(v.yaw_deg);
+    const geo::CameraPose camera{camera_at, *los, options_.hfov_deg, options_.vfov_deg};
+    const geo::Ground ground{options_.terrain, options_.ground_alt_m};
+    // The device reports no target of its own: where its line of sight meets the ground.
+    if (const auto centre = geo::locate_ground(camera, {0, 0}, ground))
+        t["target"] = {{"lat", latlon_deg(centre->point.lat_deg)},
+                       {"lon", latlon_deg(centre->point.lon_deg)},
+                       {"alt", metres(centre->point.alt_m)}};
+    else
+        t["target"] = nullptr;
+    state::add_ground_keys(t, camera, ground);
+    return t;
+}
+
+json MavlinkDeviceState::device_json(double now_s) const {
+    json d = json::object();
+    if (information_) {
+        const auto& i = *information_;
+        d["vendor"] = text_of(i.vendor_name);
+        d["model"] = text_of(i.model_name);
+        d["firmware"] = version_text(i.firmware_version);
+        d["cap_flags"] = cap_flag_names(i.cap_flags);
+        d["limits"] = {{"roll_min", degrees_or_null(i.roll_min)},
+                       {"roll_max", degrees_or_null(i.roll_max)},
+                       {"pitch_min", degrees_or_null(i.pitch_min)},
+                       {"pitch_max", degrees_or_null(i.pitch_max)},
+                       {"yaw_min", degrees_or_null(i.yaw_min)},
+                       {"yaw_max", degrees_or_null(i.yaw_max)}};
+    } else {
+        for (const char* key : {"vendor", "model", "firmware", "cap_flags", "limits"})
+            d[key] = nullptr;
+    }
+    if (attitude_) {
+        const auto& a = *attitude_;
+        d["attitude"] = {{"roll", angle_deg(a.roll_deg)},
+                         {"pitch", angle_deg(a.pitch_deg)},
+                         {"yaw", angle_deg(a.yaw_deg)},
+                         {"frame", a.earth_frame ? "earth" : "vehicle"}};
+        d["angular_velocity"] = {angle_deg(a.angular_velocity_dps[0]),
+                                 angle_deg(a.angular_velocity_dps[1]),
+                                 angle_deg(a.angular_velocity_dps[2])};
+        d["failure_flags"] = failure_flag_names(a.failure_flags);
+        d["age_s"] = state::seconds(std::max(0.0, now_s - a.received_s));
+    } else {
+        for (const char* key : {"attitude", "angular_velocity", "failure_flags", "age_s"})
+            d[key] = nullptr;
+    }
+    return d;
+}
+
+bool MavlinkDeviceState::stale(double now_s) const {
+    return !attitude_ || now_s - attitude_->received_s > options_.stale_after_s;
+}
+
+void MavlinkDeviceState::tick(double now_s, std::vector<state::Event>& events) {
+    if (attitude_ && !lost_reported_ && stale(now_s)) {
+        lost_reported_ = true;
+        events.push_back(
+            state::Event{"lost", {{"age_s", state::seconds(now_s - attitude_->received_s)}}});
+    }
+}
+
+json MavlinkDeviceState::snapshot(double now_s) const {
+    return {{"device", device_json(now_s)}, {"telemetry", telemetry_}};
+}
+
+}  // namespace gimbal::protocols

@@ -1,0 +1,59 @@
+#include "protocols/mavlink_device/mavlink_device_wire.hpp"
+
+#include <cmath>
+
+#include "geo/attitude.hpp"
+
+namespace gimbal::protocols {
+
+namespace {
+constexpr double rad_to_deg = 180.0 / 3.14159265358979323846;
+// ESTIMATOR_STATUS_FLAGS: attitude, horizontal and vertical velocity, absolute position.
+constexpr std::uint16_t estimator_valid = 1 | 2 | 4 | 16 | 32;
+// MAV_LANDED_STATE_UNDEFINED, _ON_GROUND, _IN_AIR.
+constexpr std::uint8_t landed_undefined = 0;
+}  // namespace
+
+std::optional<VehicleFix> vehicle_fix(const vehicle::VehicleState& vehicle, double now_s) {
+    const auto& pos = vehicle.position();
+    const auto& att = vehicle.attitude();
+    if (!pos || !att || !vehicle.fresh(now_s)) return std::nullopt;
+    if (now_s - pos->at_s > vehicle.timeout_s() || now_s - att->at_s > vehicle.timeout_s())
+        return std::nullopt;
+    VehicleFix f;
+    f.lat_deg = pos->message.lat * 1e-7;
+    f.lon_deg = pos->message.lon * 1e-7;
+    f.alt_msl_m = pos->message.alt * 1e-3;
+    f.vn_mps = pos->message.vx * 0.01;
+    f.ve_mps = pos->message.vy * 0.01;
+    f.vd_mps = pos->message.vz * 0.01;
+    f.roll_deg = att->message.roll * rad_to_deg;
+    f.pitch_deg = att->message.pitch * rad_to_deg;
+    f.yaw_deg = att->message.yaw * rad_to_deg;
+    f.yaw_rate_dps = att->message.yawspeed * rad_to_deg;
+    return f;
+}
+
+mavlink::AutopilotStateForGimbalDevice autopilot_state(const std::optional<VehicleFix>& fix,
+                                                       std::uint64_t time_boot_us,
+                                                       std::uint8_t target_system,
+                                                       std::uint8_t target_component) {
+    mavlink::AutopilotStateForGimbalDevice m;
+    m.time_boot_us = time_boot_us;
+    m.target_system = target_system;
+    m.target_component = target_component;
+    m.landed_state = landed_undefined;
+    if (!fix) return m;
+    const auto q = geo::normalized(
+        geo::euler_to_quat(geo::EulerDeg{fix->roll_deg, fix->pitch_deg, fix->yaw_deg}));
+    m.q = {static_cast<float>(q.w), static_cast<float>(q.x), static_cast<float>(q.y),
+           static_cast<float>(q.z)};
+    m.vx = static_cast<float>(fix->vn_mps);
+    m.vy = static_cast<float>(fix->ve_mps);
+    m.vz = static_cast<float>(fix->vd_mps);
+    m.feed_forward_angular_velocity_z = static_cast<float>(fix->yaw_rate_dps / rad_to_deg);
+    m.estimator_status = estimator_valid;
+    return m;
+}
+
+}  // namespace gimbal::protocols

@@ -1,0 +1,298 @@
+#!/usr/bin/env python3
+"""MAVLink gimbal devices end to end (contract section 19): a real gimbald is the gimbal
+manager of `gimbal-sim --protocol mavlink` over a pseudo-terminal, with the aircraft's
+MAVLink (built here with struct and X.25, independently of lib/mavlink) on its vehicle port.
+
+Checked: STATE `device` from GIMBAL_DEVICE_INFORMATION / ATTITUDE_STATUS, the Orion-style
+`telemetry`, a `position` command reaching the device as common.xml's quaternion (the
+simulator's rx log), AUTOPILOT_STATE_FOR_GIMBAL_DEVICE at 10-50 Hz, staleness when the device
+goes quiet, and the stare target: while the aircraft circles a geopoint, the line of sight
+stays within 0.5 degrees of it at p95 after the first 2 s.
+"""
+
+import math
+import os
+import socket
+import struct
+import threading
+import time
+import unittest
+
+import gimbaltest as gt
+
+HEARTBEAT, ATTITUDE, GLOBAL_POSITION_INT = 0, 30, 33
+CRC_EXTRA = {HEARTBEAT: 50, ATTITUDE: 39, GLOBAL_POSITION_INT: 104}
+
+# The stare geometry: a point on the ground (MSL 100 m, geoid 0), the aircraft 500 m above it
+# on a 400 m circle at 30 m/s.
+POINT = (45.7, -121.5, 100.0)
+RADIUS, SPEED, HEIGHT = 400.0, 30.0, 500.0
+
+
+def x25(data, crc=0xFFFF):
+    for b in data:
+        tmp = b ^ (crc & 0xFF)
+        tmp = (tmp ^ (tmp << 4)) & 0xFF
+        crc = ((crc >> 8) ^ (tmp << 8) ^ (tmp << 3) ^ (tmp >> 4)) & 0xFFFF
+    return crc
+
+
+def mavlink_v2(msgid, payload, seq=0, sysid=1, compid=1):
+    body = struct.pack("<BBBBBB", len(payload), 0, 0, seq, sysid, compid)
+    body += struct.pack("<I", msgid)[:3] + payload
+    return b"\xfd" + body + struct.pack("<H", x25(body + bytes([CRC_EXTRA[msgid]])))
+
+
+def circle(t):
+    """The aircraft at t seconds: lat, lon, alt (MSL), roll/pitch/yaw (rad), vn/ve (m/s),
+    yaw rate (rad/s). Flat-earth offsets are fine over 400 m."""
+    omega = SPEED / RADIUS
+    a = omega * t
+    north, east = RADIUS * math.cos(a), RADIUS * math.sin(a)
+    lat = POINT[0] + math.degrees(north / 6378137.0)
+    lon = POINT[1] + math.degrees(east / (6378137.0 * math.cos(math.radians(POINT[0]))))
+    vn, ve = -SPEED * math.sin(a), SPEED * math.cos(a)
+    return lat, lon, POINT[2] + HEIGHT, math.radians(12), 0.0, math.atan2(ve, vn), vn, ve, omega
+
+
+class Aircraft:
+    """Sends HEARTBEAT (1 Hz), ATTITUDE and GLOBAL_POSITION_INT (20 Hz) to gimbald's vehicle
+    port from a thread, flying `circle` from its start."""
+
+    def __init__(self, port):
+        self.sock = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
+        self.port = port
+        self.start = time.monotonic()
+        self.seq = 0
+        self.running = True
+        self.thread = threading.Thread(target=self.run, daemon=True)
+        self.thread.start()
+
+    def send(self, msgid, payload):
+        self.sock.sendto(mavlink_v2(msgid, payload, self.seq & 0xFF), ("127.0.0.1", self.port))
+        self.seq += 1
+
+    def run(self):
+        n = 0
+        while self.running:
+            t = time.monotonic() - self.start
+            lat, lon, alt, roll, pitch, yaw, vn, ve, yaw_rate = circle(t)
+            ms = int(t * 1000) & 0xFFFFFFFF
+            if n % 20 == 0:
+                # custom_mode, type (fixed wing), autopilot (ArduPilot), base_mode (armed),
+                # system_status (active), mavlink_version
+                self.send(HEARTBEAT, struct.pack("<IBBBBB", 0, 1, 3, 128, 4, 3))
+            self.send(ATTITUDE, struct.pack("<Iffffff", ms, roll, pitch, yaw, 0, 0, yaw_rate))
+            hdg = int(round(math.degrees(yaw) % 360 * 100)) % 36000
+            self.send(GLOBAL_POSITION_INT,
+                      struct.pack("<IiiiihhhH", ms, int(round(lat * 1e7)), int(round(lon * 1e7)),
+                                  int(round(alt * 1000)), int(HEIGHT * 1000), int(vn * 100),
+                                  int(ve * 100), 0, hdg))
+            n += 1
+            time.sleep(0.05)
+
+    def close(self):
+        self.running = False
+        self.thread.join(2)
+        self.sock.close()
+
+
+def los_error_deg(state):
+    """The angle between the line of sight in STATE (device attitude, yaw from north or from
+    the aircraft's heading) and the direction from the aircraft to POINT."""
+    t, att = state["telemetry"], state["device"]["attitude"]
+    yaw = att["yaw"] + (0.0 if att["frame"] == "earth" else t["yaw"])
+    pitch = math.radians(att["pitch"])
+    have = (math.cos(pitch) * math.cos(math.radians(yaw)),
+            math.cos(pitch) * math.sin(math.radians(yaw)), -math.sin(pitch))
+    north = math.radians(POINT[0] - t["lat"]) * 6378137.0
+    east = math.radians(POINT[1] - t["lon"]) * 6378137.0 * math.cos(math.radians(POINT[0]))
+    down = t["alt"] - POINT[2]
+    n = math.sqrt(north * north + east * east + down * down)
+    want = (north / n, east / n, down / n)
+    dot = sum(a * b for a, b in zip(have, want))
+    return math.degrees(math.acos(max(-1.0, min(1.0, dot))))
+
+
+class MavlinkDeviceTest(gt.GimbaldTestCase):
+    def state(self, client, gimbal="cam"):
+        reply = client.request("state", gimbal=gimbal)
+        self.assertOk(reply)
+        return reply["state"]
+
+    def wait_state(self, client, predicate, what, timeout=gt.START_TIMEOUT_S):
+        found = gt.wait_for(lambda: (lambda s: s if predicate(s) else None)(self.state(client)),
+                            timeout, interval=0.1)
+        self.assertTrue(found, "STATE never showed " + what)
+        return found
+
+    def start_pty(self, *sim_args, stale_after_s=None):
+        device = os.path.join(self.workdir, "ttyGIMBAL")
+        sim = self.start_sim("--protocol", "mavlink", *sim_args, tcp=False, pty_link=device)
+        vport = gt.free_port()
+        config = {
+            "gimbals": [{"name": "cam", "protocol": "mavlink",
+                         "link": {"type": "serial", "device": device, "baud": 115200,
+                                  "reconnect_min_s": 0.2, "reconnect_max_s": 1},
+                         "mavlink": {"hfov_deg": 50, "vfov_deg": 30}}],
+            "vehicle": {"source": {"type": "udp", "bind": "127.0.0.1", "port": vport}},
+        }
+        if stale_after_s is not None:
+            config["telemetry"] = {"stale_after_s": stale_after_s}
+        daemon = self.start_daemon(config)
+        return sim, daemon, vport
+
+    def test_pty_device_state_position_feed_and_stare(self):
+        sim, daemon, vport = self.start_pty("--attitude-rate", "25")
+        client = self.client(daemon)
+        aircraft = Aircraft(vport)
+        self.addCleanup(aircraft.close)
+
+        # STATE device: the simulator's information, its attitude; telemetry with positions.
+        s = self.wait_state(client, lambda s: s["device"]["vendor"] == "gimbald" and
+                            s["telemetry"] and s["telemetry"]["lat"] is not None,
+                            "device information and telemetry")
+        self.assertEqual(s["protocol"], "mavlink")
+        d = s["device"]
+        self.assertEqual(d["model"], "simulated MAVLink gimbal")
+        self.assertEqual(d["firmware"], "1.2.3.0")
+        self.assertIn("supports_yaw_in_earth_frame", d["cap_flags"])
+        self.assertAlmostEqual(d["limits"]["pitch_min"], -120, places=3)
+        self.assertIn(d["attitude"]["frame"], ("vehicle", "earth"))
+        self.assertEqual(len(d["angular_velocity"]), 3)
+        self.assertNotIn("no_manager", d["failure_flags"])
+        self.assertLess(d["age_s"], 0.5)
+        self.assertFalse(s["stale"])
+        t = s["telemetry"]
+        for key in ("lat", "lon", "alt", "pan", "tilt", "hfov", "vfov", "target", "footprint",
+                    "ground"):
+            self.assertIn(key, t)
+        self.assertEqual(t["hfov"], 50)
+        self.assertEqual(s["vehicle"]["feed"]["kind"], "autopilot_state")
+
+        # AUTOPILOT_STATE_FOR_GIMBAL_DEVICE reaches the device at 10-50 Hz.
+        time.sleep(1.0)
+        states = [e for e in sim.rx() if e["kind"] == "autopilot_state_for_gimbal_device"]
+        self.assertGreater(len(states), 10)
+        span = states[-1]["t"] - states[-11]["t"]
+        self.assertTrue(10 / 50 <= span <= 10 / 10, "10 AUTOPILOT_STATEs in %.3f s" % span)
+
+        # position: common.xml's quaternion, yaw in the vehicle frame, and the device gets there.
+        start = len(sim.rx())
+        self.assertOk(client.request("position", gimbal="cam", pan=30, tilt=-45))
+        entry = sim.wait_rx(lambda e: e["kind"] == "gimbal_device_set_attitude", start=start)
+        self.assertIsNotNone(entry, "no GIMBAL_DEVICE_SET_ATTITUDE")
+        q = entry["message"]["q"]
+        hp, ht = math.radians(30) / 2, math.radians(-45) / 2
+        expected = (math.cos(hp) * math.cos(ht), -math.sin(hp) * math.sin(ht),
+                    math.cos(hp) * math.sin(ht), math.sin(hp) * math.cos(ht))
+        for got, want in zip(q, expected):
+            self.assertAlmostEqual(got, want, places=5)
+        self.assertEqual(entry["message"]["flags"] & (32 | 64), 32)
+        self.wait_state(client, lambda s: abs(s["telemetry"]["pan"] - 30) < 0.5 and
+                        abs(s["telemetry"]["tilt"] + 45) < 0.5, "pan 30 tilt -45")
+
+        # The stare: geopoint held while the aircraft circles.
+        self.assertOk(client.request("geopoint", gimbal="cam", lat=POINT[0], lon=POINT[1],
+                                     alt=POINT[2], alt_ref="msl"))
+        begin = time.monotonic()
+        errors = []
+        while time.monotonic() - begin < 12:
+            s = self.state(client)
+            if time.monotonic() - begin > 2:
+                errors.append(los_error_deg(s))
+            time.sleep(0.05)
+        errors.sort()
+        p95 = errors[int(len(errors) * 0.95)]
+        print("stare over a pty: %d samples, p95 %.3f deg, max %.3f deg" %
+              (len(errors), p95, errors[-1]))
+        self.assertGreater(len(errors), 50)
+        self.assertLess(p95, 0.5)
+
+    def test_udp_device_state_position_and_stare(self):
+        sim = self.start_sim("--protocol", "mavlink", "--udp", "0", tcp=False, want=("udp",))
+        sim_port = int(sim.endpoints["udp"].rsplit(":", 1)[1])
+        vport = gt.free_port()
+        daemon = self.start_daemon({
+            "gimbals": [{"name": "cam", "protocol": "mavlink",
+                         "link": {"type": "udp", "host": "127.0.0.1", "port": sim_port,
+                                  "local_port": None}}],
+            "vehicle": {"source": {"type": "udp", "bind": "127.0.0.1", "port": vport}},
+        })
+        client = self.client(daemon)
+        aircraft = Aircraft(vport)
+        self.addCleanup(aircraft.close)
+        s = self.wait_state(client, lambda s: s["device"]["vendor"] == "gimbald" and
+                            s["telemetry"] and s["telemetry"]["lat"] is not None,
+                            "device information and telemetry over UDP")
+        self.assertEqual(s["link"]["type"], "udp")
+        self.assertEqual(s["link"]["endpoint"], "127.0.0.1:%d" % sim_port)
+        self.assertFalse(s["stale"])
+
+        start = len(sim.rx())
+        self.assertOk(client.request("position", gimbal="cam", pan=-60, tilt=-20))
+        entry = sim.wait_rx(lambda e: e["kind"] == "gimbal_device_set_attitude", start=start)
+        self.assertIsNotNone(entry)
+        self.assertEqual(entry["src"], "udp")
+        self.assertAlmostEqual(entry["message"]["yaw"], -60, places=3)
+        self.assertAlmostEqual(entry["message"]["pitch"], -20, places=3)
+        self.wait_state(client, lambda s: abs(s["telemetry"]["pan"] + 60) < 0.5, "pan -60")
+
+        self.assertOk(client.request("geopoint", gimbal="cam", lat=POINT[0], lon=POINT[1],
+                                     alt=POINT[2], alt_ref="msl"))
+        begin = time.monotonic()
+        errors = []
+        while time.monotonic() - begin < 8:
+            s = self.state(client)
+            if time.monotonic() - begin > 2:
+                errors.append(los_error_deg(s))
+            time.sleep(0.05)
+        errors.sort()
+        p95 = errors[int(len(errors) * 0.95)]
+        print("stare over UDP: %d samples, p95 %.3f deg" % (len(errors), p95))
+        self.assertLess(p95, 0.5)
+
+    def test_udp_link_takes_frames_only_from_its_host(self):
+        # The device is at 127.0.0.2: datagrams from 127.0.0.1 (a stranger's) are dropped.
+        stranger = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
+        self.addCleanup(stranger.close)
+        device = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
+        self.addCleanup(device.close)
+        try:
+            device.bind(("127.0.0.2", 0))
+        except OSError:
+            self.skipTest("127.0.0.2 is not a local address here")
+        local = gt.free_port()
+        daemon = self.start_daemon({
+            "gimbals": [{"name": "cam", "protocol": "mavlink",
+                         "link": {"type": "udp", "host": "127.0.0.2",
+                                  "port": device.getsockname()[1], "local_port": local}}]})
+        client = self.client(daemon)
+        device.settimeout(5)
+        data, sender = device.recvfrom(2048)  # the REQUEST_MESSAGE gimbald sends at once
+        self.assertEqual(sender[1], local)
+        self.assertEqual(data[0], 0xFD)
+        status = struct.pack("<I4ffffIHBB", 0, 1, 0, 0, 0, 0, 0, 0, 0, 32, 0, 0)
+        CRC_EXTRA[285] = 137
+        frame = mavlink_v2(285, status, sysid=1, compid=154)
+        stranger.sendto(frame, ("127.0.0.1", local))
+        time.sleep(0.5)
+        self.assertIsNone(self.state(client)["device"]["attitude"])
+        device.sendto(frame, ("127.0.0.1", local))
+        self.wait_state(client, lambda s: s["device"]["attitude"] is not None,
+                        "the attitude from the device's host")
+
+    def test_pty_device_goes_stale_and_recovers(self):
+        sim, daemon, vport = self.start_pty(stale_after_s=0.5)
+        client = self.client(daemon)
+        self.wait_state(client, lambda s: s["device"]["attitude"] is not None and not s["stale"],
+                        "a fresh attitude")
+        sim.kill()
+        s = self.wait_state(client, lambda s: s["stale"], "stale after the device went quiet",
+                            timeout=3)
+        self.assertGreaterEqual(s["device"]["age_s"], 0.5)
+        self.assertTrue(daemon.wait_log(lambda e: e.get("event") == "telemetry_lost"))
+
+
+if __name__ == "__main__":
+    gt.main()
