@@ -268,8 +268,8 @@ void RequestPath::authorize(Outcome& o) {
             Error{code::forbidden, o.env.token ? "wrong token" : "this command needs 'token'"};
 }
 
-std::string RequestPath::execute_object(const json& request, const RequestSource& from,
-                                        Outcome& o, json* results) {
+std::string RequestPath::execute_object(const json& request, const RequestSource& from, Outcome& o,
+                                        json* results) {
     ++counters_.requests;
     const std::string text = request.dump(-1, ' ', false, json::error_handler_t::replace);
     if (auto bad = cmdns::parse_envelope(text, known_command, o.env)) {

@@ -110,8 +110,8 @@ class RequestPath {
     void run(Outcome& o, const RequestSource& from);
     // execute()'s work: the envelope check, run and finish; returns the reply text and,
     // when `results` is given, copies a success's results there.
-    std::string execute_object(const nlohmann::json& request, const RequestSource& from,
-                               Outcome& o, nlohmann::json* results = nullptr);
+    std::string execute_object(const nlohmann::json& request, const RequestSource& from, Outcome& o,
+                               nlohmann::json* results = nullptr);
     nlohmann::json dispatch(Outcome& o, const RequestSource& from);
     nlohmann::json subscription(Outcome& o, const RequestSource& from);
     std::string finish(Outcome& o, const RequestSource& from, std::string_view request_bytes);

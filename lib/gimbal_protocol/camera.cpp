@@ -7,6 +7,7 @@
 
 #include "geo/wgs84.hpp"
 #include "gimbal_protocol/status.hpp"
+#include "session/capabilities.hpp"
 
 namespace gimbal::gimbal_protocol {
 
@@ -21,27 +22,6 @@ Mapped answer(MavResult result, std::string reason = {}) {
     m.result = result;
     m.reason = std::move(reason);
     return m;
-}
-
-std::optional<double> num(const nlohmann::json& j, std::initializer_list<const char*> keys) {
-    const nlohmann::json* at = &j;
-    for (const char* k : keys) {
-        if (!at->is_object()) return std::nullopt;
-        const auto it = at->find(k);
-        if (it == at->end()) return std::nullopt;
-        at = &*it;
-    }
-    if (!at->is_number()) return std::nullopt;
-    const double v = at->get<double>();
-    if (!std::isfinite(v)) return std::nullopt;
-    return v;
-}
-
-template <std::size_t N>
-void copy_text(std::array<std::uint8_t, N>& out, std::string_view text) {
-    out.fill(0);
-    for (std::size_t i = 0; i < text.size() && i < N; ++i)
-        out[i] = static_cast<std::uint8_t>(text[i]);
 }
 
 template <class T>
@@ -79,10 +59,10 @@ VideoNow video_now(const nlohmann::json& state) {
     const auto it = state.is_object() ? state.find("video") : state.end();
     if (!state.is_object() || it == state.end() || !it->is_object()) return v;
     const nlohmann::json& video = *it;
-    v.fps = static_cast<float>(num(video, {"fps"}).value_or(0));
-    v.bitrate = clamp_to<std::uint32_t>(num(video, {"bitrate_bps"}).value_or(0));
-    v.width = clamp_to<std::uint16_t>(num(video, {"width"}).value_or(0));
-    v.height = clamp_to<std::uint16_t>(num(video, {"height"}).value_or(0));
+    v.fps = static_cast<float>(session::number_at(video, {"fps"}).value_or(0));
+    v.bitrate = clamp_to<std::uint32_t>(session::number_at(video, {"bitrate_bps"}).value_or(0));
+    v.width = clamp_to<std::uint16_t>(session::number_at(video, {"width"}).value_or(0));
+    v.height = clamp_to<std::uint16_t>(session::number_at(video, {"height"}).value_or(0));
     v.connected = video.value("connected", false);
     const auto codec = video.find("codec");
     if (codec != video.end() && codec->is_string()) {
@@ -93,7 +73,7 @@ VideoNow video_now(const nlohmann::json& state) {
 }
 
 std::uint16_t hfov_deg(const nlohmann::json& state) {
-    return clamp_to<std::uint16_t>(num(state, {"telemetry", "hfov"}).value_or(0));
+    return clamp_to<std::uint16_t>(session::number_at(state, {"telemetry", "hfov"}).value_or(0));
 }
 
 }  // namespace
@@ -320,8 +300,8 @@ mav::VideoStreamInformation stream_information(const ExposedCamera& cam, std::si
     s.stream_id = static_cast<std::uint8_t>(index + 1);
     s.count = static_cast<std::uint8_t>(cam.streams.size());
     s.type = stream.type;
-    copy_text(s.name, stream.name);
-    copy_text(s.uri, stream.uri);
+    mav::set_text(s.name, stream.name);
+    mav::set_text(s.uri, stream.uri);
     s.encoding = v.encoding;
     return s;
 }
@@ -357,9 +337,9 @@ mav::CameraTrackingGeoStatus tracking_geo_status(const std::optional<HeldPoint>&
     s.lon = static_cast<std::int32_t>(std::lround(held->lon * 1e7));
     if (held->alt_msl) s.alt = static_cast<float>(*held->alt_msl);
     // The camera's own position (Orion telemetry: WGS84 ellipsoid altitude).
-    const auto lat = num(state, {"telemetry", "lat"});
-    const auto lon = num(state, {"telemetry", "lon"});
-    const auto alt = num(state, {"telemetry", "alt"});
+    const auto lat = session::number_at(state, {"telemetry", "lat"});
+    const auto lon = session::number_at(state, {"telemetry", "lon"});
+    const auto alt = session::number_at(state, {"telemetry", "alt"});
     if (lat && lon && alt) {
         const auto a = geo::lla_to_ecef(geo::Lla{*lat, *lon, *alt});
         const auto b = geo::lla_to_ecef(geo::Lla{held->lat, held->lon, held->alt});

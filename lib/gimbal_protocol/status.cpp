@@ -5,6 +5,8 @@
 #include <numbers>
 #include <string_view>
 
+#include "session/capabilities.hpp"
+
 namespace gimbal::gimbal_protocol {
 
 namespace mav = gimbal::mavlink;
@@ -12,20 +14,6 @@ namespace mav = gimbal::mavlink;
 namespace {
 
 constexpr double deg_to_rad = std::numbers::pi / 180.0;
-
-std::optional<double> num(const nlohmann::json& j, std::initializer_list<const char*> keys) {
-    const nlohmann::json* at = &j;
-    for (const char* k : keys) {
-        if (!at->is_object()) return std::nullopt;
-        const auto it = at->find(k);
-        if (it == at->end()) return std::nullopt;
-        at = &*it;
-    }
-    if (!at->is_number()) return std::nullopt;
-    const double v = at->get<double>();
-    if (!std::isfinite(v)) return std::nullopt;
-    return v;
-}
 
 std::int32_t degE7(std::optional<double> deg) {
     if (!deg || std::abs(*deg) > 180) return mav::CameraFovStatus::unknown;
@@ -39,13 +27,6 @@ std::int32_t mm(std::optional<double> m) {
 
 float f(std::optional<double> v) {
     return v ? static_cast<float>(*v) : mav::nan_f;
-}
-
-template <std::size_t N>
-void copy_text(std::array<std::uint8_t, N>& out, std::string_view text) {
-    out.fill(0);
-    for (std::size_t i = 0; i < text.size() && i < N; ++i)
-        out[i] = static_cast<std::uint8_t>(text[i]);
 }
 
 bool healthy(const nlohmann::json& state) {
@@ -101,8 +82,8 @@ std::optional<geo::Quat> line_of_sight(const nlohmann::json& state, const std::s
         const auto* t =
             state.is_object() && state.contains("telemetry") ? &state["telemetry"] : nullptr;
         if (!t || !t->is_object()) return std::nullopt;
-        const auto pan = num(*t, {"pan"});
-        const auto tilt = num(*t, {"tilt"});
+        const auto pan = session::number_at(*t, {"pan"});
+        const auto tilt = session::number_at(*t, {"tilt"});
         const auto it = t->find("quat");
         if (!pan || !tilt || it == t->end() || !it->is_array() || it->size() != 4)
             return std::nullopt;
@@ -116,12 +97,12 @@ std::optional<geo::Quat> line_of_sight(const nlohmann::json& state, const std::s
         return geo::normalized(geo::normalized(mount) *
                                geo::euler_to_quat(geo::EulerDeg{0, *tilt, *pan}));
     }
-    const auto ur = num(state, {"output", "uav", "roll"});
-    const auto up = num(state, {"output", "uav", "pitch"});
-    const auto uy = num(state, {"output", "uav", "yaw"});
-    const auto gr = num(state, {"output", "gimbal", "roll"});
-    const auto gp = num(state, {"output", "gimbal", "pitch"});
-    const auto gy = num(state, {"output", "gimbal", "yaw"});
+    const auto ur = session::number_at(state, {"output", "uav", "roll"});
+    const auto up = session::number_at(state, {"output", "uav", "pitch"});
+    const auto uy = session::number_at(state, {"output", "uav", "yaw"});
+    const auto gr = session::number_at(state, {"output", "gimbal", "roll"});
+    const auto gp = session::number_at(state, {"output", "gimbal", "pitch"});
+    const auto gy = session::number_at(state, {"output", "gimbal", "yaw"});
     if (!ur || !up || !uy || !gp || !gy) return std::nullopt;
     return geo::normalized(geo::euler_to_quat(geo::EulerDeg{*ur, *up, *uy}) *
                            geo::euler_to_quat(geo::EulerDeg{gr.value_or(0), *gp, *gy}));
@@ -149,24 +130,24 @@ mav::CameraFovStatus fov_status(const ExposedGimbal& g, const nlohmann::json& st
     s.time_boot_ms = time_boot_ms;
     s.camera_device_id = g.device_id;
     if (g.protocol == "orion") {
-        s.lat_camera = degE7(num(state, {"telemetry", "lat"}));
-        s.lon_camera = degE7(num(state, {"telemetry", "lon"}));
-        s.alt_camera = mm(num(state, {"telemetry", "alt_msl"}));
-        s.lat_image = degE7(num(state, {"telemetry", "target", "lat"}));
-        s.lon_image = degE7(num(state, {"telemetry", "target", "lon"}));
+        s.lat_camera = degE7(session::number_at(state, {"telemetry", "lat"}));
+        s.lon_camera = degE7(session::number_at(state, {"telemetry", "lon"}));
+        s.alt_camera = mm(session::number_at(state, {"telemetry", "alt_msl"}));
+        s.lat_image = degE7(session::number_at(state, {"telemetry", "target", "lat"}));
+        s.lon_image = degE7(session::number_at(state, {"telemetry", "target", "lon"}));
         // The target's altitude is WGS84; CAMERA_FOV_STATUS wants MSL.
-        const auto alt = num(state, {"telemetry", "target", "alt"});
-        const auto n = num(state, {"telemetry", "geoid_undulation"});
+        const auto alt = session::number_at(state, {"telemetry", "target", "alt"});
+        const auto n = session::number_at(state, {"telemetry", "geoid_undulation"});
         s.alt_image = mm(alt && n ? std::optional<double>{*alt - *n} : std::nullopt);
-        s.hfov = f(num(state, {"telemetry", "hfov"}));
-        s.vfov = f(num(state, {"telemetry", "vfov"}));
+        s.hfov = f(session::number_at(state, {"telemetry", "hfov"}));
+        s.vfov = f(session::number_at(state, {"telemetry", "vfov"}));
     } else {
-        s.lat_camera = degE7(num(state, {"output", "uav", "lat"}));
-        s.lon_camera = degE7(num(state, {"output", "uav", "lon"}));
-        s.alt_camera = mm(num(state, {"output", "uav", "alt_msl"}));
-        s.lat_image = degE7(num(state, {"output", "target", "lat"}));
-        s.lon_image = degE7(num(state, {"output", "target", "lon"}));
-        s.alt_image = mm(num(state, {"output", "target", "alt_msl"}));
+        s.lat_camera = degE7(session::number_at(state, {"output", "uav", "lat"}));
+        s.lon_camera = degE7(session::number_at(state, {"output", "uav", "lon"}));
+        s.alt_camera = mm(session::number_at(state, {"output", "uav", "alt_msl"}));
+        s.lat_image = degE7(session::number_at(state, {"output", "target", "lat"}));
+        s.lon_image = degE7(session::number_at(state, {"output", "target", "lon"}));
+        s.alt_image = mm(session::number_at(state, {"output", "target", "alt_msl"}));
     }
     if (const auto q = line_of_sight(state, g.protocol))
         s.q = {static_cast<float>(q->w), static_cast<float>(q->x), static_cast<float>(q->y),
@@ -231,9 +212,9 @@ mav::GimbalDeviceInformation device_information(const ExposedGimbal& g, const nl
     d.pitch_max = l.tilt_max;
     d.yaw_min = l.pan_min;
     d.yaw_max = l.pan_max;
-    copy_text(d.vendor_name, g.protocol == "orion" ? "Trillium" : "Viewpro");
-    copy_text(d.model_name, g.protocol == "orion" ? "Orion" : "Viewpro");
-    copy_text(d.custom_name, g.name);
+    mav::set_text(d.vendor_name, g.protocol == "orion" ? "Trillium" : "Viewpro");
+    mav::set_text(d.model_name, g.protocol == "orion" ? "Orion" : "Viewpro");
+    mav::set_text(d.custom_name, g.name);
     return d;
 }
 
@@ -243,8 +224,8 @@ mav::CameraInformation camera_information(const ExposedGimbal& g, const nlohmann
     c.time_boot_ms = time_boot_ms;
     c.gimbal_device_id = g.device_id;
     c.camera_device_id = g.device_id;
-    copy_text(c.vendor_name, g.protocol == "orion" ? "Trillium" : "Viewpro");
-    copy_text(c.model_name, g.protocol == "orion" ? "Orion" : "Viewpro");
+    mav::set_text(c.vendor_name, g.protocol == "orion" ? "Trillium" : "Viewpro");
+    mav::set_text(c.model_name, g.protocol == "orion" ? "Orion" : "Viewpro");
     c.focal_length = mav::nan_f;
     c.sensor_size_h = mav::nan_f;
     c.sensor_size_v = mav::nan_f;
@@ -255,10 +236,10 @@ mav::CameraInformation camera_information(const ExposedGimbal& g, const nlohmann
         if (cams && cams->is_object() && cams->contains("cameras") &&
             (*cams)["cameras"].is_array() && !(*cams)["cameras"].empty()) {
             const auto& cam = (*cams)["cameras"][0];
-            c.focal_length = f(num(cam, {"min_focal_length_mm"}));
-            const auto w = num(cam, {"array_width"});
-            const auto h = num(cam, {"array_height"});
-            const auto pitch = num(cam, {"pixel_pitch_mm"});
+            c.focal_length = f(session::number_at(cam, {"min_focal_length_mm"}));
+            const auto w = session::number_at(cam, {"array_width"});
+            const auto h = session::number_at(cam, {"array_height"});
+            const auto pitch = session::number_at(cam, {"pixel_pitch_mm"});
             if (w && h) {
                 c.resolution_h = static_cast<std::uint16_t>(*w);
                 c.resolution_v = static_cast<std::uint16_t>(*h);

@@ -7,12 +7,22 @@
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <string_view>
 #include <variant>
 
 #include "mavlink/camera_messages.hpp"
 #include "mavlink/gimbal_messages.hpp"
 
 namespace gimbal::mavlink {
+
+// A char[N] field of common.xml: the text's first N bytes, zero-padded (no terminator when
+// the text fills the field).
+template <std::size_t N>
+void set_text(std::array<std::uint8_t, N>& field, std::string_view text) {
+    field.fill(0);
+    for (std::size_t i = 0; i < text.size() && i < N; ++i)
+        field[i] = static_cast<std::uint8_t>(text[i]);
+}
 
 // HEARTBEAT (0). Wire order: custom_mode, type, autopilot, base_mode, system_status,
 // mavlink_version.

@@ -19,8 +19,8 @@ bool takes_ground_altitudes(std::string_view cmd);
 // The request with every altitude the terrain was asked for filled in (alt_ref "wgs84"), or
 // the request unchanged when it leaves nothing to the terrain (or is malformed in a way the
 // planner reports). Errors: bad_request / out_of_range for an alt_ref, or a latitude,
-// longitude or height the lookup needs; unavailable when the terrain has no height there or none is configured
-// (`terrain` nullptr).
+// longitude or height the lookup needs; unavailable when the terrain has no height there or
+// none is configured (`terrain` nullptr).
 command::Result<nlohmann::json> resolve_ground_altitudes(std::string_view cmd,
                                                          const nlohmann::json& request,
                                                          geo::Surface* terrain);

@@ -58,12 +58,14 @@ Bytes read_file(const fs::path& p) {
     return Bytes((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
 }
 
-std::uint16_t port_of(const asio::ip::udp::socket& s) { return s.local_endpoint().port(); }
+std::uint16_t port_of(const asio::ip::udp::socket& s) {
+    return s.local_endpoint().port();
+}
 
 // A KLV set the size of a typical ST 0601 local set (~170 bytes).
 Bytes klv_set(std::size_t frame) {
-    Bytes b = {0x06, 0x0E, 0x2B, 0x34, 0x02, 0x0B, 0x01, 0x01,
-               0x0E, 0x01, 0x03, 0x01, 0x01, 0x00, 0x00, 0x00, 0x81, 150};
+    Bytes b = {0x06, 0x0E, 0x2B, 0x34, 0x02, 0x0B, 0x01, 0x01, 0x0E,
+               0x01, 0x03, 0x01, 0x01, 0x00, 0x00, 0x00, 0x81, 150};
     for (std::size_t i = 0; i < 150; ++i) b.push_back(static_cast<std::uint8_t>(frame + i));
     return b;
 }
@@ -132,7 +134,8 @@ int main(int argc, char** argv) {
     }
     std::size_t total_bytes = 0;
     for (const Bytes& d : datagrams) total_bytes += d.size();
-    const double input_bps = static_cast<double>(total_bytes) * 8.0 * 30.0 / static_cast<double>(units.size());
+    const double input_bps =
+        static_cast<double>(total_bytes) * 8.0 * 30.0 / static_cast<double>(units.size());
 
     // 3. Receivers for the two outputs, and the relay.
     asio::io_context rx_io;
@@ -183,7 +186,8 @@ int main(int argc, char** argv) {
     });
 
     std::thread receiver([&] {
-        gv::TsDemuxer d1({[&](const gv::AccessUnit&) { received.push_back(Clock::now()); }, {}, {}});
+        gv::TsDemuxer d1(
+            {[&](const gv::AccessUnit&) { received.push_back(Clock::now()); }, {}, {}});
         gv::TsDemuxer d2({[&](const gv::AccessUnit&) { ++units2; }, {}, {}});
         std::array<std::uint8_t, 65536> buf{};
         pollfd fds[2] = {{rx1.native_handle(), POLLIN, 0}, {rx2.native_handle(), POLLIN, 0}};
@@ -213,7 +217,8 @@ int main(int argc, char** argv) {
         const auto start = Clock::now();
         for (std::size_t f = 0; f < frame_first.size(); ++f) {
             std::this_thread::sleep_until(start + std::chrono::microseconds(f * 1'000'000 / 30));
-            const std::size_t end = f + 1 < frame_first.size() ? frame_first[f + 1] : datagrams.size();
+            const std::size_t end =
+                f + 1 < frame_first.size() ? frame_first[f + 1] : datagrams.size();
             for (std::size_t i = frame_first[f]; i < end; ++i) {
                 sent[i] = Clock::now();
                 tx.send_to(asio::buffer(datagrams[i]), to);
@@ -228,30 +233,37 @@ int main(int argc, char** argv) {
     // 5. Figures.
     std::vector<double> latency_ms;
     for (std::size_t i = 0; i < std::min(received.size(), completing.size()); ++i) {
-        latency_ms.push_back(std::chrono::duration<double, std::milli>(received[i] - sent[completing[i]]).count());
+        latency_ms.push_back(
+            std::chrono::duration<double, std::milli>(received[i] - sent[completing[i]]).count());
     }
     // Against the stream's duration, not the thread's lifetime: the idle time before and
     // after the stream would flatter the figure.
     const double stream_s = static_cast<double>(units.size()) / 30.0;
     const double cpu_pct = 100.0 * relay_cpu / stream_s;
     const double p50 = percentile(latency_ms, 0.50), p99 = percentile(latency_ms, 0.99);
-    const double max = latency_ms.empty() ? 0 : *std::max_element(latency_ms.begin(), latency_ms.end());
-    std::printf("video relay: 1080p30 H.264 %.1f Mbit/s (with KLV at 30 Hz), %zu units over %.1f s, "
-                "UDP in -> 2 UDP outputs\n",
-                input_bps / 1e6, units.size(), stream_s);
-    std::printf("  relay thread CPU: %.2f %% of a core (%.3f s for %.2f s of stream; thread ran %.2f s)"
-                "   target < 3 %%: %s\n",
-                cpu_pct, relay_cpu, stream_s, relay_wall, cpu_pct < 3 ? "met" : "MISSED");
-    std::printf("  latency input -> output: p50 %.3f ms  p99 %.3f ms  max %.3f ms   target p99 < 5 ms: %s\n",
-                p50, p99, max, p99 < 5 ? "met" : "MISSED");
-    std::printf("  units relayed: output 1 %zu/%zu, output 2 %zu/%zu; input cc errors %llu, "
-                "datagrams sent %llu + %llu, dropped %llu + %llu\n",
-                received.size(), units.size(), units2, units.size(),
-                static_cast<unsigned long long>(in_status.demux.cc_errors),
-                static_cast<unsigned long long>(out_stats[0].datagrams),
-                static_cast<unsigned long long>(out_stats[1].datagrams),
-                static_cast<unsigned long long>(out_stats[0].dropped_full + out_stats[0].dropped_error),
-                static_cast<unsigned long long>(out_stats[1].dropped_full + out_stats[1].dropped_error));
+    const double max =
+        latency_ms.empty() ? 0 : *std::max_element(latency_ms.begin(), latency_ms.end());
+    std::printf(
+        "video relay: 1080p30 H.264 %.1f Mbit/s (with KLV at 30 Hz), %zu units over %.1f s, "
+        "UDP in -> 2 UDP outputs\n",
+        input_bps / 1e6, units.size(), stream_s);
+    std::printf(
+        "  relay thread CPU: %.2f %% of a core (%.3f s for %.2f s of stream; thread ran %.2f s)"
+        "   target < 3 %%: %s\n",
+        cpu_pct, relay_cpu, stream_s, relay_wall, cpu_pct < 3 ? "met" : "MISSED");
+    std::printf(
+        "  latency input -> output: p50 %.3f ms  p99 %.3f ms  max %.3f ms   target p99 < 5 ms: "
+        "%s\n",
+        p50, p99, max, p99 < 5 ? "met" : "MISSED");
+    std::printf(
+        "  units relayed: output 1 %zu/%zu, output 2 %zu/%zu; input cc errors %llu, "
+        "datagrams sent %llu + %llu, dropped %llu + %llu\n",
+        received.size(), units.size(), units2, units.size(),
+        static_cast<unsigned long long>(in_status.demux.cc_errors),
+        static_cast<unsigned long long>(out_stats[0].datagrams),
+        static_cast<unsigned long long>(out_stats[1].datagrams),
+        static_cast<unsigned long long>(out_stats[0].dropped_full + out_stats[0].dropped_error),
+        static_cast<unsigned long long>(out_stats[1].dropped_full + out_stats[1].dropped_error));
     const bool complete = received.size() == units.size() && units2 == units.size();
     if (!complete) std::fprintf(stderr, "video relay: units were lost\n");
     return complete ? 0 : 1;

@@ -123,7 +123,8 @@ TEST_CASE("command line options", "[options]") {
     SECTION("bad --sim lists are usage errors") {
         auto p = parse({"--sim", "orion,gopro"});
         CHECK(p.command_line.exit_code == exit_config_error);
-        CHECK(p.err == "gimbald: --sim: unknown protocol \"gopro\" (expected orion, viewpro, mavlink)\n");
+        CHECK(p.err ==
+              "gimbald: --sim: unknown protocol \"gopro\" (expected orion, viewpro, mavlink)\n");
         p = parse({"--sim", "orion,orion"});
         CHECK(p.command_line.exit_code == exit_config_error);
         CHECK(p.err == "gimbald: --sim: protocol \"orion\" listed twice\n");
