@@ -4,6 +4,7 @@
 #include <limits>
 #include <numbers>
 #include <string_view>
+#include <utility>
 
 #include "session/capabilities.hpp"
 
@@ -197,6 +198,20 @@ mav::GimbalManagerInformation manager_information(const ExposedGimbal& g,
     return m;
 }
 
+// Vendor and model as MAVLink announces them: what the gimbal reports of itself (a MAVLink
+// gimbal device's STATE `device`), else the protocol's maker.
+namespace {
+std::pair<std::string, std::string> maker_of(const ExposedGimbal& g, const nlohmann::json& state) {
+    const auto* vendor = session::state_at(state, {"device", "vendor"});
+    const auto* model = session::state_at(state, {"device", "model"});
+    if (vendor && vendor->is_string() && model && model->is_string())
+        return {vendor->get<std::string>(), model->get<std::string>()};
+    if (g.protocol == "orion") return {"Trillium", "Orion"};
+    if (g.protocol == "viewpro") return {"Viewpro", "Viewpro"};
+    return {"MAVLink", "gimbal device"};
+}
+}  // namespace
+
 mav::GimbalDeviceInformation device_information(const ExposedGimbal& g, const nlohmann::json& state,
                                                 std::uint32_t time_boot_ms) {
     mav::GimbalDeviceInformation d;
@@ -212,8 +227,9 @@ mav::GimbalDeviceInformation device_information(const ExposedGimbal& g, const nl
     d.pitch_max = l.tilt_max;
     d.yaw_min = l.pan_min;
     d.yaw_max = l.pan_max;
-    mav::set_text(d.vendor_name, g.protocol == "orion" ? "Trillium" : "Viewpro");
-    mav::set_text(d.model_name, g.protocol == "orion" ? "Orion" : "Viewpro");
+    const auto [vendor, model] = maker_of(g, state);
+    mav::set_text(d.vendor_name, vendor);
+    mav::set_text(d.model_name, model);
     mav::set_text(d.custom_name, g.name);
     return d;
 }
@@ -224,8 +240,9 @@ mav::CameraInformation camera_information(const ExposedGimbal& g, const nlohmann
     c.time_boot_ms = time_boot_ms;
     c.gimbal_device_id = g.device_id;
     c.camera_device_id = g.device_id;
-    mav::set_text(c.vendor_name, g.protocol == "orion" ? "Trillium" : "Viewpro");
-    mav::set_text(c.model_name, g.protocol == "orion" ? "Orion" : "Viewpro");
+    const auto [vendor, model] = maker_of(g, state);
+    mav::set_text(c.vendor_name, vendor);
+    mav::set_text(c.model_name, model);
     c.focal_length = mav::nan_f;
     c.sensor_size_h = mav::nan_f;
     c.sensor_size_v = mav::nan_f;

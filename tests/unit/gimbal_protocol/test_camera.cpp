@@ -71,6 +71,22 @@ TEST_CASE("CAMERA_INFORMATION: flags from the capabilities and the video, device
     CHECK(viewpro.gimbal_device_id == 2);
 }
 
+TEST_CASE("a gimbal that reports its maker is announced by it, not by a protocol's name") {
+    // A MAVLink gimbal device names itself in STATE `device` (GIMBAL_DEVICE_INFORMATION).
+    const ExposedGimbal device{"gremsy", "mavlink", 3, 172};
+    const nlohmann::json state = {{"device", {{"vendor", "Gremsy"}, {"model", "T3V3"}}}};
+    const auto info = device_information(device, state, 7);
+    CHECK(text(info.vendor_name) == "Gremsy");
+    CHECK(text(info.model_name) == "T3V3");
+    const auto camera = camera_information(device, state, 7);
+    CHECK(text(camera.vendor_name) == "Gremsy");
+    // Not reported yet: the protocol's own maker, never another protocol's.
+    const auto unnamed = device_information(device, nlohmann::json::object(), 7);
+    CHECK(text(unnamed.vendor_name) == "MAVLink");
+    CHECK(text(device_information({"main", "orion", 1, 154}, nlohmann::json::object(), 7)
+                   .vendor_name) == "Trillium");
+}
+
 TEST_CASE("TRACK_POINT: MAVLink's 0..1 becomes point x, y -1..1 with stare") {
     CameraComponents c(cameras());
     const auto cam = *c.find(100);
