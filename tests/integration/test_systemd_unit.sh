@@ -47,7 +47,8 @@ fi
 
 # A deliberately broken copy must be caught, or the check above proves nothing.
 sed -e 's|^WatchdogSec=10$|WatchdogSec=10\nWatchdogSecs=10|' "$tmp/gimbald.service" >"$tmp/broken.service"
-if ! systemd-analyze verify "$tmp/broken.service" 2>&1 | grep -q "WatchdogSecs"; then
+broken_output=$(systemd-analyze verify "$tmp/broken.service" 2>&1)
+if ! grep -q "WatchdogSecs" <<<"$broken_output"; then
     fail "systemd-analyze verify did not report an unknown key; the check is blind"
 fi
 

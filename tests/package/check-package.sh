@@ -16,7 +16,7 @@ arch=$(dpkg-deb -f "$deb" Architecture)
 # --- lintian: no errors (warnings and info tags are printed, see docs/operations.md)
 lintian_out=$(lintian --tag-display-limit 0 "$deb" 2>&1 | grep -v 'running with root privileges' || true)
 [ -n "$lintian_out" ] && echo "$lintian_out"
-if echo "$lintian_out" | grep -q '^E: '; then fail "lintian reports errors"; else pass "lintian: no errors"; fi
+if grep -q '^E: ' <<<"$lintian_out"; then fail "lintian reports errors"; else pass "lintian: no errors"; fi
 
 # --- control fields
 field() { dpkg-deb -f "$deb" "$1"; }
@@ -28,7 +28,7 @@ for f in Section Priority Maintainer Description Installed-Size; do
 done
 depends=$(field Depends)
 for lib in libc6 libstdc++6 libsystemd0 libspdlog libfmt libgeographiclib systemd; do
-  echo "$depends" | grep -q "$lib" && pass "Depends has $lib" || fail "Depends lacks $lib: $depends"
+  grep -q "$lib" <<<"$depends" && pass "Depends has $lib" || fail "Depends lacks $lib: $depends"
 done
 control=$(mktemp -d)
 scratch=$(mktemp -d)
@@ -45,7 +45,7 @@ grep -q 'systemd-sysusers' "$control/postinst" && grep -q 'deb-systemd-helper en
 # --- contents
 contents=$(dpkg-deb -c "$deb" | awk '{print $1, $6}')
 expect() {  # mode-prefix path
-  echo "$contents" | grep -q "^$1[^ ]* \./$2\$" && pass "has $2" || fail "lacks $2 ($1)"
+  grep -q "^$1[^ ]* \./$2\$" <<<"$contents" && pass "has $2" || fail "lacks $2 ($1)"
 }
 expect -rwxr-xr-x usr/sbin/gimbald
 expect -rwxr-xr-x usr/bin/gimbalctl
@@ -60,9 +60,9 @@ expect -rw-r--r-- usr/share/man/man5/gimbald.json.5.gz
 expect -rw-r--r-- usr/share/doc/gimbald/copyright
 # The licence (LICENSE in the source): Apache-2.0, in Debian's machine-readable format.
 copyright=$(dpkg-deb --fsys-tarfile "$deb" | tar -xOf - ./usr/share/doc/gimbald/copyright)
-echo "$copyright" | grep -qx 'Format: https://www.debian.org/doc/packaging-manuals/copyright-format/1.0/' \
-  && echo "$copyright" | grep -qx 'License: Apache-2.0' \
-  && echo "$copyright" | grep -q '/usr/share/common-licenses/Apache-2.0' \
+grep -qx 'Format: https://www.debian.org/doc/packaging-manuals/copyright-format/1.0/' <<<"$copyright" \
+  && grep -qx 'License: Apache-2.0' <<<"$copyright" \
+  && grep -q '/usr/share/common-licenses/Apache-2.0' <<<"$copyright" \
   && pass "copyright: machine-readable, Apache-2.0" || fail "copyright is not Apache-2.0 in DEP-5 form"
 expect -rw-r--r-- usr/share/doc/gimbald/changelog.gz
 expect -rw-r--r-- usr/share/doc/gimbald/configuration.md
@@ -87,19 +87,20 @@ fi
 out=$("${run[@]}" "$scratch/usr/sbin/gimbald" --version)
 [ "$out" = "gimbald $version" ] && pass "gimbald --version: $out" || fail "gimbald --version: $out"
 if out=$("${run[@]}" "$scratch/usr/sbin/gimbald" --check-config -c "$scratch/etc/gimbald/gimbald.json" 2>&1) \
-    && echo "$out" | grep -q 'OK, 0 gimbals'; then
+    && grep -q 'OK, 0 gimbals' <<<"$out"; then
   pass "gimbald --check-config: $out"
 else
   fail "gimbald --check-config: $out"
 fi
 out=$("${run[@]}" "$scratch/usr/bin/gimbalctl" --help)
-echo "$out" | grep -q '^SYNOPSIS' && pass "gimbalctl --help" || fail "gimbalctl --help"
+grep -q '^SYNOPSIS' <<<"$out" && pass "gimbalctl --help" || fail "gimbalctl --help"
 out=$("${run[@]}" "$scratch/usr/bin/gimbal-sim" --version)
 [ "$out" = "gimbal-sim $version" ] && pass "gimbal-sim --version: $out" || fail "gimbal-sim --version: $out"
-# Man pages render without groff warnings and carry the version.
+# Man pages render without groff warnings and carry the version. (Here-strings,
+# not pipes into grep -q: with pipefail an early grep exit SIGPIPEs the writer.)
 for page in "$scratch"/usr/share/man/man*/*.gz; do
   warnings=$(LC_ALL=C.UTF-8 MANWIDTH=80 man --warnings -l "$page" 2>&1 >/dev/null || true)
-  [ -z "$warnings" ] && zcat "$page" | grep -q "^\.TH .*gimbal.* $version\"" \
+  [ -z "$warnings" ] && grep -q "^\.TH .*gimbal.* $version\"" <<<"$(zcat "$page")" \
     && pass "man page $(basename "$page")" || fail "man page $(basename "$page"): $warnings"
 done
 
