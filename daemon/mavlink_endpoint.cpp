@@ -443,9 +443,11 @@ MavlinkEndpoint::Ran MavlinkEndpoint::run(gp::Mapped mapped, const gp::MavId& fr
                 if (results.empty()) first_results = std::move(outcome.results);
                 results.push_back(mav::MavResult::accepted);
             } else {
-                const std::string code(gimbal::command::to_string(outcome.error->code));
+                const auto code = outcome.error->code;
                 results.push_back(gp::result_for_error(code));
-                if (reason.empty()) reason = r.gimbal + ": " + code + ": " + outcome.error->message;
+                if (reason.empty())
+                    reason = r.gimbal + ": " + std::string(gimbal::command::to_string(code)) +
+                             ": " + outcome.error->message;
             }
         }
         result = gp::combine(results);

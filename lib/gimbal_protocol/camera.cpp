@@ -134,11 +134,15 @@ CameraMapped CameraComponents::command(const CommandView& cmd, const ExposedCame
             if (!cam.can_point)
                 return {answer(MavResult::unsupported, cam.gimbal.name + " cannot track a point")};
             // Stop staring and hold where the camera looks (as MAV_CMD_DO_SET_ROI_NONE).
+            const auto* caps = cam.gimbal.capabilities();
+            if (!caps) return {answer(MavResult::unsupported, cam.gimbal.name + " cannot stop")};
+            auto stop = caps->stop(state(cam.gimbal.name));
+            if (!stop.ok())
+                return {answer(result_for_error(stop.error().code), stop.error().message)};
             CameraMapped out;
             out.track = TrackChange::stop;
-            nlohmann::json r = {
-                {"cmd", "rate"}, {"gimbal", cam.gimbal.name}, {"pan", 0.0}, {"tilt", 0.0}};
-            if (cam.gimbal.protocol == "orion") r["stabilized"] = true;
+            nlohmann::json r = std::move(stop).value();
+            r["gimbal"] = cam.gimbal.name;
             out.mapped.requests.push_back({cam.gimbal.name, std::move(r)});
             return out;
         }

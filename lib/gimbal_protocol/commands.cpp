@@ -6,6 +6,7 @@
 
 #include "geo/attitude.hpp"
 #include "gimbal_protocol/status.hpp"
+#include "protocols/registry.hpp"
 #include "session/capabilities.hpp"
 
 namespace gimbal::gimbal_protocol {
@@ -39,7 +40,36 @@ std::optional<PitchYaw> pitch_yaw_of(const std::array<float, 4>& q) {
     return PitchYaw{e.pitch_deg, e.yaw_deg};
 }
 
+// The request a capability made, addressed to its gimbal.
+void add_request(Mapped& out, const ExposedGimbal& g, nlohmann::json request) {
+    request["gimbal"] = g.name;
+    out.requests.push_back({g.name, std::move(request)});
+}
+
+Mapped refusal(const command::Error& e) {
+    return answer(result_for_error(e.code), e.message);
+}
+
+session::Request unknown_protocol(const ExposedGimbal& g) {
+    return session::unsupported(g.name + ": protocol '" + g.protocol + "' is not known");
+}
+
+// A command none of the targets takes: the first target's own refusal of the action (the
+// capability's "unsupported" and why).
+template <class Action>
+Mapped refused_by_all(const std::vector<const ExposedGimbal*>& targets, Action action) {
+    const ExposedGimbal& g = *targets.front();
+    const auto* caps = g.capabilities();
+    const session::Request r = caps ? action(*caps) : unknown_protocol(g);
+    return r.ok() ? answer(MavResult::unsupported, "no gimbal takes this") : refusal(r.error());
+}
+
 }  // namespace
+
+const session::Capabilities* ExposedGimbal::capabilities() const {
+    const auto* entry = protocols::find(protocol);
+    return entry ? entry->capabilities : nullptr;
+}
 
 std::vector<ExposedGimbal> expose(const std::vector<std::pair<std::string, std::string>>& gimbals,
                                   std::uint8_t first_component) {
@@ -146,7 +176,7 @@ Mapped GimbalManager::command(const CommandView& cmd, const MavId& sender,
         case mav::mav_cmd::do_set_roi_location:
             return roi_location(cmd, sender, vehicle);
         case mav::mav_cmd::do_set_roi_none:
-            return roi_none(cmd, sender);
+            return roi_none(cmd, sender, state);
         case mav::mav_cmd::do_gimbal_manager_pitchyaw: {
             const auto selected = select(cmd.z, cmd.target_component);
             const auto& targets = selected.gimbals;
@@ -212,68 +242,32 @@ Mapped GimbalManager::pitchyaw(const std::vector<const ExposedGimbal*>& targets,
     if (auto refused = check_control(targets, sender)) return *refused;
     const bool earth_yaw =
         (flags & (mav::gimbal_flags::yaw_lock | mav::gimbal_flags::yaw_in_earth_frame)) != 0;
+    const auto given = [](double v) { return std::isnan(v) ? std::nullopt : std::optional(v); };
 
     Mapped out;
     for (const auto* g : targets) {
-        if (g->protocol == "orion") {
-            nlohmann::json r = {{"gimbal", g->name}};
-            if (angles) {
-                double pan = yaw_deg, tilt = pitch_deg;
-                if (std::isnan(pan) || std::isnan(tilt)) {
-                    const nlohmann::json s = state(g->name);
-                    const auto cur_pan = number_at(s, {"telemetry", "pan"});
-                    const auto cur_tilt = number_at(s, {"telemetry", "tilt"});
-                    if (!cur_pan || !cur_tilt)
-                        return answer(MavResult::temporarily_rejected,
-                                      "no telemetry yet for the angle left out");
-                    if (std::isnan(pan)) pan = *cur_pan;
-                    if (std::isnan(tilt)) tilt = *cur_tilt;
-                } else if (earth_yaw) {
-                    if (!vehicle.heading_deg)
-                        return answer(MavResult::temporarily_rejected,
-                                      "yaw from north needs the aircraft's heading");
-                    pan = wrap180(yaw_deg - *vehicle.heading_deg);
-                }
-                r["cmd"] = "position";
-                r["pan"] = pan;
-                r["tilt"] = tilt;
-            } else {
-                r["cmd"] = "rate";
-                r["pan"] = std::isnan(yaw_rate) ? 0.0 : yaw_rate;
-                r["tilt"] = std::isnan(pitch_rate) ? 0.0 : pitch_rate;
-            }
-            out.requests.push_back({g->name, std::move(r)});
-        } else if (g->protocol == "viewpro") {
-            if (!angles) {
-                if (targets.size() == 1)
-                    return answer(MavResult::unsupported, "Viewpro takes no rate commands");
-                continue;
-            }
-            const nlohmann::json s = state(g->name);
-            const auto cur_pitch = number_at(s, {"output", "gimbal", "pitch"});
-            const auto cur_yaw = number_at(s, {"output", "gimbal", "yaw"});
-            if (!cur_pitch || !cur_yaw)
-                return answer(MavResult::temporarily_rejected, "no Viewpro angles reported yet");
-            double yaw = std::isnan(yaw_deg) ? *cur_yaw : yaw_deg;
-            if (earth_yaw && !std::isnan(yaw_deg)) {
-                if (!vehicle.heading_deg)
-                    return answer(MavResult::temporarily_rejected,
-                                  "yaw from north needs the aircraft's heading");
-                yaw = wrap180(yaw_deg - *vehicle.heading_deg);
-            }
-            const double pitch = std::isnan(pitch_deg) ? *cur_pitch : pitch_deg;
-            // One adjust command moves at most 20 degrees per axis: a larger move converges
-            // over the next commands (a GCS repeats them).
-            const auto step = [](double d) {
-                return std::round(std::clamp(d, -20.0, 20.0) * 100) / 100;
-            };
-            const double dyaw = step(wrap180(yaw - *cur_yaw));
-            const double dpitch = step(pitch - *cur_pitch);
-            nlohmann::json r = {{"cmd", "viewpro_adjust"}, {"gimbal", g->name}};
-            if (dyaw != 0) r["yaw_deg"] = dyaw;
-            if (dpitch != 0 || dyaw == 0) r["pitch_deg"] = dpitch;
-            out.requests.push_back({g->name, std::move(r)});
+        const session::Capabilities* caps = g->capabilities();
+        session::Request request = unknown_protocol(*g);
+        const bool complete = !angles || (!std::isnan(pitch_deg) && !std::isnan(yaw_deg));
+        const nlohmann::json gimbal_state = caps && caps->features().absolute_angles && complete
+                                                ? nlohmann::json::object()
+                                                : state(g->name);
+        if (caps && angles) {
+            const session::AnglesTarget target{
+                given(pitch_deg), given(yaw_deg),
+                earth_yaw ? session::YawFrame::earth : session::YawFrame::vehicle,
+                vehicle.heading_deg};
+            request = caps->point_angles(gimbal_state, target);
+        } else if (caps) {
+            request = caps->rate(gimbal_state, session::RateTarget{pitch_rate, yaw_rate});
         }
+        if (!request.ok()) {
+            // Among several gimbals, one that cannot (a gimbal without rate control) sits
+            // this command out.
+            if (request.error().code == command::code::unsupported && targets.size() > 1) continue;
+            return refusal(request.error());
+        }
+        add_request(out, *g, std::move(request).value());
     }
     if (out.requests.empty()) return answer(MavResult::unsupported, "no gimbal takes this");
     return out;
@@ -284,9 +278,14 @@ Mapped GimbalManager::roi_location(const CommandView& cmd, const MavId& sender,
     const auto selected = select(cmd.param[0], cmd.target_component);
     const auto& targets = selected.gimbals;
     if (targets.empty()) return answer(MavResult::denied, selected.refusal);
-    if (std::none_of(targets.begin(), targets.end(),
-                     [](const auto* g) { return g->protocol == "orion"; }))
-        return answer(MavResult::unsupported, "Viewpro has no geopoint");
+    const auto points = [](const ExposedGimbal* g) {
+        const auto* caps = g->capabilities();
+        return caps && caps->features().geopoint;
+    };
+    if (std::none_of(targets.begin(), targets.end(), points))
+        return refused_by_all(targets, [](const session::Capabilities& c) {
+            return c.geopoint(nlohmann::json::object(), {});
+        });
     namespace f = mav::mav_frame;
     const std::uint8_t frame = cmd.frame;
     bool relative = false;
@@ -310,34 +309,34 @@ Mapped GimbalManager::roi_location(const CommandView& cmd, const MavId& sender,
     }
     Mapped out;
     for (const auto* g : targets) {
-        if (g->protocol != "orion") continue;
-        out.requests.push_back({g->name,
-                                {{"cmd", "geopoint"},
-                                 {"gimbal", g->name},
-                                 {"lat", cmd.x},
-                                 {"lon", cmd.y},
-                                 {"alt", alt_msl},
-                                 {"alt_ref", "msl"}}});
+        if (!points(g)) continue;
+        // No geopoint reads the gimbal's STATE: the location is absolute.
+        auto request = g->capabilities()->geopoint(nlohmann::json::object(),
+                                                   session::GeoTarget{cmd.x, cmd.y, alt_msl});
+        if (!request.ok()) return refusal(request.error());
+        add_request(out, *g, std::move(request).value());
     }
-    if (out.requests.empty()) return answer(MavResult::unsupported, "Viewpro has no geopoint");
     return out;
 }
 
-Mapped GimbalManager::roi_none(const CommandView& cmd, const MavId& sender) {
+Mapped GimbalManager::roi_none(const CommandView& cmd, const MavId& sender,
+                               const StateLookup& state) {
     const auto selected = select(cmd.param[0], cmd.target_component);
     const auto& targets = selected.gimbals;
     if (targets.empty()) return answer(MavResult::denied, selected.refusal);
     if (auto refused = check_control(targets, sender)) return *refused;
     Mapped out;
-    for (const auto* g : targets)
-        if (g->protocol == "orion")
-            out.requests.push_back({g->name,
-                                    {{"cmd", "rate"},
-                                     {"gimbal", g->name},
-                                     {"pan", 0.0},
-                                     {"tilt", 0.0},
-                                     {"stabilized", true}}});
-    if (out.requests.empty()) return answer(MavResult::unsupported, "Viewpro has no ROI");
+    for (const auto* g : targets) {
+        const auto* caps = g->capabilities();
+        if (!caps || !caps->features().geopoint) continue;
+        auto request = caps->stop(state(g->name));
+        if (!request.ok()) return refusal(request.error());
+        add_request(out, *g, std::move(request).value());
+    }
+    if (out.requests.empty())
+        return refused_by_all(targets, [](const session::Capabilities& c) {
+            return c.stop(nlohmann::json::object());
+        });
     return out;
 }
 
@@ -369,45 +368,30 @@ Mapped GimbalManager::zoom(const CommandView& cmd, const StateLookup& state) {
         select(std::isnan(cmd.param[2]) ? 0.0f : cmd.param[2], cmd.target_component);
     const auto& targets = selected.gimbals;
     if (targets.empty()) return answer(MavResult::denied, "no such camera: " + selected.refusal);
-    Mapped out;
-    for (const auto* g : targets) {
-        if (g->protocol != "orion") continue;
-        const nlohmann::json s = state(g->name);
-        const nlohmann::json* cams = state_at(s, {"cameras", "cameras"});
-        double max_ratio = 1.0;
-        if (cams && cams->is_array() && !cams->empty()) {
-            const auto lo = number_at((*cams)[0], {"min_focal_length_mm"});
-            const auto hi = number_at((*cams)[0], {"max_focal_length_mm"});
-            if (lo && hi && *lo > 0 && *hi >= *lo) max_ratio = *hi / *lo;
-        }
-        double ratio = 0;
-        if (type == mav::zoom_type::range) {
-            if (value < 0 || value > 100)
-                return answer(MavResult::denied, "zoom range is a percentage 0..100");
-            if (!cams) return answer(MavResult::temporarily_rejected, "camera list not known yet");
-            ratio = 1.0 + (max_ratio - 1.0) * value / 100.0;
-        } else if (type == mav::zoom_type::continuous) {
-            if (value < -1 || value > 1)
-                return answer(MavResult::denied, "continuous zoom is -1..1");
-            // OrionCameraState takes a zoom ratio, not a rate: zoom in or out goes all the way;
-            // stop (0) leaves the lens where it is.
-            if (value == 0) continue;
-            if (value > 0 && !cams)
-                return answer(MavResult::temporarily_rejected, "camera list not known yet");
-            ratio = value > 0 ? max_ratio : 1.0;
-        } else {
-            return answer(MavResult::unsupported, "zoom type not supported");
-        }
-        out.requests.push_back({g->name,
-                                {{"cmd", "camera_zoom"},
-                                 {"gimbal", g->name},
-                                 {"zoom", std::round(ratio * 100) / 100}}});
+    std::vector<const ExposedGimbal*> zooms;
+    for (const auto* g : targets)
+        if (const auto* caps = g->capabilities(); caps && caps->features().zoom) zooms.push_back(g);
+    if (zooms.empty())
+        return refused_by_all(targets, [](const session::Capabilities& c) {
+            return c.zoom(nlohmann::json::object(), {});
+        });
+    session::ZoomTarget target{session::ZoomKind::range_percent, value};
+    if (type == mav::zoom_type::range) {
+        if (value < 0 || value > 100)
+            return answer(MavResult::denied, "zoom range is a percentage 0..100");
+    } else if (type == mav::zoom_type::continuous) {
+        if (value < -1 || value > 1) return answer(MavResult::denied, "continuous zoom is -1..1");
+        // Stop (0) leaves the lens where it is.
+        if (value == 0) return answer(MavResult::accepted);
+        target.kind = session::ZoomKind::continuous;
+    } else {
+        return answer(MavResult::unsupported, "zoom type not supported");
     }
-    if (out.requests.empty()) {
-        const bool any_orion = std::any_of(targets.begin(), targets.end(),
-                                           [](const auto* g) { return g->protocol == "orion"; });
-        return any_orion ? answer(MavResult::accepted)
-                         : answer(MavResult::unsupported, "Viewpro zoom is not supported");
+    Mapped out;
+    for (const auto* g : zooms) {
+        auto request = g->capabilities()->zoom(state(g->name), target);
+        if (!request.ok()) return refusal(request.error());
+        add_request(out, *g, std::move(request).value());
     }
     return out;
 }
@@ -456,13 +440,33 @@ Mapped GimbalManager::request_message(const CommandView& cmd, const StateLookup&
     return out;
 }
 
-MavResult result_for_error(const std::string& code) {
-    if (code == "link_down" || code == "unavailable" || code == "rate_limited")
-        return MavResult::temporarily_rejected;
-    if (code == "unsupported") return MavResult::unsupported;
-    if (code == "out_of_range" || code == "bad_request" || code == "forbidden")
-        return MavResult::denied;
+MavResult result_for_error(command::ErrorCode code) {
+    namespace c = command::code;
+    switch (code) {
+        case c::link_down:
+        case c::unavailable:
+        case c::rate_limited:
+            return MavResult::temporarily_rejected;
+        case c::unsupported:
+            return MavResult::unsupported;
+        case c::out_of_range:
+        case c::bad_request:
+        case c::forbidden:
+            return MavResult::denied;
+        case c::bad_json:
+        case c::too_large:
+        case c::unknown_cmd:
+        case c::unknown_gimbal:
+        case c::busy:
+        case c::internal:
+            return MavResult::failed;
+    }
     return MavResult::failed;
+}
+
+MavResult result_for_error(std::string_view code) {
+    const auto parsed = command::parse_error_code(code);
+    return parsed ? result_for_error(*parsed) : MavResult::failed;
 }
 
 std::string_view to_string(MavResult result) {

@@ -13,8 +13,10 @@
 #include <string_view>
 #include <vector>
 
+#include "command/result.hpp"
 #include "gimbal_protocol/control.hpp"
 #include "mavlink/messages.hpp"
+#include "session/capabilities.hpp"
 
 namespace gimbal::gimbal_protocol {
 
@@ -23,9 +25,13 @@ namespace gimbal::gimbal_protocol {
 // per manager component).
 struct ExposedGimbal {
     std::string name;
-    std::string protocol;  // "orion" or "viewpro"
+    std::string protocol;  // a protocol registry entry's name (protocols/registry.hpp)
     std::uint8_t device_id = 0;
     std::uint8_t component_id = 154;
+
+    // What the gimbal can do: the mapping asks these, never the protocol's name. nullptr for
+    // a name the registry does not know (every action is then unsupported).
+    const session::Capabilities* capabilities() const;
 };
 
 // MAV_COMP_ID_GIMBAL2..6: the components of the second and later gimbals.
@@ -119,7 +125,7 @@ class GimbalManager {
                     double pitch_deg, double yaw_deg, double pitch_rate, double yaw_rate,
                     std::uint32_t flags, const VehicleView& vehicle, const StateLookup& state);
     Mapped roi_location(const CommandView& cmd, const MavId& sender, const VehicleView& vehicle);
-    Mapped roi_none(const CommandView& cmd, const MavId& sender);
+    Mapped roi_none(const CommandView& cmd, const MavId& sender, const StateLookup& state);
     Mapped configure(const CommandView& cmd, const MavId& sender);
     Mapped zoom(const CommandView& cmd, const StateLookup& state);
     Mapped request_message(const CommandView& cmd, const StateLookup& state,
@@ -133,9 +139,12 @@ class GimbalManager {
     std::uint64_t denied_ = 0;
 };
 
-// gimbald reply error code -> MAV_RESULT: link_down and unavailable TEMPORARILY_REJECTED,
-// unsupported UNSUPPORTED, out_of_range / bad_request / forbidden DENIED, others FAILED.
-mavlink::MavResult result_for_error(const std::string& code);
+// gimbald reply error code -> MAV_RESULT: link_down, unavailable and rate_limited
+// TEMPORARILY_REJECTED, unsupported UNSUPPORTED, out_of_range / bad_request / forbidden DENIED,
+// others FAILED.
+mavlink::MavResult result_for_error(command::ErrorCode code);
+// The same for a code's wire spelling ("link_down"); FAILED for a name that is no code.
+mavlink::MavResult result_for_error(std::string_view code);
 // The answer for several gimbals (device id 0): ACCEPTED when any accepted, else the first.
 mavlink::MavResult combine(const std::vector<mavlink::MavResult>& results);
 // "MAV_RESULT_DENIED" etc. (common.xml's names), for logs.

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <string_view>
 
 #include "geo/attitude.hpp"
 #include "gimbal_protocol/commands.hpp"
@@ -17,10 +18,9 @@ namespace gimbal::gimbal_protocol {
 // HEARTBEAT of a gimbal component: MAV_TYPE_GIMBAL, MAV_AUTOPILOT_INVALID, MAV_STATE_ACTIVE.
 mavlink::Heartbeat heartbeat();
 
-// The camera's line of sight as a rotation from the camera frame (x along the view) to NED.
-// Orion: mount quaternion (telemetry.quat) then pan about the mount's z, tilt about the new y.
-// Viewpro: the aircraft's attitude (output.uav) then the gimbal's (output.gimbal).
-std::optional<geo::Quat> line_of_sight(const nlohmann::json& state, const std::string& protocol);
+// The camera's line of sight as a rotation from the camera frame (x along the view) to NED,
+// as the protocol's capabilities read it from STATE (nullopt: not reported yet).
+std::optional<geo::Quat> line_of_sight(const nlohmann::json& state, std::string_view protocol);
 
 mavlink::GimbalDeviceAttitudeStatus attitude_status(const ExposedGimbal& g,
                                                     const nlohmann::json& state,

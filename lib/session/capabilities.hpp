@@ -72,6 +72,11 @@ struct Features {
     bool yaw_lock = false;
     bool yaw_in_earth_frame = false;
     bool infinite_yaw = false;
+    // point_angles given both angles, and rate, read nothing from STATE (the gimbal takes
+    // absolute angles; a gimbal stepped from where it looks now does not). The MAVLink
+    // mapping then skips building STATE for a PITCHYAW, which ground stations send at up to
+    // 100 Hz. tests/unit/protocols checks the claim.
+    bool absolute_angles = false;
 };
 
 struct Identity {

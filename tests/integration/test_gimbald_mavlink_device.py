@@ -7,7 +7,9 @@ Checked: STATE `device` from GIMBAL_DEVICE_INFORMATION / ATTITUDE_STATUS, the Or
 `telemetry`, a `position` command reaching the device as common.xml's quaternion (the
 simulator's rx log), AUTOPILOT_STATE_FOR_GIMBAL_DEVICE at 10-50 Hz, staleness when the device
 goes quiet, and the stare target: while the aircraft circles a geopoint, the line of sight
-stays within 0.5 degrees of it at p95 after the first 2 s.
+stays within 0.5 degrees of it at p95 after the first 2 s. And towards ground stations: a
+ground station (tests/integration/mavlinktest.py) on gimbald's own MAVLink gimbal manager
+steers the device with DO_GIMBAL_MANAGER_PITCHYAW and reads its attitude and limits.
 """
 
 import math
@@ -19,6 +21,7 @@ import time
 import unittest
 
 import gimbaltest as gt
+import mavlinktest as mt
 
 HEARTBEAT, ATTITUDE, GLOBAL_POSITION_INT = 0, 30, 33
 CRC_EXTRA = {HEARTBEAT: 50, ATTITUDE: 39, GLOBAL_POSITION_INT: 104}
@@ -126,7 +129,7 @@ class MavlinkDeviceTest(gt.GimbaldTestCase):
         self.assertTrue(found, "STATE never showed " + what)
         return found
 
-    def start_pty(self, *sim_args, stale_after_s=None):
+    def start_pty(self, *sim_args, stale_after_s=None, manager=False):
         device = os.path.join(self.workdir, "ttyGIMBAL")
         sim = self.start_sim("--protocol", "mavlink", *sim_args, tcp=False, pty_link=device)
         vport = gt.free_port()
@@ -139,6 +142,8 @@ class MavlinkDeviceTest(gt.GimbaldTestCase):
         }
         if stale_after_s is not None:
             config["telemetry"] = {"stale_after_s": stale_after_s}
+        if manager:  # gimbald's MAVLink gimbal manager on the vehicle endpoint
+            config["mavlink"] = {"gimbal_manager": True, "system_id": 1}
         daemon = self.start_daemon(config)
         return sim, daemon, vport
 
@@ -251,6 +256,49 @@ class MavlinkDeviceTest(gt.GimbaldTestCase):
         p95 = errors[int(len(errors) * 0.95)]
         print("stare over UDP: %d samples, p95 %.3f deg" % (len(errors), p95))
         self.assertLess(p95, 0.5)
+
+    def test_ground_station_steers_the_device_through_the_gimbal_manager(self):
+        sim, daemon, vport = self.start_pty("--attitude-rate", "25", manager=True)
+        client = self.client(daemon)
+        aircraft = Aircraft(vport)
+        self.addCleanup(aircraft.close)
+        gcs = mt.Peer(vport)
+        self.addCleanup(gcs.close)
+        self.wait_state(client, lambda s: s["device"]["vendor"] == "gimbald" and
+                        s["telemetry"] and s["telemetry"]["lat"] is not None,
+                        "device information and telemetry")
+
+        # DO_GIMBAL_MANAGER_PITCHYAW (yaw from the nose) -> position -> the device's set-point.
+        start = len(sim.rx())
+        self.assertEqual(gcs.command(mt.MAV_CMD_DO_GIMBAL_MANAGER_PITCHYAW,
+                                     [-25, 40, mt.NAN, mt.NAN, 0, 0, 1]), 0)  # ACCEPTED
+        entry = sim.wait_rx(lambda e: e["kind"] == "gimbal_device_set_attitude", start=start)
+        self.assertIsNotNone(entry, "PITCHYAW never reached the device")
+        self.assertAlmostEqual(entry["message"]["yaw"], 40, places=3)
+        self.assertAlmostEqual(entry["message"]["pitch"], -25, places=3)
+        self.wait_state(client, lambda s: abs(s["telemetry"]["pan"] - 40) < 0.5 and
+                        abs(s["telemetry"]["tilt"] + 25) < 0.5, "pan 40 tilt -25")
+
+        # GIMBAL_DEVICE_ATTITUDE_STATUS (285) from the manager: the device's attitude.
+        def pitch_of(m):
+            w, x, y, z = struct.unpack("<4f", (m[4] + bytes(40))[4:20])
+            return math.degrees(math.asin(max(-1.0, min(1.0, 2 * (w * y - z * x)))))
+        since = time.monotonic()
+        status = gcs.wait(lambda m: m[3] == 285 and m[2] == 154 and
+                          abs(pitch_of(m) + 25) < 1.0, 3.0, since)
+        self.assertIsNotNone(status, "no GIMBAL_DEVICE_ATTITUDE_STATUS with the device's pitch")
+
+        # GIMBAL_MANAGER_INFORMATION (280): the device's limits, point at a location.
+        since = time.monotonic()
+        self.assertEqual(gcs.command(mt.MAV_CMD_REQUEST_MESSAGE, [280, 0]), 0)
+        info = gcs.wait(lambda m: m[3] == 280 and m[2] == 154, 3.0, since)
+        self.assertIsNotNone(info, "no GIMBAL_MANAGER_INFORMATION")
+        fields = struct.unpack("<II6fB", (info[4] + bytes(33))[:33])
+        cap_flags, pitch_min = fields[1], fields[4]
+        self.assertTrue(cap_flags & 131072, "CAN_POINT_LOCATION_GLOBAL missing")
+        self.assertAlmostEqual(math.degrees(pitch_min), -120, places=2)
+        # A gimbal device has no zoom: the manager says so.
+        self.assertEqual(gcs.command(531, [2, 50, 0]), 3)  # SET_CAMERA_ZOOM: UNSUPPORTED
 
     def test_udp_link_takes_frames_only_from_its_host(self):
         # The device is at 127.0.0.2: datagrams from 127.0.0.1 (a stranger's) are dropped.

@@ -24,6 +24,7 @@ session::Features MavlinkDeviceCapabilities::features() const {
     session::Features f;
     f.point_angles = f.rate = f.geopoint = true;
     f.pitch_lock = f.yaw_lock = f.yaw_in_earth_frame = true;
+    f.absolute_angles = true;
     return f;
 }
 

@@ -48,6 +48,7 @@ session::Features OrionCapabilities::features() const {
     session::Features f;
     f.point_angles = f.rate = f.geopoint = f.zoom = true;
     f.pitch_lock = f.yaw_lock = f.yaw_in_earth_frame = f.infinite_yaw = true;
+    f.absolute_angles = true;
     return f;
 }
 

@@ -1,5 +1,5 @@
 // Shared by the gimbal-protocol tests: two gimbals (an Orion and a Viewpro), STATE objects
-// shaped like gimbald's, and command builders.
+// shaped like gimbald's (and a MAVLink gimbal device's), and command builders.
 #pragma once
 
 #include <cmath>
@@ -63,6 +63,35 @@ inline nlohmann::json viewpro_state() {
                 {"lon", 79.88},
                 {"alt_msl", 300.0}}},
               {"target", {{"lat", 6.945}, {"lon", 79.88}}}}}};
+}
+
+// A MAVLink gimbal device's STATE as its session reports it: attitude from
+// GIMBAL_DEVICE_ATTITUDE_STATUS (yaw in the vehicle frame), the vehicle's fix, its limits.
+inline nlohmann::json device_state() {
+    return {
+        {"protocol", "mavlink"},
+        {"link", {{"connected", true}}},
+        {"stale", false},
+        {"telemetry",
+         {{"pan", 15.0},
+          {"tilt", -30.0},
+          {"hfov", 60.0},
+          {"vfov", 34.0},
+          {"lat", 45.7},
+          {"lon", -121.5},
+          {"alt", 1079.0},
+          {"alt_msl", 1100.0},
+          {"geoid_undulation", -21.0},
+          {"roll", 0.0},
+          {"pitch", 0.0},
+          {"yaw", 90.0},
+          {"target", {{"lat", 45.69}, {"lon", -121.49}, {"alt", 79.0}}}}},
+        {"device",
+         {{"vendor", "Gremsy"},
+          {"model", "T3V3"},
+          {"limits",
+           {{"pitch_min", -120.0}, {"pitch_max", 45.0}, {"yaw_min", -170.0}, {"yaw_max", 170.0}}},
+          {"attitude", {{"roll", 0.0}, {"pitch", -30.0}, {"yaw", 15.0}, {"frame", "vehicle"}}}}}};
 }
 
 inline StateLookup states(nlohmann::json orion = orion_state(),

@@ -1,6 +1,7 @@
 // Every row of contract section 8's command table, the altitude frames, NaN/Inf parameters and
 // control arbitration.
 #include <catch2/catch.hpp>
+#include <numbers>
 #include <random>
 
 #include "fixtures.hpp"
@@ -516,4 +517,78 @@ TEST_CASE("gimbald error codes -> MAV_RESULT") {
     CHECK(combine({MavResult::unsupported, MavResult::accepted}) == MavResult::accepted);
     CHECK(combine({MavResult::temporarily_rejected, MavResult::denied}) ==
           MavResult::temporarily_rejected);
+}
+
+TEST_CASE("gimbald error codes -> MAV_RESULT, every code as the enum and its spelling") {
+    using gimbal::command::ErrorCode;
+    for (std::size_t i = 0; i < gimbal::command::error_code_names.size(); ++i) {
+        const auto code = static_cast<ErrorCode>(i);
+        INFO(gimbal::command::to_string(code));
+        CHECK(result_for_error(code) == result_for_error(gimbal::command::to_string(code)));
+    }
+    CHECK(result_for_error(ErrorCode::rate_limited) == MavResult::temporarily_rejected);
+    CHECK(result_for_error(ErrorCode::busy) == MavResult::failed);
+    CHECK(result_for_error("not_a_code") == MavResult::failed);
+}
+
+TEST_CASE("a MAVLink gimbal device is steered and reported through its capabilities") {
+    GimbalManager m(expose({{"gremsy", "mavlink"}}));
+    const StateLookup state = [](const std::string&) { return device_state(); };
+
+    // PITCHYAW angles: a position (yaw from north converted with the heading), rates: a rate.
+    auto out =
+        m.command(long_cmd(cmd::do_gimbal_manager_pitchyaw,
+                           {-10, 120, NaN, NaN, mav::gimbal_flags::yaw_in_earth_frame, 0, 0}),
+                  gcs, vehicle(90.0), state, 0);
+    REQUIRE(out.requests.size() == 1);
+    CHECK(
+        out.requests[0].request ==
+        nlohmann::json{{"cmd", "position"}, {"gimbal", "gremsy"}, {"pan", 30.0}, {"tilt", -10.0}});
+    out = m.command(long_cmd(cmd::do_gimbal_manager_pitchyaw, {NaN, NaN, 5, -3, 0, 0, 0}), gcs,
+                    vehicle(), state, 0);
+    REQUIRE(out.requests.size() == 1);
+    CHECK(out.requests[0].request["cmd"] == "rate");
+    CHECK(out.requests[0].request["pan"] == -3.0);
+    // A left-out angle keeps the device's current one.
+    out = m.command(long_cmd(cmd::do_gimbal_manager_pitchyaw, {-5, NaN, NaN, NaN, 0, 0, 0}), gcs,
+                    vehicle(), state, 0);
+    REQUIRE(out.requests.size() == 1);
+    CHECK(out.requests[0].request["pan"] == 15.0);
+
+    // ROI location: a geopoint; ROI none: rate 0 (no Orion-only "stabilized" key).
+    out = m.command(int_cmd(cmd::do_set_roi_location, {0, 0, 0, 0}, 457000000, -1215000000, 300,
+                            mav::mav_frame::global_int),
+                    gcs, vehicle(), state, 0);
+    REQUIRE(out.requests.size() == 1);
+    CHECK(out.requests[0].request["cmd"] == "geopoint");
+    out =
+        m.command(long_cmd(cmd::do_set_roi_none, {0, 0, 0, 0, 0, 0, 0}), gcs, vehicle(), state, 0);
+    REQUIRE(out.requests.size() == 1);
+    CHECK(out.requests[0].request ==
+          nlohmann::json{{"cmd", "rate"}, {"gimbal", "gremsy"}, {"pan", 0.0}, {"tilt", 0.0}});
+
+    // No zoom on a gimbal device: its camera is another component.
+    out = m.command(long_cmd(cmd::set_camera_zoom, {mav::zoom_type::range, 50, 0, 0, 0, 0, 0}), gcs,
+                    vehicle(), state, 0);
+    CHECK(out.requests.empty());
+    CHECK(out.result == MavResult::unsupported);
+
+    // Status: its attitude, its limits, its capability flags, its field of view.
+    const auto& g = m.gimbals()[0];
+    const auto att = attitude_status(g, device_state(), 0);
+    const auto e =
+        gimbal::geo::quat_to_euler(gimbal::geo::Quat{att.q[0], att.q[1], att.q[2], att.q[3]});
+    CHECK(e.pitch_deg == Approx(-30).margin(1e-3));
+    CHECK(e.yaw_deg == Approx(105).margin(1e-3));  // 15 from the nose, heading 90
+    const auto info = manager_information(g, device_state(), 0);
+    CHECK(info.pitch_min == Approx(-120 * std::numbers::pi / 180));
+    CHECK(info.yaw_max == Approx(170 * std::numbers::pi / 180));
+    namespace c = mav::gimbal_cap;
+    CHECK((info.cap_flags & c::can_point_location_global) != 0);
+    CHECK((info.cap_flags & c::supports_yaw_in_earth_frame) != 0);
+    CHECK((info.cap_flags & c::supports_infinite_yaw) == 0);
+    const auto fov = fov_status(g, device_state(), 0);
+    CHECK(fov.lat_camera == 457000000);
+    CHECK(fov.alt_image == 100000);  // 79 m above the ellipsoid, geoid -21 m: 100 m MSL
+    CHECK(fov.hfov == Approx(60));
 }

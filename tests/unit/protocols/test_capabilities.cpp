@@ -116,6 +116,39 @@ TEST_CASE("point_angles and rate: the gimbal manager's pitch/yaw mapping, per pr
                             }
 }
 
+TEST_CASE("absolute_angles: complete angles and rates read nothing from STATE") {
+    // The MAVLink mapping passes an empty STATE when a gimbal claims this: the answer must be
+    // the one the real STATE gives.
+    const std::vector<std::pair<std::string, json>> states = {
+        {"orion", orion_state()}, {"viewpro", viewpro_state()}, {"mavlink", device_state()}};
+    int claimed = 0;
+    for (const auto& [protocol, state] : states) {
+        const auto& c = capabilities_of(protocol);
+        INFO(protocol);
+        if (!c.features().absolute_angles) {
+            // A gimbal stepped from where it looks now cannot do without its STATE.
+            CHECK_FALSE(
+                c.point_angles(json::object(), {-10.0, 20.0, caps::YawFrame::vehicle, 100.0}).ok());
+            continue;
+        }
+        ++claimed;
+        for (const auto frame : {caps::YawFrame::vehicle, caps::YawFrame::earth})
+            for (const double pitch : {-90.0, -10.5, 30.0})
+                for (const double yaw : {-170.0, 0.0, 95.25}) {
+                    const caps::AnglesTarget t{pitch, yaw, frame, 100.0};
+                    const auto with = c.point_angles(state, t);
+                    const auto without = c.point_angles(json::object(), t);
+                    REQUIRE(with.ok() == without.ok());
+                    if (with.ok()) CHECK(with.value() == without.value());
+                }
+        const caps::RateTarget r{5.0, -3.0};
+        CHECK(c.rate(state, r).ok() == c.rate(json::object(), r).ok());
+        if (c.rate(state, r).ok())
+            CHECK(c.rate(state, r).value() == c.rate(json::object(), r).value());
+    }
+    CHECK(claimed == 2);  // the Orion and the MAVLink device take absolute angles
+}
+
 TEST_CASE("geopoint and stop: DO_SET_ROI_LOCATION and DO_SET_ROI_NONE, per protocol") {
     for (const auto& g : gimbals(true)) {
         INFO(g.protocol);
