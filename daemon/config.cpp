@@ -594,11 +594,11 @@ CommandKey read_key(Fields& f) {
     if (f.string("id", key.id, Presence::required) && !valid_key_id(key.id))
         f.problem("id", "must be 1 to 64 characters of A-Z a-z 0-9 _ - .");
     if (f.string("secret_file", key.secret_file, Presence::required)) {
-        const auto text = read_private_file(key.secret_file);
-        if (!read_ok(text)) {
-            f.problem("secret_file", std::get<1>(text));
+        const auto text = read_secret_file(key.secret_file);
+        if (!text) {
+            f.problem("secret_file", text.error().message);
         } else {
-            auto secret = gimbal::auth::parse_secret(std::get<0>(text));
+            auto secret = gimbal::auth::parse_secret(*text);
             if (auto* bytes = std::get_if<std::vector<std::uint8_t>>(&secret))
                 key.secret = std::move(*bytes);
             else
@@ -850,11 +850,11 @@ MqttConfig read_mqtt(Fields& f) {
     optional_string(f, "username", mqtt.username);
     optional_string(f, "password_file", mqtt.password_file);
     if (mqtt.password_file) {
-        const auto text = read_private_file(*mqtt.password_file);
-        if (!read_ok(text)) {
-            f.problem("password_file", std::get<1>(text));
+        const auto text = read_secret_file(*mqtt.password_file);
+        if (!text) {
+            f.problem("password_file", text.error().message);
         } else {
-            mqtt.password = std::get<0>(text);
+            mqtt.password = *text;
             // One line: the trailing newline an editor adds is not part of the password.
             while (!mqtt.password.empty() &&
                    (mqtt.password.back() == '\n' || mqtt.password.back() == '\r'))
@@ -868,8 +868,8 @@ MqttConfig read_mqtt(Fields& f) {
     check_readable(f, "ca_file", mqtt.ca_file);
     check_readable(f, "cert_file", mqtt.cert_file);
     if (mqtt.key_file) {
-        const auto key = read_private_file(*mqtt.key_file);
-        if (!read_ok(key)) f.problem("key_file", std::get<1>(key));
+        const auto key = read_secret_file(*mqtt.key_file);
+        if (!key) f.problem("key_file", key.error().message);
     }
     if (mqtt.cert_file.has_value() != mqtt.key_file.has_value())
         f.problem(mqtt.cert_file ? "key_file" : "cert_file",
@@ -879,12 +879,11 @@ MqttConfig read_mqtt(Fields& f) {
     f.number("keepalive_s", mqtt.keepalive_s, {5, 3600});  // libmosquitto's minimum
     f.number("state_rate_hz", mqtt.state_rate_hz, {0.1, 50});
     if (const json* keys = f.find("state_keys"); keys != nullptr && !keys->is_null()) {
-        std::vector<std::string> names;
-        const std::string problem = gimbal::state::parse_state_keys(*keys, names);
-        if (!problem.empty())
-            f.problem("state_keys", problem);
+        auto names = gimbal::state::read_state_keys(*keys);
+        if (!names)
+            f.problem("state_keys", names.error().message);
         else
-            mqtt.state_keys = std::move(names);
+            mqtt.state_keys = std::move(names).value();
     }
     f.boolean("state_changes", mqtt.state_changes);
     f.number("state_full_every_s", mqtt.state_full_every_s, {1, 3600});

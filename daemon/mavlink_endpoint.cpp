@@ -43,10 +43,9 @@ std::string source_address(const gp::MavId& id) {
 }  // namespace
 
 mav::SigningKey load_signing_key(const std::string& path) {
-    const auto read = gimbal::daemon::read_private_file(path);
-    if (!gimbal::daemon::read_ok(read))
-        throw std::runtime_error("mavlink.signing_key_file: " + std::get<1>(read));
-    const std::string& text = std::get<0>(read);
+    const auto read = gimbal::daemon::read_secret_file(path);
+    if (!read) throw std::runtime_error("mavlink.signing_key_file: " + read.error().message);
+    const std::string& text = *read;
     mav::SigningKey key{};
     if (text.size() == key.size()) {
         std::copy(text.begin(), text.end(), key.begin());

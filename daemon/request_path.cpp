@@ -195,8 +195,12 @@ void RequestPath::read(Outcome& o, std::string_view bytes) {
         return;
     }
     const json doc = json::parse(bytes, nullptr, false);
-    auto signed_request = gimbal::auth::read_signed(doc);
+    auto signed_request = gimbal::auth::parse_signed(doc);
     if (!signed_request) {
+        o.error = signed_request.error();
+        return;
+    }
+    if (!signed_request->has_value()) {
         if (auto bad = cmdns::parse_envelope(bytes, known_command, o.env)) {
             o.error = bad->error;
             o.cmd = bad->cmd;
@@ -206,11 +210,7 @@ void RequestPath::read(Outcome& o, std::string_view bytes) {
         o.cmd = o.env.cmd;
         return;
     }
-    if (const auto* problem = std::get_if<std::string>(&*signed_request)) {
-        o.error = Error{code::bad_request, *problem};
-        return;
-    }
-    auto& envelope = std::get<gimbal::auth::SignedEnvelope>(*signed_request);
+    auto& envelope = **signed_request;
     auto key = verifier_.authenticate(envelope);
     if (const auto* rejected = std::get_if<gimbal::auth::Rejected>(&key)) {
         o.error = Error{code::forbidden, rejected->reason};
@@ -442,8 +442,9 @@ json RequestPath::dispatch(Outcome& o, const RequestSource& from) {
     if (cmd == "state") {
         std::vector<std::string> keys;
         if (const json* k = params.raw("keys")) {
-            if (auto problem = gimbal::state::parse_state_keys(*k, keys); !problem.empty())
-                return o.fail(Error{code::bad_request, problem});
+            auto read = gimbal::state::read_state_keys(*k);
+            if (!read) return o.fail(read.error());
+            keys = std::move(read).value();
         }
         params.reject_unknown();
         if (!params.ok()) return o.fail(params.error());

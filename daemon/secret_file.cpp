@@ -50,11 +50,4 @@ command::Result<std::string> read_secret_file(const std::string& path) {
     return text;
 }
 
-std::variant<std::string, std::string> read_private_file(const std::string& path) {
-    auto text = read_secret_file(path);
-    if (!text)
-        return std::variant<std::string, std::string>{std::in_place_index<1>, text.error().message};
-    return std::variant<std::string, std::string>{std::in_place_index<0>, std::move(text).value()};
-}
-
 }  // namespace gimbal::daemon

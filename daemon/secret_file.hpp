@@ -3,7 +3,6 @@
 #pragma once
 
 #include <string>
-#include <variant>
 
 #include "command/result.hpp"
 
@@ -13,12 +12,5 @@ namespace gimbal::daemon {
 // ("missing", an I/O error), forbidden ("readable by group or others (mode 0644); chmod 600
 // it") or bad_request (not a regular file, larger than 64 KiB).
 command::Result<std::string> read_secret_file(const std::string& path);
-
-// read_secret_file in the shape config.cpp and mavlink_endpoint.cpp read until they move to
-// it: index 0 the text, index 1 the problem.
-std::variant<std::string, std::string> read_private_file(const std::string& path);
-inline bool read_ok(const std::variant<std::string, std::string>& r) {
-    return r.index() == 0;
-}
 
 }  // namespace gimbal::daemon

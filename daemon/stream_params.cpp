@@ -9,8 +9,11 @@ void read_stream_options(gimbal::command::Params& params, gimbal::state::StreamO
     out.changes = params.boolean_or("changes", false);
     out.full_every_s = params.number_or("full_every_s", 1.0, 3600.0, 10.0);
     if (const nlohmann::json* k = params.raw("keys")) {
-        if (auto problem = gimbal::state::parse_state_keys(*k, out.keys); !problem.empty())
-            params.fail(gimbal::command::code::bad_request, problem);
+        auto keys = gimbal::state::read_state_keys(*k);
+        if (keys)
+            out.keys = std::move(keys).value();
+        else
+            params.fail(keys.error().code, keys.error().message);
     }
 }
 

@@ -31,14 +31,6 @@ command::Result<std::optional<SignedEnvelope>> parse_signed(const nlohmann::json
     return std::optional<SignedEnvelope>{std::move(env)};
 }
 
-std::optional<std::variant<SignedEnvelope, std::string>> read_signed(
-    const nlohmann::json& datagram) {
-    auto parsed = parse_signed(datagram);
-    if (!parsed) return std::variant<SignedEnvelope, std::string>{parsed.error().message};
-    if (!*parsed) return std::nullopt;
-    return std::variant<SignedEnvelope, std::string>{std::move(**parsed)};
-}
-
 bool mac_matches(const SignedEnvelope& envelope, std::span<const std::uint8_t> secret) {
     const auto received = from_hex(envelope.mac);
     if (!received) return false;

@@ -26,11 +26,6 @@ struct SignedEnvelope {
 // the envelope; or bad_request saying how it is malformed.
 command::Result<std::optional<SignedEnvelope>> parse_signed(const nlohmann::json& datagram);
 
-// parse_signed in the shape daemon/request_path.cpp reads until it moves to parse_signed:
-// nullopt, the envelope, or the problem's message.
-std::optional<std::variant<SignedEnvelope, std::string>> read_signed(
-    const nlohmann::json& datagram);
-
 // True when `mac` is the HMAC of `payload` under `secret` (constant-time comparison).
 bool mac_matches(const SignedEnvelope& envelope, std::span<const std::uint8_t> secret);
 

@@ -84,11 +84,4 @@ command::Result<std::vector<std::string>> read_state_keys(const nlohmann::json& 
     return names;
 }
 
-std::string parse_state_keys(const nlohmann::json& value, std::vector<std::string>& out) {
-    auto keys = read_state_keys(value);
-    if (!keys) return keys.error().message;
-    out = std::move(keys).value();
-    return {};
-}
-
 }  // namespace gimbal::state

@@ -28,8 +28,4 @@ nlohmann::json select_keys(const nlohmann::json& state, const std::vector<std::s
 // bad_request naming the problem.
 command::Result<std::vector<std::string>> read_state_keys(const nlohmann::json& value);
 
-// read_state_keys in the shape its callers in daemon/ (request_path, stream_hub, config) use
-// until they move to it: the error message, or "" with `out` set.
-std::string parse_state_keys(const nlohmann::json& value, std::vector<std::string>& out);
-
 }  // namespace gimbal::state

@@ -44,11 +44,6 @@ TEST_CASE("read_secret_file: text, or unavailable / forbidden / bad_request") {
     auto directory = read_secret_file(fs::temp_directory_path().string());
     REQUIRE_FALSE(directory);
     CHECK(directory.error().code == ErrorCode::bad_request);
-
-    // The compatibility shape says the same.
-    const auto old = gimbal::daemon::read_private_file(open.string());
-    REQUIRE(old.index() == 1);
-    CHECK(std::get<1>(old) == refused.error().message);
     fs::remove(good);
     fs::remove(open);
 }

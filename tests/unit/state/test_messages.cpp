@@ -2,7 +2,7 @@
 
 #include "state/messages.hpp"
 
-using gimbal::state::parse_state_keys;
+using gimbal::state::read_state_keys;
 using gimbal::state::select_keys;
 using nlohmann::json;
 
@@ -20,16 +20,19 @@ TEST_CASE("select_keys keeps the asked keys and always protocol, link and stale"
     CHECK(select_keys(state, {"output"}).size() == 3);
 }
 
-TEST_CASE("parse_state_keys accepts known names and rejects the rest with the name") {
-    std::vector<std::string> keys;
-    CHECK(parse_state_keys(json{"telemetry", "lasers", "telemetry"}, keys).empty());
-    CHECK(keys == std::vector<std::string>{"telemetry", "lasers"});
-    CHECK(parse_state_keys(json::array(), keys).empty());
-    CHECK(keys.empty());
-    CHECK(parse_state_keys(json{"telemetry", "telemtry"}, keys).find("'telemtry'") !=
-          std::string::npos);
-    CHECK_FALSE(parse_state_keys(json("telemetry"), keys).empty());
-    CHECK_FALSE(parse_state_keys(json{1, 2}, keys).empty());
+TEST_CASE("read_state_keys accepts known names and rejects the rest with the name") {
+    auto keys = read_state_keys(json{"telemetry", "lasers", "telemetry"});
+    REQUIRE(keys);
+    CHECK(*keys == std::vector<std::string>{"telemetry", "lasers"});
+    keys = read_state_keys(json::array());
+    REQUIRE(keys);
+    CHECK(keys->empty());
+    keys = read_state_keys(json{"telemetry", "telemtry"});
+    REQUIRE_FALSE(keys);
+    CHECK(keys.error().code == gimbal::command::code::bad_request);
+    CHECK(keys.error().message.find("'telemtry'") != std::string::npos);
+    CHECK_FALSE(read_state_keys(json("telemetry")));
+    CHECK_FALSE(read_state_keys(json{1, 2}));
 }
 
 TEST_CASE("state and event messages have the datagram shape of section 4.1") {
