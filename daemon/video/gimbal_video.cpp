@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "framing/hex.hpp"
 #include "klv/local_set.hpp"
 #include "klv_state/sensor_frame.hpp"
 #include "state/precision.hpp"
@@ -30,14 +31,7 @@ std::uint64_t unix_us_now() {
 }
 
 std::string hex(std::span<const std::uint8_t> bytes) {
-    static constexpr char digits[] = "0123456789ABCDEF";
-    std::string s;
-    s.reserve(bytes.size() * 2);
-    for (const auto b : bytes) {
-        s.push_back(digits[b >> 4]);
-        s.push_back(digits[b & 0x0F]);
-    }
-    return s;
+    return gimbal::framing::to_hex(bytes, gimbal::framing::HexCase::upper);
 }
 
 // klv_vs_telemetry is worked out at most this often (it reads the whole STATE).

@@ -7,6 +7,8 @@
 
 #include <stdexcept>
 
+#include "framing/hex.hpp"
+
 namespace gimbal::auth {
 
 Mac hmac_sha256(std::span<const std::uint8_t> key, std::string_view message) {
@@ -24,14 +26,7 @@ Mac hmac_sha256(std::span<const std::uint8_t> key, std::string_view message) {
 }
 
 std::string to_hex(std::span<const std::uint8_t> bytes) {
-    static constexpr char digits[] = "0123456789abcdef";
-    std::string out;
-    out.reserve(bytes.size() * 2);
-    for (const auto b : bytes) {
-        out.push_back(digits[b >> 4]);
-        out.push_back(digits[b & 0x0f]);
-    }
-    return out;
+    return framing::to_hex(bytes);
 }
 
 namespace {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "framing/hex.hpp"
 #include "klv/checksum.hpp"
 #include "klv/local_set.hpp"
 #include "klv/mapping.hpp"
@@ -30,14 +31,7 @@ std::int64_t read_signed(Span v) {
 }
 
 std::string hex(Span v) {
-    static constexpr char digits[] = "0123456789ABCDEF";
-    std::string s;
-    s.reserve(2 * v.size());
-    for (const std::uint8_t b : v) {
-        s.push_back(digits[b >> 4]);
-        s.push_back(digits[b & 15]);
-    }
-    return s;
+    return framing::to_hex(v, framing::HexCase::upper);
 }
 
 // UTF-8 text cut at the first zero byte; invalid sequences and control characters become

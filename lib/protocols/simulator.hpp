@@ -13,6 +13,7 @@
 #include <string_view>
 #include <vector>
 
+#include "framing/hex.hpp"
 #include "sim/camera_view.hpp"
 #include "sim/device.hpp"
 #include "sim/fault_injector.hpp"
@@ -56,14 +57,7 @@ class RxDecoder {
 
 // Lower-case hex of `bytes` (the rx log's "hex").
 inline std::string hex_text(std::span<const std::uint8_t> bytes) {
-    static constexpr char digits[] = "0123456789abcdef";
-    std::string s;
-    s.reserve(bytes.size() * 2);
-    for (const auto b : bytes) {
-        s.push_back(digits[b >> 4]);
-        s.push_back(digits[b & 0x0F]);
-    }
-    return s;
+    return framing::to_hex(bytes);
 }
 
 struct Simulator {
