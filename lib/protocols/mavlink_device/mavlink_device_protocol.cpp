@@ -90,9 +90,22 @@ std::optional<mavlink::GimbalDeviceSetAttitude> MavlinkDeviceProtocol::set_attit
 
 void MavlinkDeviceProtocol::steer(const vehicle::VehicleState& vehicle, double vehicle_now_s,
                                   double now_s, std::vector<session::Bytes>& out) {
-    state_.set_vehicle(vehicle_fix(vehicle, vehicle_now_s));
+    const auto fix = vehicle_fix(vehicle, vehicle_now_s);
+    state_.set_vehicle(fix);
+    feed_vehicle(fix, vehicle_now_s, out);
     housekeeping(now_s, out);
     if (const auto m = set_attitude(now_s)) out.push_back(sender_.frame(*m));
+}
+
+void MavlinkDeviceProtocol::feed_vehicle(const std::optional<VehicleFix>& fix, double vehicle_now_s,
+                                         std::vector<session::Bytes>& out) {
+    // At every tick (20 Hz, within the 10-50 Hz devices need for their horizon and yaw
+    // estimates); when the fix goes, one message without it so the device stops using the
+    // last one.
+    if (!fix && !fed_fix_) return;
+    fed_fix_ = fix.has_value();
+    const auto us = static_cast<std::uint64_t>(vehicle_now_s * 1e6);
+    out.push_back(sender_.frame(autopilot_state(fix, us, 0, options_.device_component_id)));
 }
 
 session::FrameCounters MavlinkDeviceProtocol::counters() const {

@@ -1,8 +1,10 @@
 // The MAVLink gimbal device side of a gimbal session (contract section 19): gimbald is the
 // device's gimbal manager. It asks for GIMBAL_DEVICE_INFORMATION, reads
 // GIMBAL_DEVICE_ATTITUDE_STATUS, and steers with GIMBAL_DEVICE_SET_ATTITUDE, recomputed at
-// every vehicle-feed tick (steer) from what it holds the device to; a heartbeat goes out once
-// a second from the same ticks, or with the device's reports when there is no vehicle feed.
+// every vehicle-feed tick (steer) from what it holds the device to. The same ticks carry
+// AUTOPILOT_STATE_FOR_GIMBAL_DEVICE and a heartbeat once a second (with the device's reports
+// when there is no vehicle feed): everything gimbald sends the device comes from one sender,
+// so its sequence numbers count every frame of the component, as receivers expect.
 #pragma once
 
 #include "mavlink/framer.hpp"
@@ -41,6 +43,10 @@ class MavlinkDeviceProtocol final : public session::Protocol {
     // The heartbeat (1 Hz) and, until it arrives, the information request (every 2 s).
     void housekeeping(double now_s, std::vector<session::Bytes>& out);
     std::optional<mavlink::GimbalDeviceSetAttitude> set_attitude(double now_s);
+    // AUTOPILOT_STATE_FOR_GIMBAL_DEVICE while the vehicle's fix is fresh, and once with
+    // nothing valid when it goes.
+    void feed_vehicle(const std::optional<VehicleFix>& fix, double vehicle_now_s,
+                      std::vector<session::Bytes>& out);
 
     MavlinkDeviceOptions options_;
     mavlink::Framer framer_;
@@ -49,6 +55,7 @@ class MavlinkDeviceProtocol final : public session::Protocol {
     MavlinkSender sender_;
     std::optional<double> last_heartbeat_s_;
     std::optional<double> last_request_s_;
+    bool fed_fix_ = false;  // the last AUTOPILOT_STATE carried a valid fix
 };
 
 }  // namespace gimbal::protocols

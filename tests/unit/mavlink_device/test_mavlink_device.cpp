@@ -275,30 +275,54 @@ TEST_CASE("STATE telemetry: Orion's derived keys from the vehicle and the device
     CHECK(r.value() == json{{"cmd", "position"}, {"pan", 10.0}, {"tilt", -45.0}});
 }
 
-TEST_CASE("the vehicle feed: AUTOPILOT_STATE_FOR_GIMBAL_DEVICE at every tick") {
+TEST_CASE("the vehicle feed: AUTOPILOT_STATE_FOR_GIMBAL_DEVICE at every tick, one sender") {
     const auto* e = protocols::find("mavlink");
     REQUIRE(e != nullptr);
+    // The feeder only names the feed: the session sends, with its one sequence counter.
     auto feeder = e->make_feeder({{"name", "g"}, {"protocol", "mavlink"}});
     CHECK(feeder->kind() == "autopilot_state");
+    MavlinkDeviceProtocol p(MavlinkDeviceOptions{});
     vehicle::VehicleState v(vehicle_fixtures::options());
-    std::vector<protocols::FeedBytes> out;
+    std::vector<session::Bytes> out;
     feeder->tick(v, {1.0, 0, 0}, out);
-    CHECK(out.empty());  // nothing known of the vehicle
+    CHECK(out.empty());
+    const auto autopilot_states = [](const std::vector<mavlink::Message>& messages) {
+        std::vector<mavlink::AutopilotStateForGimbalDevice> found;
+        for (const auto& m : messages)
+            if (const auto* a = std::get_if<mavlink::AutopilotStateForGimbalDevice>(&m.payload))
+                found.push_back(*a);
+        return found;
+    };
+    p.steer(v, 1.0, 1.0, out);
+    CHECK(autopilot_states(decode(out)).empty());  // nothing known of the vehicle
     Aircraft a;
     a.roll = 10;
     a.yaw = -60;
     a.vn = 12;
     report(v, a, 1.0);
-    for (std::uint64_t tick = 0; tick < 4; ++tick) feeder->tick(v, {1.0, 0, tick}, out);
+    for (int tick = 0; tick < 4; ++tick) p.steer(v, 1.0 + tick * 0.05, 1.0 + tick * 0.05, out);
     const auto messages = decode(out);
-    REQUIRE(messages.size() == 4);
-    const auto& m = std::get<mavlink::AutopilotStateForGimbalDevice>(messages[0].payload);
+    const auto states = autopilot_states(messages);
+    REQUIRE(states.size() == 4);
+    const auto& m = states[0];
     const auto att = geo::quat_to_euler(geo::Quat{m.q[0], m.q[1], m.q[2], m.q[3]});
     CHECK(att.roll_deg == Approx(10).margin(1e-3));
     CHECK(att.yaw_deg == Approx(-60).margin(1e-3));
     CHECK(m.vx == Approx(12));
     CHECK(m.target_component == 154);
     CHECK((m.estimator_status & 1) != 0);
+    // Heartbeat, information request and AUTOPILOT_STATEs: one sequence, no gaps.
+    REQUIRE(messages.size() > states.size());
+    for (std::size_t i = 1; i < messages.size(); ++i)
+        CHECK(messages[i].seq == static_cast<std::uint8_t>(messages[i - 1].seq + 1));
+
+    // The fix goes stale (vehicle.timeout_s 1 s): once without it, then nothing.
+    out.clear();
+    for (int tick = 0; tick < 3; ++tick) p.steer(v, 2.5 + tick * 0.05, 2.5 + tick * 0.05, out);
+    const auto lost = autopilot_states(decode(out));
+    REQUIRE(lost.size() == 1);
+    CHECK(lost[0].estimator_status == 0);
+    CHECK(std::isnan(lost[0].q[0]));
 }
 
 TEST_CASE("the simulated device: information on request, slew rate and angle limits") {
@@ -357,20 +381,17 @@ TEST_CASE("stare: the line of sight stays on a geopoint while the aircraft circl
         return a;
     };
     MavlinkDeviceProtocol p(MavlinkDeviceOptions{});
-    auto feeder = protocols::find("mavlink")->make_feeder({{"name", "g"}});
     protocols::MavlinkDeviceSim sim(protocols::MavlinkDeviceSimOptions{});
     vehicle::VehicleState v(vehicle_fixtures::options());
     for (const auto& b : p.on_connect()) sim.receive(b, 0.0);
     std::vector<double> errors;
     bool commanded = false;
-    std::uint64_t tick = 0;
     for (int i = 1; i <= 3000; ++i) {  // 30 s
         const double t = i * 0.01;
         if (i % 5 == 0) {
             report(v, aircraft_at(t), t);
             std::vector<session::Bytes> out;
-            p.steer(v, t, t, out);
-            feeder->tick(v, {t, 0, tick++}, out);
+            p.steer(v, t, t, out);  // AUTOPILOT_STATE and the set-point
             if (!commanded) {
                 command::Plan plan;
                 REQUIRE_FALSE(
