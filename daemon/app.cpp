@@ -18,6 +18,7 @@
 #include "notify.hpp"
 #include "protocols/registry.hpp"
 #include "record/recording_link.hpp"
+#include "secret_file.hpp"
 #include "signing_state.hpp"
 
 namespace gimbald {
@@ -305,6 +306,13 @@ std::unique_ptr<gimbal::session::Protocol> App::make_protocol(const protocols::E
     settings.allow_fire = config_.laser.allow_fire;
     settings.allow_safety_bypass = config_.laser.allow_safety_bypass;
     settings.terrain = terrain_.get();
+    settings.unix_clock = [] {
+        return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch())
+            .count();
+    };
+    settings.read_secret = [](const std::string& path) {
+        return gimbal::daemon::read_secret_file(path);
+    };
     return protocol.make_session(settings, gimbal);
 }
 

@@ -2,6 +2,7 @@
 
 #include "auth/roles.hpp"
 #include "auth/secret.hpp"
+#include "mavlink/signing.hpp"
 #include "mqtt/mqtt_url.hpp"
 #include "secret_file.hpp"
 #include "state/messages.hpp"
@@ -431,6 +432,8 @@ ViewproOptions read_viewpro(Fields& f) {
     return options;
 }
 
+void optional_string(Fields& f, std::string_view key, std::optional<std::string>& out);
+
 MavlinkDeviceConfig read_mavlink_device(Fields& f) {
     MavlinkDeviceConfig m;
     f.integer("system_id", m.system_id, {1, 255});
@@ -440,6 +443,15 @@ MavlinkDeviceConfig read_mavlink_device(Fields& f) {
     f.number("vfov_deg", m.vfov_deg, {0.1, 179.9});
     f.number("geoid_undulation_m", m.geoid_undulation_m, {-200, 200});
     f.number("ground_alt_m", m.ground_alt_m, {-2000, 10000});
+    optional_string(f, "signing_key_file", m.signing_key_file);
+    if (m.signing_key_file) {
+        const auto text = read_secret_file(*m.signing_key_file);
+        if (!text)
+            f.problem("signing_key_file", text.error().message);
+        else if (!gimbal::mavlink::parse_signing_key(*text))
+            f.problem("signing_key_file",
+                      *m.signing_key_file + ": must hold 32 bytes, or 64 hex digits");
+    }
     return m;
 }
 
@@ -1343,7 +1355,9 @@ json gimbal_to_json(const GimbalConfig& gimbal) {
                               {"hfov_deg", m.hfov_deg},
                               {"vfov_deg", m.vfov_deg},
                               {"geoid_undulation_m", m.geoid_undulation_m},
-                              {"ground_alt_m", m.ground_alt_m}};
+                              {"ground_alt_m", m.ground_alt_m},
+                              {"signing_key_file",
+                               m.signing_key_file ? json(*m.signing_key_file) : json(nullptr)}};
             break;
         }
     }

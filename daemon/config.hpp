@@ -111,6 +111,8 @@ struct MavlinkDeviceConfig {
     double vfov_deg = 34;
     double geoid_undulation_m = 0;
     double ground_alt_m = 0;
+    // MAVLink 2 message signing on the device link (docs/mavlink-device.md).
+    std::optional<std::string> signing_key_file;
     bool operator==(const MavlinkDeviceConfig&) const = default;
 };
 

@@ -45,22 +45,11 @@ std::string source_address(const gp::MavId& id) {
 mav::SigningKey load_signing_key(const std::string& path) {
     const auto read = gimbal::daemon::read_secret_file(path);
     if (!read) throw std::runtime_error("mavlink.signing_key_file: " + read.error().message);
-    const std::string& text = *read;
-    mav::SigningKey key{};
-    if (text.size() == key.size()) {
-        std::copy(text.begin(), text.end(), key.begin());
-        return key;
-    }
-    const auto first = text.find_first_not_of(" \t\r\n");
-    const auto last = text.find_last_not_of(" \t\r\n");
-    const std::string hex =
-        first == std::string::npos ? std::string() : text.substr(first, last - first + 1);
-    if (hex.size() != 64 || hex.find_first_not_of("0123456789abcdefABCDEF") != std::string::npos)
+    const auto key = mav::parse_signing_key(*read);
+    if (!key)
         throw std::runtime_error("mavlink.signing_key_file: " + path +
                                  " must hold 32 bytes, or 64 hex digits");
-    for (std::size_t i = 0; i < key.size(); ++i)
-        key[i] = static_cast<std::uint8_t>(std::stoul(hex.substr(2 * i, 2), nullptr, 16));
-    return key;
+    return *key;
 }
 
 MavlinkEndpoint::MavlinkEndpoint(boost::asio::io_context& io,

@@ -8,6 +8,31 @@
 
 namespace gimbal::mavlink {
 
+std::optional<SigningKey> parse_signing_key(std::string_view text) {
+    SigningKey key{};
+    if (text.size() == key.size()) {
+        std::copy(text.begin(), text.end(), key.begin());
+        return key;
+    }
+    const auto first = text.find_first_not_of(" \t\r\n");
+    const auto last = text.find_last_not_of(" \t\r\n");
+    if (first == std::string_view::npos) return std::nullopt;
+    const std::string_view hex = text.substr(first, last - first + 1);
+    if (hex.size() != 2 * key.size()) return std::nullopt;
+    const auto nibble = [](char c) -> int {
+        if (c >= '0' && c <= '9') return c - '0';
+        if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+        if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+        return -1;
+    };
+    for (std::size_t i = 0; i < key.size(); ++i) {
+        const int hi = nibble(hex[2 * i]), lo = nibble(hex[2 * i + 1]);
+        if (hi < 0 || lo < 0) return std::nullopt;
+        key[i] = static_cast<std::uint8_t>(hi * 16 + lo);
+    }
+    return key;
+}
+
 std::uint64_t signing_timestamp(double unix_s) {
     const double units = (unix_s - signing_epoch_unix_s) * 1e5;
     if (!(units > 0)) return 0;

@@ -8,13 +8,18 @@
 #include <array>
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <span>
+#include <string_view>
 #include <tuple>
 #include <vector>
 
 namespace gimbal::mavlink {
 
 using SigningKey = std::array<std::uint8_t, 32>;
+
+// A key file's text: 32 raw bytes, or 64 hex digits (white space around them ignored).
+std::optional<SigningKey> parse_signing_key(std::string_view text);
 
 // 1970-01-01 -> 2015-01-01 in seconds, and the timestamp for a UNIX time.
 inline constexpr double signing_epoch_unix_s = 1420070400.0;

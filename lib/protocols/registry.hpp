@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <span>
@@ -33,6 +34,12 @@ struct SessionSettings {
     // The elevation model (nullptr: none configured), shared by every gimbal of the daemon
     // and used on its one io thread: where STATE's footprint and ground meet the ground.
     geo::Surface* terrain = nullptr;
+    // The host's UTC clock (seconds), for a protocol that stamps what it sends (MAVLink
+    // message signing); the daemon's, or a test's.
+    std::function<double()> unix_clock;
+    // A secret file's text (a protocol's key), read as the daemon reads every secret file:
+    // owner-only, or an error naming the file and why.
+    std::function<command::Result<std::string>(const std::string& path)> read_secret;
 };
 
 // A catalogue command (lib/command/catalogue.hpp) this protocol plans, and what it sends.

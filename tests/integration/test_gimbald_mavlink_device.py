@@ -9,9 +9,12 @@ simulator's rx log), AUTOPILOT_STATE_FOR_GIMBAL_DEVICE at 10-50 Hz, staleness wh
 goes quiet, and the stare target: while the aircraft circles a geopoint, the line of sight
 stays within 0.5 degrees of it at p95 after the first 2 s. And towards ground stations: a
 ground station (tests/integration/mavlinktest.py) on gimbald's own MAVLink gimbal manager
-steers the device with DO_GIMBAL_MANAGER_PITCHYAW and reads its attitude and limits.
+steers the device with DO_GIMBAL_MANAGER_PITCHYAW and reads its attitude and limits. With a
+signing key on both sides (gimbals[].mavlink.signing_key_file, gimbal-sim --signing-key)
+they talk; with different keys neither hears the other; a bad key file is exit 1.
 """
 
+import json
 import math
 import os
 import socket
@@ -299,6 +302,71 @@ class MavlinkDeviceTest(gt.GimbaldTestCase):
         self.assertAlmostEqual(math.degrees(pitch_min), -120, places=2)
         # A gimbal device has no zoom: the manager says so.
         self.assertEqual(gcs.command(531, [2, 50, 0]), 3)  # SET_CAMERA_ZOOM: UNSUPPORTED
+
+    def start_signed_udp(self, device_key, gimbald_key):
+        sim = self.start_sim("--protocol", "mavlink", "--udp", "0", "--signing-key",
+                             device_key.hex(), tcp=False, want=("udp",))
+        sim_port = int(sim.endpoints["udp"].rsplit(":", 1)[1])
+        key_file = os.path.join(self.workdir, "device.key")
+        with open(key_file, "w") as f:
+            f.write(gimbald_key.hex() + "\n")
+        os.chmod(key_file, 0o600)
+        daemon = self.start_daemon({
+            "gimbals": [{"name": "cam", "protocol": "mavlink",
+                         "link": {"type": "udp", "host": "127.0.0.1", "port": sim_port,
+                                  "local_port": None},
+                         "mavlink": {"signing_key_file": key_file}}],
+        })
+        return sim, daemon
+
+    def test_signed_device_link(self):
+        key = os.urandom(32)
+        sim, daemon = self.start_signed_udp(key, key)
+        client = self.client(daemon)
+        s = self.wait_state(client, lambda s: s["device"]["vendor"] == "gimbald" and
+                            s["device"]["attitude"] is not None, "a signed device's reports")
+        self.assertFalse([e for e in daemon.logs() if e.get("event") == "decode_error"])
+        start = len(sim.rx())
+        self.assertOk(client.request("position", gimbal="cam", pan=25, tilt=-15))
+        entry = sim.wait_rx(lambda e: e["kind"] == "gimbal_device_set_attitude", start=start)
+        self.assertIsNotNone(entry)
+        # Signed: incompat flag 0x01 (the frame's third byte) and 13 more bytes.
+        self.assertEqual(int(entry["hex"][4:6], 16) & 1, 1)
+        self.wait_state(client, lambda s: abs(s["telemetry"]["pan"] - 25) < 0.5, "pan 25")
+
+    def test_device_with_another_key_is_not_heard(self):
+        sim, daemon = self.start_signed_udp(os.urandom(32), os.urandom(32))
+        client = self.client(daemon)
+        # Its frames arrive and are refused (counted as decode errors).
+        self.wait_state(client, lambda s: s["link"]["rx_bytes"] > 500, "the device's frames")
+        self.assertTrue(daemon.wait_log(lambda e: e.get("event") == "decode_error"))
+        s = self.state(client)
+        self.assertEqual(s["link"]["rx_packets"], 0)
+        self.assertIsNone(s["device"]["vendor"])
+        self.assertIsNone(s["device"]["attitude"])
+        self.assertTrue(s["stale"])
+        # Nothing of the device's gets through later either.
+        time.sleep(0.5)
+        self.assertIsNone(self.state(client)["device"]["attitude"])
+
+    def test_bad_signing_key_file_is_exit_1(self):
+        key_file = os.path.join(self.workdir, "short.key")
+        with open(key_file, "w") as f:
+            f.write("abcd\n")
+        os.chmod(key_file, 0o600)
+        config = {"gimbals": [{"name": "cam", "protocol": "mavlink",
+                               "link": {"type": "udp", "host": "127.0.0.1", "port": 14570,
+                                        "local_port": None},
+                               "mavlink": {"signing_key_file": key_file}}]}
+        path = os.path.join(self.workdir, "signed.json")
+        with open(path, "w") as f:
+            json.dump(config, f)
+        for extra in (["--check-config"], []):
+            proc = gt.run([gt.GIMBALD, "-c", path, *extra])
+            text = proc.stdout + proc.stderr
+            self.assertEqual(proc.returncode, 1, text)
+            self.assertIn("gimbals[0].mavlink.signing_key_file", text)
+            self.assertIn("64 hex digits", text)
 
     def test_udp_link_takes_frames_only_from_its_host(self):
         # The device is at 127.0.0.2: datagrams from 127.0.0.1 (a stranger's) are dropped.

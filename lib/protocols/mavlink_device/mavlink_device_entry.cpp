@@ -1,5 +1,7 @@
 #include "protocols/mavlink_device/mavlink_device_entry.hpp"
 
+#include <stdexcept>
+
 #include "protocols/mavlink_device/mavlink_device_capabilities.hpp"
 #include "protocols/mavlink_device/mavlink_device_feed.hpp"
 #include "protocols/mavlink_device/mavlink_device_protocol.hpp"
@@ -23,6 +25,17 @@ std::unique_ptr<session::Protocol> make_session(const SessionSettings& s,
     MavlinkDeviceOptions options = read_mavlink_device_options(gimbal);
     options.stale_after_s = s.stale_after_s;
     options.terrain = s.terrain;
+    options.unix_clock = s.unix_clock;
+    if (options.signing_key_file) {
+        // config.cpp has checked the file; it may have changed since.
+        const std::string& path = *options.signing_key_file;
+        if (!s.read_secret) throw std::runtime_error(path + ": no way to read a key file here");
+        const auto text = s.read_secret(path);
+        if (!text) throw std::runtime_error(text.error().message);
+        options.signing_key = mavlink::parse_signing_key(*text);
+        if (!options.signing_key)
+            throw std::runtime_error(path + ": must hold 32 bytes, or 64 hex digits");
+    }
     return std::make_unique<MavlinkDeviceProtocol>(options);
 }
 

@@ -25,6 +25,8 @@ MavlinkDeviceOptions read_mavlink_device_options(const nlohmann::json& gimbal) {
     read(m, "vfov_deg", o.vfov_deg);
     read(m, "geoid_undulation_m", o.geoid_undulation_m);
     read(m, "ground_alt_m", o.ground_alt_m);
+    if (const auto key = m.find("signing_key_file"); key != m.end() && key->is_string())
+        o.signing_key_file = key->get<std::string>();
     return o;
 }
 

@@ -3,7 +3,12 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+
+#include "mavlink/signing.hpp"
 
 #include "geo/surface.hpp"
 
@@ -25,6 +30,11 @@ struct MavlinkDeviceOptions {
     double geoid_undulation_m = 0;
     // The flat world where no terrain answers: this altitude above the ellipsoid (metres).
     double ground_alt_m = 0;
+    // MAVLink 2 message signing on the device link: the key file's path in the configuration,
+    // the key itself once read (make_session), and the UTC clock the signatures carry.
+    std::optional<std::string> signing_key_file;
+    std::optional<mavlink::SigningKey> signing_key;
+    std::function<double()> unix_clock;
 };
 
 // From the gimbal's configuration object: its `mavlink` keys over the defaults. Keys of the

@@ -20,12 +20,17 @@ constexpr std::uint8_t set_attitude_length = mavlink::GimbalDeviceSetAttitude::l
 }  // namespace
 
 MavlinkDeviceProtocol::MavlinkDeviceProtocol(const MavlinkDeviceOptions& options)
-    : options_(options), state_(options), sender_(options.system_id, options.component_id) {}
+    : options_(options),
+      signatures_(options.signing_key),
+      framer_(signatures_.framer_options()),
+      state_(options),
+      sender_(options.system_id, options.component_id, options.signing_key) {}
 
 void MavlinkDeviceProtocol::receive(std::span<const std::uint8_t> bytes, double now_s,
                                     std::vector<state::Event>&,
                                     std::vector<session::Bytes>& replies) {
     framer_.push(bytes, [&](const mavlink::Message& m) {
+        if (!signatures_.accept(m, unix_now())) return;  // unsigned, forged or replayed
         const bool had_information = state_.has_information();
         state_.apply(m, now_s);
         if (!had_information && state_.has_information())
@@ -42,7 +47,7 @@ void MavlinkDeviceProtocol::housekeeping(double now_s, std::vector<session::Byte
         hb.type = mav_type_onboard_controller;
         hb.autopilot = mavlink::mav_autopilot_invalid;
         hb.system_status = mav_state_active;
-        out.push_back(sender_.frame(hb));
+        out.push_back(frame(hb));
         last_heartbeat_s_ = now_s;
     }
     if (!state_.has_information() &&
@@ -63,7 +68,7 @@ session::Bytes MavlinkDeviceProtocol::request_information() {
     c.target_system = state_.device_system().value_or(0);
     c.target_component =
         state_.device_system() ? state_.device_component() : options_.device_component_id;
-    return sender_.frame(c);
+    return frame(c);
 }
 
 std::vector<session::Bytes> MavlinkDeviceProtocol::on_connect() {
@@ -94,7 +99,7 @@ void MavlinkDeviceProtocol::steer(const vehicle::VehicleState& vehicle, double v
     state_.set_vehicle(fix);
     feed_vehicle(fix, vehicle_now_s, out);
     housekeeping(now_s, out);
-    if (const auto m = set_attitude(now_s)) out.push_back(sender_.frame(*m));
+    if (const auto m = set_attitude(now_s)) out.push_back(frame(*m));
 }
 
 void MavlinkDeviceProtocol::feed_vehicle(const std::optional<VehicleFix>& fix, double vehicle_now_s,
@@ -105,12 +110,15 @@ void MavlinkDeviceProtocol::feed_vehicle(const std::optional<VehicleFix>& fix, d
     if (!fix && !fed_fix_) return;
     fed_fix_ = fix.has_value();
     const auto us = static_cast<std::uint64_t>(vehicle_now_s * 1e6);
-    out.push_back(sender_.frame(autopilot_state(fix, us, 0, options_.device_component_id)));
+    out.push_back(frame(autopilot_state(fix, us, 0, options_.device_component_id)));
 }
 
 session::FrameCounters MavlinkDeviceProtocol::counters() const {
     const auto& s = framer_.stats();
-    return {s.frames, s.bad_crc, s.dropped_bytes, 0};
+    // Refused for signing (unsigned, forged or replayed; or signed while signing is off)
+    // count as decode errors, not as packets received.
+    const std::uint64_t refused = signatures_.rejected();
+    return {s.frames - refused, s.bad_crc, s.dropped_bytes, refused + s.signed_rejected};
 }
 
 bool MavlinkDeviceProtocol::supports(std::string_view cmd) const {
@@ -134,7 +142,7 @@ std::optional<command::Error> MavlinkDeviceProtocol::plan(std::string_view cmd,
     steering_.hold(std::move(hold).value());
     if (const auto m = set_attitude(now.mono_s)) {
         command::WirePacket w;
-        w.frame = sender_.frame(*m);
+        w.frame = frame(*m);
         w.sent = {{"id", mavlink::GimbalDeviceSetAttitude::id}, {"len", set_attitude_length}};
         plan.packets.push_back(std::move(w));
     }

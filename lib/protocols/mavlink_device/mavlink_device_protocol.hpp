@@ -43,12 +43,17 @@ class MavlinkDeviceProtocol final : public session::Protocol {
     // The heartbeat (1 Hz) and, until it arrives, the information request (every 2 s).
     void housekeeping(double now_s, std::vector<session::Bytes>& out);
     std::optional<mavlink::GimbalDeviceSetAttitude> set_attitude(double now_s);
+    double unix_now() const { return options_.unix_clock ? options_.unix_clock() : 0.0; }
+    session::Bytes frame(const mavlink::Payload& payload) {
+        return sender_.frame(payload, unix_now());
+    }
     // AUTOPILOT_STATE_FOR_GIMBAL_DEVICE while the vehicle's fix is fresh, and once with
     // nothing valid when it goes.
     void feed_vehicle(const std::optional<VehicleFix>& fix, double vehicle_now_s,
                       std::vector<session::Bytes>& out);
 
     MavlinkDeviceOptions options_;
+    SignatureCheck signatures_;  // before framer_: it configures it
     mavlink::Framer framer_;
     MavlinkDeviceState state_;
     MavlinkDeviceSteering steering_;

@@ -37,7 +37,9 @@ double toward(double from, double to, double max_step) {
 
 MavlinkDeviceSim::MavlinkDeviceSim(const MavlinkDeviceSimOptions& options)
     : options_(options),
-      sender_(options.system_id, options.component_id),
+      signatures_(options.signing_key),
+      framer_(signatures_.framer_options()),
+      sender_(options.system_id, options.component_id, options.signing_key),
       rng_(options.seed),
       pitch_(options.pitch_deg),
       yaw_(options.yaw_deg) {}
@@ -59,7 +61,11 @@ double MavlinkDeviceSim::vehicle_yaw_deg(double now_s) const {
 }
 
 void MavlinkDeviceSim::receive(std::span<const std::uint8_t> bytes, double now_s) {
-    framer_.push(bytes, [&](const mavlink::Message& m) { on_message(m, now_s); });
+    framer_.push(bytes, [&](const mavlink::Message& m) {
+        if (!signatures_.accept(m, options_.unix_time_s + now_s)) return;
+        sender_.follow(signatures_.latest());
+        on_message(m, now_s);
+    });
 }
 
 void MavlinkDeviceSim::on_message(const mavlink::Message& m, double now_s) {
@@ -162,7 +168,7 @@ void MavlinkDeviceSim::send_status(double now_s, std::vector<std::uint8_t>& out)
         (report_earth_ ? device_flags::yaw_in_earth_frame | device_flags::yaw_lock
                        : device_flags::yaw_in_vehicle_frame));
     s.gimbal_device_id = 0;
-    const auto frame = sender_.frame(s);
+    const auto frame = make_frame(s);
     out.insert(out.end(), frame.begin(), frame.end());
 }
 
@@ -183,7 +189,7 @@ void MavlinkDeviceSim::send_information(std::vector<std::uint8_t>& out) {
     put_text(i.vendor_name, "gimbald");
     put_text(i.model_name, "simulated MAVLink gimbal");
     put_text(i.custom_name, "gimbal-sim");
-    const auto frame = sender_.frame(i);
+    const auto frame = make_frame(i);
     out.insert(out.end(), frame.begin(), frame.end());
 }
 
@@ -204,7 +210,7 @@ void MavlinkDeviceSim::advance(double now_s, std::vector<std::uint8_t>& out) {
             hb.type = mavlink::mav_type_gimbal;
             hb.autopilot = mavlink::mav_autopilot_invalid;
             hb.system_status = 4;  // MAV_STATE_ACTIVE
-            const auto frame = sender_.frame(hb);
+            const auto frame = make_frame(hb);
             out.insert(out.end(), frame.begin(), frame.end());
             next_heartbeat_s_ += 1.0;
         }
@@ -218,7 +224,7 @@ void MavlinkDeviceSim::advance(double now_s, std::vector<std::uint8_t>& out) {
         mavlink::CommandAck ack;
         ack.command = command;
         ack.result = result;
-        const auto frame = sender_.frame(ack);
+        const auto frame = make_frame(ack);
         out.insert(out.end(), frame.begin(), frame.end());
     }
     acks_.clear();

@@ -28,6 +28,11 @@ struct MavlinkDeviceSimOptions {
     double pitch_deg = 0, yaw_deg = 0;  // where the axes start
     std::uint8_t system_id = 1;
     std::uint8_t component_id = 154;  // MAV_COMP_ID_GIMBAL
+    // MAVLink 2 signing (--signing-key): frames are signed, and only frames signed with the
+    // key are heard. The device has no clock: it starts at unix_time_s and keeps ahead of
+    // the timestamps it accepts.
+    std::optional<mavlink::SigningKey> signing_key;
+    double unix_time_s = 0;
 };
 
 class MavlinkDeviceSim final : public sim::Device {
@@ -58,7 +63,12 @@ class MavlinkDeviceSim final : public sim::Device {
     bool yaw_continuous() const;
     double clamp_yaw(double yaw, bool& at_limit) const;
 
+    std::vector<std::uint8_t> make_frame(const mavlink::Payload& payload) {
+        return sender_.frame(payload, options_.unix_time_s + time_);
+    }
+
     MavlinkDeviceSimOptions options_;
+    SignatureCheck signatures_;  // before framer_: it configures it
     mavlink::Framer framer_;
     MavlinkSender sender_;
     std::mt19937 rng_;

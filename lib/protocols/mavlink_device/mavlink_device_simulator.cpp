@@ -1,4 +1,6 @@
 #include "protocols/mavlink_device/mavlink_device_entry.hpp"
+
+#include <stdexcept>
 #include "protocols/mavlink_device/mavlink_device_json.hpp"
 #include "protocols/mavlink_device/mavlink_device_sim.hpp"
 #include "protocols/mavlink_device/mavlink_frame_scanner.hpp"
@@ -24,6 +26,10 @@ constexpr std::string_view manual =
        failure flags say AT_PITCH_LIMIT / AT_YAW_LIMIT, and NO_MANAGER until a manager
        is heard. AUTOPILOT_STATE_FOR_GIMBAL_DEVICE tells it the vehicle's yaw, for
        yaw from north. It knows no position: gimbald aims it from the vehicle's.
+       With --signing-key it signs every frame (MAVLink 2 message signing) and hears
+       only frames signed with that key whose timestamps move forward, as a device
+       configured for signing does; having no clock, it keeps its timestamps ahead of
+       the ones it accepts.
 )";
 
 constexpr std::string_view rx_log_manual =
@@ -50,6 +56,8 @@ constexpr Flag flags[] = {
      Flag::Check::range, -360.0, 360.0},
     {"--angle-noise", "angle_noise_deg", Flag::Type::number,
      "Noise (1 sigma) on the reported angles, degrees", Flag::Check::non_negative},
+    {"--signing-key", "signing_key", Flag::Type::text,
+     "MAVLink 2 signing key, 64 hex digits (a test key: it shows in ps)"},
 };
 
 json defaults() {
@@ -57,7 +65,7 @@ json defaults() {
     return {{"attitude_rate_hz", o.attitude_rate_hz}, {"slew_rate_dps", o.slew_rate_dps},
             {"pitch_min_deg", o.pitch_min_deg},       {"pitch_max_deg", o.pitch_max_deg},
             {"yaw_min_deg", o.yaw_min_deg},           {"yaw_max_deg", o.yaw_max_deg},
-            {"angle_noise_deg", o.angle_noise_deg}};
+            {"angle_noise_deg", o.angle_noise_deg},   {"signing_key", "none: unsigned"}};
 }
 
 std::unique_ptr<sim::Device> make(const SimScenario& s) {
@@ -71,6 +79,12 @@ std::unique_ptr<sim::Device> make(const SimScenario& s) {
     o.yaw_min_deg = x.value("yaw_min_deg", o.yaw_min_deg);
     o.yaw_max_deg = x.value("yaw_max_deg", o.yaw_max_deg);
     o.angle_noise_deg = x.value("angle_noise_deg", o.angle_noise_deg);
+    o.unix_time_s = s.unix_time_s;
+    if (const auto key = x.find("signing_key"); key != x.end() && key->is_string()) {
+        o.signing_key = mavlink::parse_signing_key(key->get<std::string>());
+        if (!o.signing_key || key->get<std::string>().size() != 64)
+            throw std::invalid_argument("--signing-key: must be 64 hex digits");
+    }
     return make_mavlink_device_sim(o);
 }
 

@@ -14,6 +14,22 @@ constexpr std::uint16_t estimator_valid = 1 | 2 | 4 | 16 | 32;
 constexpr std::uint8_t landed_undefined = 0;
 }  // namespace
 
+std::vector<std::uint8_t> MavlinkSender::frame(const mavlink::Payload& payload, double unix_s) {
+    if (!key_) return mavlink::encode_v2(payload, system_id_, component_id_, seq_++);
+    auto out = mavlink::encode_v2(payload, system_id_, component_id_, seq_++, true);
+    mavlink::append_signature(out, *key_, 0, clock_.next(mavlink::signing_timestamp(unix_s)));
+    return out;
+}
+
+bool SignatureCheck::accept(const mavlink::Message& m, double unix_s) {
+    if (!key_) return true;  // the framer delivered an unsigned frame
+    const bool ok = m.signature && m.signature->verified &&
+                    streams_.accept(m.sysid, m.compid, m.signature->link_id, m.signature->timestamp,
+                                    mavlink::signing_timestamp(unix_s));
+    if (!ok) ++rejected_;
+    return ok;
+}
+
 std::optional<VehicleFix> vehicle_fix(const vehicle::VehicleState& vehicle, double now_s) {
     const auto& pos = vehicle.position();
     const auto& att = vehicle.attitude();

@@ -47,7 +47,8 @@ class MavlinkFrameScanner {
     std::size_t pending_bytes() const { return framer_.pending_bytes(); }
 
   private:
-    mavlink::Framer framer_;
+    // Signed frames too (a signed device link), unverified: these read what is on the wire.
+    mavlink::Framer framer_{{.accept_signed = true, .signing_key = std::nullopt}};
     std::vector<std::uint8_t> held_;  // stream bytes from stream offset held_from_ on
     std::uint64_t held_from_ = 0;
     std::uint64_t frame_bytes_seen_ = 0;
