@@ -1,8 +1,8 @@
 // libFuzzer target for the MAVLink gimbal device protocol (lib/protocols/mavlink_device): the
 // input, in chunks it chooses itself, is what the device sends (to gimbald's session) and
 // what the manager sends (to the simulated device); between chunks the session steers from a
-// vehicle, plans a command and renders STATE, and the capabilities read that STATE. Any
-// crash, sanitizer report or broken invariant aborts.
+// vehicle, plans a command and renders STATE, and the capabilities read that STATE; with or
+// without MAVLink signing on the link. Any crash, sanitizer report or broken invariant aborts.
 #include <cstdio>
 #include <cstdlib>
 #include <span>
@@ -34,8 +34,18 @@ mav::Message from_autopilot(mav::Payload payload) {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     const std::span<const std::uint8_t> input(data, size);
-    p::MavlinkDeviceProtocol session(p::MavlinkDeviceOptions{});
-    p::MavlinkDeviceSim device(p::MavlinkDeviceSimOptions{});
+    // An odd first byte: both ends sign (the signature and replay checks see the input).
+    p::MavlinkDeviceOptions session_options;
+    p::MavlinkDeviceSimOptions device_options;
+    if (size > 0 && (data[0] & 1) != 0) {
+        mav::SigningKey key{};
+        key.fill(0x42);
+        session_options.signing_key = device_options.signing_key = key;
+        session_options.unix_clock = [] { return 1.8e9; };
+        device_options.unix_time_s = 1.7e9;
+    }
+    p::MavlinkDeviceProtocol session(session_options);
+    p::MavlinkDeviceSim device(device_options);
     gimbal::vehicle::VehicleState vehicle(gimbal::vehicle::VehicleOptions{});
     mav::Heartbeat hb;
     vehicle.apply(from_autopilot(hb), 0.0);
