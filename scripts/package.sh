@@ -4,6 +4,7 @@
 # build/package-ARCH, generates the man pages and runs cpack. Prints the .deb's path last.
 #   scripts/package.sh                 # amd64 (the build machine's architecture)
 #   scripts/package.sh --arch arm64    # cross-compiled with crossbuild-essential-arm64
+#                                      # against build/sysroot-arm64 (scripts/arm64-sysroot.sh)
 # Environment: JOBS (parallel build jobs, default nproc).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -21,7 +22,9 @@ scripts/install-deps.sh
 cross=()
 if [ "$arch" != "$(dpkg --print-architecture)" ]; then
   scripts/install-deps.sh --cross "$arch"
-  cross=(-DCMAKE_TOOLCHAIN_FILE="$PWD/packaging/toolchain-aarch64.cmake")
+  sysroot=$(scripts/arm64-sysroot.sh)
+  cross=(-DCMAKE_TOOLCHAIN_FILE="$PWD/packaging/toolchain-aarch64.cmake"
+         -DGIMBAL_SYSROOT="$sysroot")
   export DEB_HOST_ARCH=$arch
 fi
 
