@@ -23,8 +23,11 @@ cross=()
 if [ "$arch" != "$(dpkg --print-architecture)" ]; then
   scripts/install-deps.sh --cross "$arch"
   sysroot=$(scripts/arm64-sysroot.sh)
+  # GNUInstallDirs picks Debian's multiarch libdir only for native builds; the Wireshark
+  # plugin belongs in /usr/lib/aarch64-linux-gnu/wireshark/plugins on arm64 too.
   cross=(-DCMAKE_TOOLCHAIN_FILE="$PWD/packaging/toolchain-aarch64.cmake"
-         -DGIMBAL_SYSROOT="$sysroot")
+         -DGIMBAL_SYSROOT="$sysroot"
+         -DCMAKE_INSTALL_LIBDIR="lib/$(dpkg-architecture -a"$arch" -qDEB_HOST_MULTIARCH 2>/dev/null)")
   export DEB_HOST_ARCH=$arch
 fi
 
