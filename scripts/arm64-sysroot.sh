@@ -70,5 +70,10 @@ for alt in blas/libblas.so.3 lapack/liblapack.so.3; do
   fi
 done
 
+# qemu-aarch64-static -L looks every path up in the sysroot first: device nodes there
+# (mmdebstrap makes /dev when it can) would shadow the host's, and /dev/ptmx outside its
+# devpts mount fails with ENODEV (openpty fails; the serial link tests use it).
+rm -rf "${sysroot:?}/dev"
+
 echo "$want" >"$stamp"
 echo "$sysroot"
