@@ -105,6 +105,14 @@ set(CPACK_DEBIAN_COMPRESSION_TYPE xz)
 if(CMAKE_CROSSCOMPILING AND CMAKE_SYSTEM_PROCESSOR STREQUAL "aarch64")
   set(CPACK_DEBIAN_PACKAGE_ARCHITECTURE arm64)
 endif()
+# A cross build's libraries are in its sysroot (packaging/toolchain-aarch64.cmake):
+# dpkg-shlibdeps looks there first, and finds their packages' symbols and shlibs files in
+# the sysroot's DEBIAN folder (scripts/arm64-sysroot.sh).
+if(CMAKE_CROSSCOMPILING AND CMAKE_SYSROOT)
+  set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS_PRIVATE_DIRS
+      ${CMAKE_SYSROOT}/usr/lib/${CMAKE_LIBRARY_ARCHITECTURE}
+      ${CMAKE_SYSROOT}/lib/${CMAKE_LIBRARY_ARCHITECTURE})
+endif()
 set(CPACK_INSTALL_DEFAULT_DIRECTORY_PERMISSIONS OWNER_READ OWNER_WRITE OWNER_EXECUTE GROUP_READ
                                                 GROUP_EXECUTE WORLD_READ WORLD_EXECUTE)
 include(CPack)

@@ -18,21 +18,13 @@ packages=(
   gstreamer1.0-plugins-bad gstreamer1.0-plugins-ugly python3-gi gir1.2-gst-rtsp-server-1.0
 )
 
-# --cross ARCH (scripts/package.sh --arch arm64): the cross compiler, QEMU and the ARCH
-# multiarch libraries instead. libgeographiclib-dev is not multiarch (ARCH's would replace
-# the native one): its runtime library and the native headers are enough
-# (packaging/toolchain-aarch64.cmake).
+# --cross ARCH (scripts/package.sh --arch arm64): the cross compiler, QEMU and mmdebstrap
+# instead. The ARCH libraries are not installed into this machine (GDAL's packages are not
+# multiarch): scripts/arm64-sysroot.sh unpacks them into a sysroot under build/.
 cross_arch=
 if [ "${1:-}" = "--cross" ]; then
   cross_arch=$2
-  packages=(
-    "crossbuild-essential-$cross_arch" qemu-user-static
-    "libboost-dev:$cross_arch" "libspdlog-dev:$cross_arch" "libfmt-dev:$cross_arch"
-    "libsystemd-dev:$cross_arch" "libgeographiclib23:$cross_arch"
-    "libssl-dev:$cross_arch"
-    "libmosquitto-dev:$cross_arch"
-    "libavformat-dev:$cross_arch" "libavcodec-dev:$cross_arch" "libavutil-dev:$cross_arch"
-  )
+  packages=("crossbuild-essential-$cross_arch" qemu-user-static mmdebstrap)
 fi
 
 missing=()
@@ -57,8 +49,5 @@ else
   exit 1
 fi
 export DEBIAN_FRONTEND=noninteractive
-if [ -n "$cross_arch" ] && ! dpkg --print-foreign-architectures | grep -qx "$cross_arch"; then
-  "${SUDO[@]}" dpkg --add-architecture "$cross_arch"
-fi
 "${SUDO[@]}" apt-get update -q
 "${SUDO[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"

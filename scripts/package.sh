@@ -4,6 +4,7 @@
 # build/package-ARCH, generates the man pages and runs cpack. Prints the .deb's path last.
 #   scripts/package.sh                 # amd64 (the build machine's architecture)
 #   scripts/package.sh --arch arm64    # cross-compiled with crossbuild-essential-arm64
+#                                      # against build/sysroot-arm64 (scripts/arm64-sysroot.sh)
 # Environment: JOBS (parallel build jobs, default nproc).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -21,7 +22,12 @@ scripts/install-deps.sh
 cross=()
 if [ "$arch" != "$(dpkg --print-architecture)" ]; then
   scripts/install-deps.sh --cross "$arch"
-  cross=(-DCMAKE_TOOLCHAIN_FILE="$PWD/packaging/toolchain-aarch64.cmake")
+  sysroot=$(scripts/arm64-sysroot.sh)
+  # GNUInstallDirs picks Debian's multiarch libdir only for native builds; the Wireshark
+  # plugin belongs in /usr/lib/aarch64-linux-gnu/wireshark/plugins on arm64 too.
+  cross=(-DCMAKE_TOOLCHAIN_FILE="$PWD/packaging/toolchain-aarch64.cmake"
+         -DGIMBAL_SYSROOT="$sysroot"
+         -DCMAKE_INSTALL_LIBDIR="lib/$(dpkg-architecture -a"$arch" -qDEB_HOST_MULTIARCH 2>/dev/null)")
   export DEB_HOST_ARCH=$arch
 fi
 

@@ -82,7 +82,12 @@ dpkg-deb -x "$deb" "$scratch"
 run=()
 if [ "$arch" != "$(dpkg --print-architecture)" ]; then
   command -v qemu-aarch64-static >/dev/null || { echo "check-package: no qemu-aarch64-static: not run"; exit $((failures > 0)); }
-  run=(qemu-aarch64-static -L /usr/aarch64-linux-gnu)
+  # The arm64 libraries the package depends on live in the sysroot it was built against
+  # (scripts/arm64-sysroot.sh), not in this machine.
+  sysroot=${GIMBAL_SYSROOT:-$src/build/sysroot-arm64}
+  [ -d "$sysroot/usr/lib/aarch64-linux-gnu" ] \
+    || { echo "check-package: no arm64 sysroot at $sysroot (scripts/arm64-sysroot.sh): not run"; exit $((failures > 0)); }
+  run=(qemu-aarch64-static -L "$sysroot")
 fi
 out=$("${run[@]}" "$scratch/usr/sbin/gimbald" --version)
 [ "$out" = "gimbald $version" ] && pass "gimbald --version: $out" || fail "gimbald --version: $out"

@@ -106,6 +106,9 @@ struct PacketOptions {
 // splits. Short payloads are padded with adaptation-field stuffing.
 inline Bytes packet(int pid, const Bytes& payload, const PacketOptions& o = {}) {
     Bytes p;
+    // One allocation up front: aarch64 GCC 12 at -O3 otherwise reports false
+    // -Warray-bounds/-Wstringop-overread on the copy after the push_backs' regrowth.
+    p.reserve(188);
     const bool flags = o.pcr_base || o.random_access || o.discontinuity;
     std::size_t af = flags ? 2 + (o.pcr_base ? 6 : 0) : 0;
     if (payload.size() + af < 184) af = 184 - payload.size();
