@@ -69,7 +69,8 @@ class FramePolicy(gt.GimbaldTestCase):
     def raw(self, data, what, expected_status):
         raw = ht.raw_exchange(self.port, data)
         status, headers = head_of(raw)
-        self.assertEqual(status, expected_status, "%s: %r" % (what, raw[:200]))
+        expected = expected_status if isinstance(expected_status, tuple) else (expected_status,)
+        self.assertIn(status, expected, "%s: %r" % (what, raw[:200]))
         self.assertNoFraming(status, headers, what)
 
     def test_every_path_and_status(self):
@@ -79,7 +80,9 @@ class FramePolicy(gt.GimbaldTestCase):
             ("static file", b"GET /console.js HTTP/1.1\r\n" + host.encode() + b"\r\n", 200),
             ("HEAD", b"HEAD / HTTP/1.1\r\n" + host.encode() + b"\r\n", 200),
             ("metrics", b"GET /metrics HTTP/1.1\r\n" + host.encode() + b"\r\n", 200),
-            ("healthz", b"GET /healthz HTTP/1.1\r\n" + host.encode() + b"\r\n", 200),
+            # 503 while the simulated gimbal's telemetry is not (or no longer) fresh: on a
+            # loaded machine it can be either; the headers are what this checks.
+            ("healthz", b"GET /healthz HTTP/1.1\r\n" + host.encode() + b"\r\n", (200, 503)),
             ("state", b"GET /api/state HTTP/1.1\r\n" + host.encode() + b"\r\n", 200),
             ("console info", b"GET /api/console HTTP/1.1\r\n" + host.encode() + b"\r\n", 200),
             ("command", b"POST /api/command HTTP/1.1\r\n" + host.encode() +
