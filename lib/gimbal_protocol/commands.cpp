@@ -13,9 +13,6 @@ namespace gimbal::gimbal_protocol {
 
 namespace mav = gimbal::mavlink;
 using mav::MavResult;
-using session::number_at;
-using session::state_at;
-using session::wrap180;
 
 namespace {
 
