@@ -27,26 +27,11 @@ import gimbaltest as gt
 import mavlinktest as mt
 
 HEARTBEAT, ATTITUDE, GLOBAL_POSITION_INT = 0, 30, 33
-CRC_EXTRA = {HEARTBEAT: 50, ATTITUDE: 39, GLOBAL_POSITION_INT: 104}
 
 # The stare geometry: a point on the ground (MSL 100 m, geoid 0), the aircraft 500 m above it
 # on a 400 m circle at 30 m/s.
 POINT = (45.7, -121.5, 100.0)
 RADIUS, SPEED, HEIGHT = 400.0, 30.0, 500.0
-
-
-def x25(data, crc=0xFFFF):
-    for b in data:
-        tmp = b ^ (crc & 0xFF)
-        tmp = (tmp ^ (tmp << 4)) & 0xFF
-        crc = ((crc >> 8) ^ (tmp << 8) ^ (tmp << 3) ^ (tmp >> 4)) & 0xFFFF
-    return crc
-
-
-def mavlink_v2(msgid, payload, seq=0, sysid=1, compid=1):
-    body = struct.pack("<BBBBBB", len(payload), 0, 0, seq, sysid, compid)
-    body += struct.pack("<I", msgid)[:3] + payload
-    return b"\xfd" + body + struct.pack("<H", x25(body + bytes([CRC_EXTRA[msgid]])))
 
 
 def circle(t):
@@ -75,7 +60,7 @@ class Aircraft:
         self.thread.start()
 
     def send(self, msgid, payload):
-        self.sock.sendto(mavlink_v2(msgid, payload, self.seq & 0xFF), ("127.0.0.1", self.port))
+        self.sock.sendto(mt.frame(msgid, payload, 1, 1, self.seq), ("127.0.0.1", self.port))
         self.seq += 1
 
     def run(self):
@@ -389,8 +374,7 @@ class MavlinkDeviceTest(gt.GimbaldTestCase):
         self.assertEqual(sender[1], local)
         self.assertEqual(data[0], 0xFD)
         status = struct.pack("<I4ffffIHBB", 0, 1, 0, 0, 0, 0, 0, 0, 0, 32, 0, 0)
-        CRC_EXTRA[285] = 137
-        frame = mavlink_v2(285, status, sysid=1, compid=154)
+        frame = mt.frame(285, status, 1, 154)
         stranger.sendto(frame, ("127.0.0.1", local))
         time.sleep(0.5)
         self.assertIsNone(self.state(client)["device"]["attitude"])
