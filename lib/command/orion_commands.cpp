@@ -7,6 +7,7 @@
 #include <string>
 
 #include "command/params.hpp"
+#include "command/path_request.hpp"
 #include "geo/wgs84.hpp"
 #include "orion/framing.hpp"
 #include "orion/json.hpp"
@@ -78,49 +79,16 @@ void geopoint(Request& r) {
 }
 
 void path(Request& r) {
-    auto& p = r.p;
-    const nlohmann::json* points = p.raw("points");
-    const bool down = p.boolean_or("down", false);
-    const double along = p.number_or("along_step_deg", 0.0, 180.0, 0.0);
-    const auto cross_steps = p.integer_or("cross_steps", 0, 15, 0);
-    const double cross_ratio = p.number_or("cross_ratio", 0.0, 2.55, 0.0);
-    static constexpr std::array<std::string_view, 2> refs{"wgs84", "terrain"};
-    const auto ref = p.choice("alt_ref", refs, false).value_or("wgs84");
-    if (!p.ok()) return;
-    if (ref == "terrain")
-        return p.fail(code::unavailable, "alt_ref 'terrain' needs gimbald's terrain section");
-
+    auto read = read_path_request(r.p);
+    if (!read) return r.p.fail(read.error().code, read.error().message);
     o::Path path;
-    if (down) {
-        if (points) return p.fail(code::bad_request, "'down': true takes no 'points'");
-        path.point_down = true;
-    } else {
-        if (!points)
-            return p.fail(code::bad_request, "missing parameter 'points' (or 'down': true)");
-        if (!points->is_array() || points->empty())
-            return p.fail(code::bad_request, "'points' must be an array of 1 to 15 points");
-        if (points->size() > o::max_path_points)
-            return p.fail(code::out_of_range, "'points' must hold 1 to 15 points");
-        for (std::size_t i = 0; i < points->size(); ++i) {
-            const auto& item = (*points)[i];
-            const std::string where = "points[" + std::to_string(i) + "]";
-            if (!item.is_object())
-                return p.fail(code::bad_request, where + " must be {\"lat\",\"lon\",\"alt\"}");
-            Params point(item);
-            const auto lat = point.number("lat", -90.0, 90.0, true);
-            const auto lon = point.number("lon", -180.0, 180.0, true);
-            const auto alt = point.number("alt", min_alt_m, max_alt_m, true);
-            point.reject_unknown();
-            if (!point.ok())
-                return p.fail(point.error().code, where + ": " + point.error().message);
-            const auto ecef = geo::lla_to_ecef({*lat, *lon, *alt});
-            path.points.push_back(o::PathPoint{{ecef.x, ecef.y, ecef.z}});
-        }
-    }
-    path.num_cross_track_steps = static_cast<std::uint8_t>(cross_steps);
-    path.along_track_step_angle = along * deg2rad;
-    path.cross_track_step_ratio = cross_ratio;
-    if (!add_packet(path, r.plan)) p.fail(code::internal, "path did not encode");
+    path.point_down = read->down;
+    for (const auto& ecef : read->ecef)
+        path.points.push_back(o::PathPoint{{ecef.x, ecef.y, ecef.z}});
+    path.num_cross_track_steps = static_cast<std::uint8_t>(read->cross_steps);
+    path.along_track_step_angle = read->along_step_deg * deg2rad;
+    path.cross_track_step_ratio = read->cross_ratio;
+    if (!add_packet(path, r.plan)) r.p.fail(code::internal, "path did not encode");
 }
 
 void laser(Request& r) {

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "command/params.hpp"
+#include "command/path_request.hpp"
 
 namespace gimbal::protocols {
 
@@ -20,7 +21,6 @@ constexpr double min_alt_m = -2000;
 constexpr double max_alt_m = 100000;
 constexpr double max_rate_dps = 32.767 * 180.0 / std::numbers::pi;
 constexpr double max_velocity = 327.67;
-constexpr std::size_t max_path_points = 15;
 constexpr double deg = std::numbers::pi / 180.0;
 
 command::Error no_fix(std::string_view cmd) {
@@ -76,52 +76,19 @@ command::Result<Hold> geopoint(Params& p, const DeviceCommandContext& ctx) {
 }
 
 command::Result<Hold> path(Params& p, const DeviceCommandContext& ctx) {
-    const json* points = p.raw("points");
-    const bool down = p.boolean_or("down", false);
-    const double along = p.number_or("along_step_deg", 0.0, 180.0, 0.0);
-    const auto cross_steps = p.integer_or("cross_steps", 0, 15, 0);
-    const double cross_ratio = p.number_or("cross_ratio", 0.0, 2.55, 0.0);
-    static constexpr std::array<std::string_view, 2> refs{"wgs84", "terrain"};
-    const auto ref = p.choice("alt_ref", refs, false).value_or("wgs84");
-    p.reject_unknown();
-    if (!p.ok()) return p.error();
-    if (ref == "terrain")
-        return command::Error{code::unavailable,
-                              "alt_ref 'terrain' needs gimbald's terrain section"};
-    if (down) {
-        if (points) return command::Error{code::bad_request, "'down': true takes no 'points'"};
-        return Hold{HoldAngles{0, -90}};
-    }
-    if (!points)
-        return command::Error{code::bad_request, "missing parameter 'points' (or 'down': true)"};
-    if (!points->is_array() || points->empty())
-        return command::Error{code::bad_request, "'points' must be an array of 1 to 15 points"};
-    if (points->size() > max_path_points)
-        return command::Error{code::out_of_range, "'points' must hold 1 to 15 points"};
-    std::vector<geo::Vec3> ecef;
-    for (std::size_t i = 0; i < points->size(); ++i) {
-        const auto& item = (*points)[i];
-        const std::string where = "points[" + std::to_string(i) + "]";
-        if (!item.is_object())
-            return command::Error{code::bad_request, where + " must be {\"lat\",\"lon\",\"alt\"}"};
-        Params point(item);
-        const auto lat = point.number("lat", -90.0, 90.0, true);
-        const auto lon = point.number("lon", -180.0, 180.0, true);
-        const auto alt = point.number("alt", min_alt_m, max_alt_m, true);
-        point.reject_unknown();
-        if (!point.ok())
-            return command::Error{point.error().code, where + ": " + point.error().message};
-        ecef.push_back(geo::lla_to_ecef({*lat, *lon, *alt}));
-    }
+    auto read = command::read_path_request(p);
+    if (!read) return read.error();
+    if (read->down) return Hold{HoldAngles{0, -90}};
     if (!ctx.has_vehicle_fix) return no_fix("path");
     // The Orion's along/cross-step semantics (sim::PathFollower): the look point sweeps the
     // path, or steps along it by the slant range times the step angle and stares.
     sim::StepStare step;
-    step.along_step = along * deg;
-    step.cross_steps = static_cast<unsigned>(cross_steps);
-    step.cross_ratio = cross_ratio;
+    step.along_step = read->along_step_deg * deg;
+    step.cross_steps = read->cross_steps;
+    step.cross_ratio = read->cross_ratio;
     HoldPath h;
-    h.follower = std::make_shared<sim::PathFollower>(std::move(ecef), step, sim::PathOptions{});
+    h.follower =
+        std::make_shared<sim::PathFollower>(std::move(read->ecef), step, sim::PathOptions{});
     h.last_s = ctx.now_s;
     return Hold{h};
 }
