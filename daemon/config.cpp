@@ -2,8 +2,8 @@
 
 #include "auth/roles.hpp"
 #include "auth/secret.hpp"
-#include "mavlink/signing.hpp"
 #include "mqtt/mqtt_url.hpp"
+#include "protocols/registry.hpp"
 #include "secret_file.hpp"
 #include "state/messages.hpp"
 
@@ -28,209 +28,14 @@ namespace {
 
 using nlohmann::json;
 
-// ---- Reading JSON objects with every problem collected -----------------------------------
-
-class Problems {
-  public:
-    explicit Problems(std::vector<Problem>& out) : out_(&out) {}
-    void add(std::string path, std::string message) {
-        out_->push_back({std::move(path), std::move(message)});
-    }
-
-  private:
-    std::vector<Problem>* out_;
-};
-
-struct Range {
-    double min;
-    double max;
-};
-
-struct IntRange {
-    long long min;
-    long long max;
-};
-
-enum class Presence { optional, required };
-
-std::string join_path(std::string_view path, std::string_view key) {
-    return path.empty() ? std::string(key) : fmt::format("{}.{}", path, key);
-}
-
-std::string index_path(std::string_view path, std::size_t index) {
-    return fmt::format("{}[{}]", path, index);
-}
-
-std::size_t edit_distance(std::string_view a, std::string_view b) {
-    std::vector<std::size_t> row(b.size() + 1);
-    for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-    for (std::size_t i = 1; i <= a.size(); ++i) {
-        std::size_t diagonal = row[0];
-        row[0] = i;
-        for (std::size_t j = 1; j <= b.size(); ++j) {
-            const std::size_t above = row[j];
-            row[j] =
-                std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0u : 1u)});
-            diagonal = above;
-        }
-    }
-    return row[b.size()];
-}
-
-// One JSON object being read. Every key looked up is "known"; finish() reports the others as
-// unknown, so a typo in any section is an error wherever it is.
-class Fields {
-  public:
-    Fields(const json& value, std::string path, Problems& problems)
-        : value_(&value), path_(std::move(path)), problems_(&problems) {
-        if (!value.is_object()) problems_->add(path_, "must be an object");
-    }
-
-    bool is_object() const { return value_->is_object(); }
-    std::string path(std::string_view key) const { return join_path(path_, key); }
-    Problems& problems() { return *problems_; }
-    void problem(std::string_view key, std::string message) {
-        problems_->add(path(key), std::move(message));
-    }
-
-    // The value of `key` (null included), or nullptr when absent.
-    const json* find(std::string_view key) {
-        known_.emplace(key);
-        if (!is_object()) return nullptr;
-        const auto it = value_->find(key);
-        return it == value_->end() ? nullptr : &*it;
-    }
-
-    const json* required(std::string_view key) {
-        const json* value = find(key);
-        if (value == nullptr && is_object()) problem(key, "required");
-        return value;
-    }
-
-    const json* lookup(std::string_view key, Presence presence) {
-        return presence == Presence::required ? required(key) : find(key);
-    }
-
-    // Each reader returns true when the key was present and valid (and `out` was set).
-    bool string(std::string_view key, std::string& out, Presence presence = Presence::optional) {
-        const json* value = lookup(key, presence);
-        if (value == nullptr) return false;
-        if (!value->is_string()) {
-            problem(key, "must be a string");
-            return false;
-        }
-        out = value->get<std::string>();
-        return true;
-    }
-
-    bool boolean(std::string_view key, bool& out) {
-        const json* value = find(key);
-        if (value == nullptr) return false;
-        if (!value->is_boolean()) {
-            problem(key, "must be true or false");
-            return false;
-        }
-        out = value->get<bool>();
-        return true;
-    }
-
-    bool number(std::string_view key, double& out, Range range,
-                Presence presence = Presence::optional) {
-        const json* value = lookup(key, presence);
-        if (value == nullptr) return false;
-        if (!value->is_number()) {
-            problem(key,
-                    fmt::format("must be a number between {:g} and {:g}", range.min, range.max));
-            return false;
-        }
-        const double number = value->get<double>();
-        if (!(number >= range.min && number <= range.max)) {
-            problem(key, fmt::format("must be between {:g} and {:g}", range.min, range.max));
-            return false;
-        }
-        out = number;
-        return true;
-    }
-
-    template <class Int>
-    bool integer(std::string_view key, Int& out, IntRange range,
-                 Presence presence = Presence::optional) {
-        const json* value = lookup(key, presence);
-        if (value == nullptr) return false;
-        if (!value->is_number_integer()) {
-            problem(key, fmt::format("must be an integer between {} and {}", range.min, range.max));
-            return false;
-        }
-        // nlohmann keeps non-negative integers as unsigned: compare each kind as itself.
-        const bool in_range =
-            value->is_number_unsigned()
-                ? (range.min <= 0 ||
-                   value->get<std::uint64_t>() >= static_cast<std::uint64_t>(range.min)) &&
-                      value->get<std::uint64_t>() <= static_cast<std::uint64_t>(range.max)
-                : value->get<std::int64_t>() >= range.min &&
-                      value->get<std::int64_t>() <= range.max;
-        if (!in_range) {
-            problem(key, fmt::format("must be between {} and {}", range.min, range.max));
-            return false;
-        }
-        out = static_cast<Int>(value->get<std::int64_t>());
-        return true;
-    }
-
-    bool choice(std::string_view key, std::string& out,
-                std::initializer_list<std::string_view> options,
-                Presence presence = Presence::optional) {
-        const json* value = lookup(key, presence);
-        if (value == nullptr) return false;
-        if (value->is_string() &&
-            std::find(options.begin(), options.end(), value->get_ref<const std::string&>()) !=
-                options.end()) {
-            out = value->get<std::string>();
-            return true;
-        }
-        std::string list;
-        for (auto option : options)
-            list += fmt::format("{}\"{}\"", list.empty() ? "" : ", ", option);
-        problem(key, "must be one of " + list);
-        return false;
-    }
-
-    // The nested object under `key`; a present non-object is reported.
-    std::optional<Fields> object(std::string_view key, Presence presence = Presence::optional) {
-        const json* value = lookup(key, presence);
-        if (value == nullptr) return std::nullopt;
-        Fields nested(*value, path(key), *problems_);
-        if (!nested.is_object()) return std::nullopt;
-        return nested;
-    }
-
-    // This object's valid keys cannot be known (e.g. its `type` is wrong): skip finish().
-    void keep_unknown_keys() { check_unknown_ = false; }
-
-    void finish() {
-        if (!is_object() || !check_unknown_) return;
-        for (const auto& item : value_->items()) {
-            if (known_.count(item.key()) != 0) continue;
-            problem(item.key(), "unknown key" + suggestion(item.key()));
-        }
-    }
-
-  private:
-    std::string suggestion(std::string_view key) const {
-        for (const auto& known : known_) {
-            if (edit_distance(key, known) <= 2 && known.size() > 2) {
-                return fmt::format(" (did you mean \"{}\"?)", known);
-            }
-        }
-        return {};
-    }
-
-    const json* value_;
-    std::string path_;
-    Problems* problems_;
-    std::set<std::string, std::less<>> known_;
-    bool check_unknown_ = true;
-};
+// The generic reader and writer: lib/config/fields.hpp.
+using config::Fields;
+using config::index_path;
+using config::IntRange;
+using config::join_path;
+using config::Presence;
+using config::Problems;
+using config::Range;
 
 // nlohmann keeps the last of two equal keys without a word; in a configuration that is a
 // silent override ("allow_fire" twice), so it is reported with its path.
@@ -413,72 +218,6 @@ std::optional<Link> read_link(Fields& f) {
     return SimLink{};
 }
 
-ViewproOptions read_viewpro(Fields& f) {
-    ViewproOptions options;
-    if (auto output = f.object("output")) {
-        auto& o = options.output;
-        std::string osd = o.osd == ViewproOsd::target ? "target" : "uav";
-        if (output->choice("osd", osd, {"target", "uav"})) {
-            o.osd = osd == "target" ? ViewproOsd::target : ViewproOsd::uav;
-        }
-        output->boolean("serial", o.serial);
-        output->boolean("network", o.network);
-        std::string format = "out3";
-        if (output->choice("format", format, {"out1", "out2", "out3", "out4"})) {
-            o.format = static_cast<ViewproFormat>(format.back() - '1');
-        }
-        output->finish();
-    }
-    return options;
-}
-
-void optional_string(Fields& f, std::string_view key, std::optional<std::string>& out);
-
-MavlinkDeviceConfig read_mavlink_device(Fields& f) {
-    MavlinkDeviceConfig m;
-    f.integer("system_id", m.system_id, {1, 255});
-    f.integer("component_id", m.component_id, {1, 255});
-    f.integer("device_component_id", m.device_component_id, {1, 255});
-    f.number("hfov_deg", m.hfov_deg, {0.1, 179.9});
-    f.number("vfov_deg", m.vfov_deg, {0.1, 179.9});
-    f.number("geoid_undulation_m", m.geoid_undulation_m, {-200, 200});
-    f.number("ground_alt_m", m.ground_alt_m, {-2000, 10000});
-    optional_string(f, "signing_key_file", m.signing_key_file);
-    if (m.signing_key_file) {
-        const auto text = read_secret_file(*m.signing_key_file);
-        if (!text)
-            f.problem("signing_key_file", text.error().message);
-        else if (!gimbal::mavlink::parse_signing_key(*text))
-            f.problem("signing_key_file",
-                      *m.signing_key_file + ": must hold 32 bytes, or 64 hex digits");
-    }
-    return m;
-}
-
-void read_feed(Fields& f, GimbalConfig& gimbal) {
-    switch (gimbal.protocol) {
-        case Protocol::orion:
-            if (auto feed = f.object("feed")) {
-                feed->boolean("autopilot", gimbal.orion_feed.autopilot);
-                feed->boolean("gps", gimbal.orion_feed.gps);
-                feed->finish();
-            }
-            return;
-        case Protocol::viewpro: {
-            std::string feed;
-            if (f.choice("feed", feed, {"in2", "in1", "mavlink"})) {
-                gimbal.viewpro_feed = feed == "in2"   ? ViewproFeed::in2
-                                      : feed == "in1" ? ViewproFeed::in1
-                                                      : ViewproFeed::mavlink;
-            }
-            return;
-        }
-        case Protocol::mavlink:
-            // AUTOPILOT_STATE_FOR_GIMBAL_DEVICE is the one feed a device takes: no `feed`.
-            return;
-    }
-}
-
 // `video` (contract section 17): its reading is daemon/video/video_config.cpp's.
 void read_video(Fields& f, GimbalConfig& gimbal) {
     const json* video = f.find("video");
@@ -513,17 +252,32 @@ void read_sim_videos(Fields& root, Config& config) {
     }
 }
 
-GimbalConfig read_gimbal(Fields& f) {
+using ProtocolConfigContext = gimbal::protocols::ConfigContext;
+
+// "\"orion\", \"viewpro\", ..." in the registry's order.
+std::string quoted_protocols() {
+    const auto names = gimbal::protocols::names();
+    const std::vector<std::string_view> views(names.begin(), names.end());
+    return config::quoted_list(views);
+}
+
+GimbalConfig read_gimbal(Fields& f, const ProtocolConfigContext& context) {
     static const std::regex name_pattern("[a-z0-9_-]{1,32}");
     GimbalConfig gimbal;
     if (f.string("name", gimbal.name, Presence::required) &&
         !std::regex_match(gimbal.name, name_pattern)) {
         f.problem("name", "must match [a-z0-9_-]{1,32}");
     }
-    std::string protocol;
-    const bool known_protocol =
-        f.choice("protocol", protocol, {"orion", "viewpro", "mavlink"}, Presence::required);
-    if (known_protocol) gimbal.protocol = *parse_protocol(protocol);
+    bool known_protocol = false;
+    if (const json* value = f.required("protocol")) {
+        const auto* named =
+            value->is_string() ? gimbal::protocols::find(value->get<std::string>()) : nullptr;
+        if (named == nullptr)
+            f.problem("protocol", "must be one of " + quoted_protocols());
+        else
+            gimbal.protocol = named->id;
+        known_protocol = named != nullptr;
+    }
 
     if (auto link = f.object("link", Presence::required)) {
         if (auto parsed = read_link(*link)) gimbal.link = *parsed;
@@ -531,31 +285,25 @@ GimbalConfig read_gimbal(Fields& f) {
     }
 
     if (!known_protocol) {
-        f.keep_unknown_keys();  // `viewpro` and `feed` depend on the protocol
+        f.keep_unknown_keys();  // the protocol's own keys depend on the protocol
         return gimbal;
     }
-    if (gimbal.protocol == Protocol::viewpro) {
-        if (auto viewpro = f.object("viewpro")) {
-            gimbal.viewpro = read_viewpro(*viewpro);
-            viewpro->finish();
-        }
-    } else if (f.find("viewpro") != nullptr) {
-        f.problem("viewpro", "only for protocol \"viewpro\"");
+    const auto& own = gimbal::protocols::entry(gimbal.protocol);
+    gimbal.protocol_config = own.read_config(f, context);
+    for (const auto* other : gimbal::protocols::entries()) {
+        if (other == &own || other->config_section.empty()) continue;
+        if (other->config_section == own.config_section) continue;
+        if (f.find(other->config_section) != nullptr)
+            f.problem(other->config_section,
+                      "only for protocol \"" + std::string(other->name) + "\"");
     }
-    if (gimbal.protocol == Protocol::mavlink) {
-        if (auto mavlink = f.object("mavlink")) {
-            gimbal.mavlink = read_mavlink_device(*mavlink);
-            mavlink->finish();
-        }
-    } else if (f.find("mavlink") != nullptr) {
-        f.problem("mavlink", "only for protocol \"mavlink\"");
-    }
-    read_feed(f, gimbal);
     read_video(f, gimbal);
     return gimbal;
 }
 
 void read_gimbals(Fields& root, Config& config) {
+    const ProtocolConfigContext context{
+        [](const std::string& path) { return read_secret_file(path); }};
     const json* list = root.required("gimbals");
     if (list == nullptr) return;
     if (!list->is_array()) {
@@ -572,7 +320,7 @@ void read_gimbals(Fields& root, Config& config) {
         const std::string path = index_path("gimbals", i);
         Fields f((*list)[i], path, root.problems());
         if (!f.is_object()) continue;
-        GimbalConfig gimbal = read_gimbal(f);
+        GimbalConfig gimbal = read_gimbal(f, context);
         f.finish();
 
         if (!gimbal.name.empty()) {
@@ -1171,10 +919,6 @@ bool CommandConfig::allowed(const boost::asio::ip::address& source) const {
                        [&](const Cidr& cidr) { return cidr.contains(source); });
 }
 
-std::string Problem::text() const {
-    return path.empty() ? message : path + ": " + message;
-}
-
 ConfigResult parse_config(std::string_view text, GimbalsSection gimbals) {
     ConfigResult result;
     Problems problems(result.problems);
@@ -1268,6 +1012,14 @@ ConfigResult load_config_file(const std::string& path, GimbalsSection gimbals) {
     return parse_config(text, gimbals);
 }
 
+json protocol_defaults(Protocol protocol) {
+    std::vector<Problem> none;
+    Problems problems(none);
+    const json empty = json::object();
+    Fields f(empty, "", problems);
+    return gimbal::protocols::entry(protocol).read_config(f, {});
+}
+
 std::vector<GimbalConfig> sim_gimbals(std::span<const Protocol> protocols,
                                       const std::vector<GimbalConfig>& file_gimbals) {
     auto simulated = [](std::string name, Protocol protocol) {
@@ -1275,6 +1027,7 @@ std::vector<GimbalConfig> sim_gimbals(std::span<const Protocol> protocols,
         gimbal.name = std::move(name);
         gimbal.protocol = protocol;
         gimbal.link = SimLink{};
+        gimbal.protocol_config = protocol_defaults(protocol);
         return gimbal;
     };
     std::vector<GimbalConfig> gimbals;
@@ -1330,37 +1083,7 @@ json gimbal_to_json(const GimbalConfig& gimbal) {
     json out = {{"name", gimbal.name},
                 {"protocol", to_string(gimbal.protocol)},
                 {"link", link_to_json(gimbal.link)}};
-    switch (gimbal.protocol) {
-        case Protocol::orion:
-            out["feed"] = {{"autopilot", gimbal.orion_feed.autopilot},
-                           {"gps", gimbal.orion_feed.gps}};
-            break;
-        case Protocol::viewpro: {
-            static constexpr std::string_view feeds[] = {"in2", "in1", "mavlink"};
-            static constexpr std::string_view formats[] = {"out1", "out2", "out3", "out4"};
-            const auto& o = gimbal.viewpro.output;
-            out["feed"] = feeds[static_cast<std::size_t>(gimbal.viewpro_feed)];
-            out["viewpro"] = {{"output",
-                               {{"osd", o.osd == ViewproOsd::target ? "target" : "uav"},
-                                {"serial", o.serial},
-                                {"network", o.network},
-                                {"format", formats[static_cast<std::size_t>(o.format)]}}}};
-            break;
-        }
-        case Protocol::mavlink: {
-            const auto& m = gimbal.mavlink;
-            out["mavlink"] = {{"system_id", m.system_id},
-                              {"component_id", m.component_id},
-                              {"device_component_id", m.device_component_id},
-                              {"hfov_deg", m.hfov_deg},
-                              {"vfov_deg", m.vfov_deg},
-                              {"geoid_undulation_m", m.geoid_undulation_m},
-                              {"ground_alt_m", m.ground_alt_m},
-                              {"signing_key_file",
-                               m.signing_key_file ? json(*m.signing_key_file) : json(nullptr)}};
-            break;
-        }
-    }
+    out.update(gimbal.protocol_config);  // its protocol's own keys, every default present
     if (gimbal.video) out["video"] = gimbald::video::to_json(*gimbal.video);
     return out;
 }

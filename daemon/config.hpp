@@ -14,6 +14,7 @@
 #include <variant>
 #include <vector>
 
+#include "config/fields.hpp"
 #include "logging.hpp"
 #include "protocols/protocol_id.hpp"
 #include "video/video_config.hpp"
@@ -73,57 +74,14 @@ std::string_view link_type(const Link& link);  // "tcp", "serial", "sim", "udp"
 // "/dev/ttyUSB0@115200", "sim"
 std::string describe(const Link& link);
 
-enum class ViewproOsd { target, uav };
-enum class ViewproFormat { out1, out2, out3, out4 };
-
-// The Viewpro mode command sent on every (re)connect.
-struct ViewproOutput {
-    ViewproOsd osd = ViewproOsd::target;
-    bool serial = true;
-    bool network = false;
-    ViewproFormat format = ViewproFormat::out3;
-    bool operator==(const ViewproOutput&) const = default;
-};
-
-struct ViewproOptions {
-    ViewproOutput output;
-    bool operator==(const ViewproOptions&) const = default;
-};
-
-// How the vehicle feed reaches an Orion: AutopilotData at 1 Hz, GPS_DATA at 4 Hz.
-struct OrionFeed {
-    bool autopilot = true;
-    bool gps = false;
-    bool operator==(const OrionFeed&) const = default;
-};
-
-// How the vehicle feed reaches a Viewpro: which input frame carries it.
-enum class ViewproFeed { in2, in1, mavlink };
-
-// `mavlink` of a MAVLink gimbal device (contract section 19): gimbald's ids on its link, the
-// device's component, and what the device does not report (fields of view, the geoid and
-// flat ground heights).
-struct MavlinkDeviceConfig {
-    std::uint8_t system_id = 1;
-    std::uint8_t component_id = 1;
-    std::uint8_t device_component_id = 154;
-    double hfov_deg = 60;
-    double vfov_deg = 34;
-    double geoid_undulation_m = 0;
-    double ground_alt_m = 0;
-    // MAVLink 2 message signing on the device link (docs/mavlink-device.md).
-    std::optional<std::string> signing_key_file;
-    bool operator==(const MavlinkDeviceConfig&) const = default;
-};
-
 struct GimbalConfig {
     std::string name;
     Protocol protocol = Protocol::orion;
     Link link = SimLink{};
-    ViewproOptions viewpro;                       // Viewpro only
-    MavlinkDeviceConfig mavlink;                  // MAVLink gimbal devices only
-    OrionFeed orion_feed;                         // `feed` of an Orion gimbal
-    ViewproFeed viewpro_feed = ViewproFeed::in2;  // `feed` of a Viewpro gimbal
+    // The keys its protocol owns (`feed`, `viewpro`, `mavlink`...), declared in
+    // lib/protocols/<protocol>/<protocol>_config.hpp and read through the registry: every
+    // key, defaults included, as the session reads them.
+    nlohmann::json protocol_config = nlohmann::json::object();
     // `video` (contract section 17, daemon/video/video_config.hpp); off unless set.
     std::optional<gimbald::video::VideoConfig> video;
     bool operator==(const GimbalConfig&) const = default;
@@ -318,14 +276,8 @@ struct Config {
     bool operator==(const Config&) const = default;
 };
 
-// One problem found in a configuration. `path` is empty for file-level problems (unreadable
-// file, JSON syntax).
-struct Problem {
-    std::string path;
-    std::string message;
-    std::string text() const;  // "gimbals[1].link.baud: must be one of ..."
-    bool operator==(const Problem&) const = default;
-};
+// One problem found in a configuration, with its JSON path (lib/config/fields.hpp).
+using Problem = gimbal::config::Problem;
 
 struct ConfigResult {
     Config config;                  // complete only when ok()
@@ -348,6 +300,9 @@ ConfigResult load_config_file(const std::string& path,
 // "sim"; otherwise one gimbal "sim-<protocol>" per protocol, link type sim. Each takes the
 // `video` section of the first of `file_gimbals` of its protocol that has one (under --sim,
 // parse_config reads only `protocol` and `video` of the file's gimbals).
+// A protocol's own keys with every default (a gimbal that sets none of them).
+nlohmann::json protocol_defaults(Protocol protocol);
+
 std::vector<GimbalConfig> sim_gimbals(std::span<const Protocol> protocols,
                                       const std::vector<GimbalConfig>& file_gimbals = {});
 

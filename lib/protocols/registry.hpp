@@ -13,6 +13,7 @@
 #include <string_view>
 #include <vector>
 
+#include "config/fields.hpp"
 #include "framing/stream_splitter.hpp"
 #include "geo/surface.hpp"
 #include "protocols/protocol_id.hpp"
@@ -42,6 +43,12 @@ struct SessionSettings {
     std::function<command::Result<std::string>(const std::string& path)> read_secret;
 };
 
+// What reading a protocol's configuration keys may need of the daemon.
+struct ConfigContext {
+    // As SessionSettings::read_secret: a key file's text, or an error naming the file.
+    std::function<command::Result<std::string>(const std::string& path)> read_secret;
+};
+
 // A catalogue command (lib/command/catalogue.hpp) this protocol plans, and what it sends.
 struct PlannedCommand {
     std::string_view name;
@@ -56,8 +63,16 @@ struct Entry {
     std::span<const PlannedCommand> commands;
     const session::Capabilities* capabilities = nullptr;
 
+    // The gimbal keys this protocol owns besides name, protocol, link and video, declared in
+    // its <protocol>_config.hpp. read_config reads them from the gimbal's object, reporting
+    // every problem at its path, and returns them written back whole (every key, defaults
+    // included). `config_section` is its own object ("viewpro"; empty when it has none), which
+    // another protocol's gimbal may not have ("only for protocol ...").
+    std::string_view config_section;
+    nlohmann::json (*read_config)(config::Fields& gimbal, const ConfigContext& context) = nullptr;
+
     // `gimbal` is the gimbal's configuration object as config.cpp writes it (to_json): the
-    // protocol reads its own keys (`feed`, and its options section) from it.
+    // protocol reads its own keys (read_config's) from it.
     std::unique_ptr<session::Protocol> (*make_session)(const SessionSettings& settings,
                                                        const nlohmann::json& gimbal) = nullptr;
     std::unique_ptr<VehicleFeeder> (*make_feeder)(const nlohmann::json& gimbal) = nullptr;

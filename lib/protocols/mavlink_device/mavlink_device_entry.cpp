@@ -28,15 +28,22 @@ std::unique_ptr<session::Protocol> make_session(const SessionSettings& s,
     options.unix_clock = s.unix_clock;
     if (options.signing_key_file) {
         // config.cpp has checked the file; it may have changed since.
-        const std::string& path = *options.signing_key_file;
-        if (!s.read_secret) throw std::runtime_error(path + ": no way to read a key file here");
-        const auto text = s.read_secret(path);
-        if (!text) throw std::runtime_error(text.error().message);
-        options.signing_key = mavlink::parse_signing_key(*text);
-        if (!options.signing_key)
-            throw std::runtime_error(path + ": must hold 32 bytes, or 64 hex digits");
+        auto key = load_signing_key(*options.signing_key_file, s.read_secret);
+        if (!key) throw std::runtime_error(key.error().message);
+        options.signing_key = *key;
     }
     return std::make_unique<MavlinkDeviceProtocol>(options);
+}
+
+// gimbals[].mavlink, with its signing key file read as the session will read it.
+nlohmann::json read_config(config::Fields& gimbal, const ConfigContext& context) {
+    MavlinkDeviceConfig read;
+    fields(gimbal, read);
+    if (read.signing_key_file) {
+        if (auto key = load_signing_key(*read.signing_key_file, context.read_secret); !key)
+            gimbal.problems().add(gimbal.path("mavlink.signing_key_file"), key.error().message);
+    }
+    return config::write(read);
 }
 
 std::size_t frame_size(const ScannedFrame& f) {
@@ -51,6 +58,8 @@ Entry make_entry() {
     e.dissector = "mavlink";
     e.commands = commands;
     e.capabilities = &mavlink_device_capabilities();
+    e.config_section = "mavlink";
+    e.read_config = read_config;
     e.make_session = make_session;
     e.make_feeder = make_mavlink_device_feeder;
     e.make_splitter = [] {

@@ -2,32 +2,21 @@
 
 namespace gimbal::protocols {
 
-namespace {
-
-template <class T>
-void read(const nlohmann::json& from, const char* key, T& to) {
-    const auto it = from.find(key);
-    if (it == from.end() || !it->is_number()) return;
-    to = it->get<T>();
-}
-
-}  // namespace
-
 MavlinkDeviceOptions read_mavlink_device_options(const nlohmann::json& gimbal) {
     MavlinkDeviceOptions o;
-    const auto it = gimbal.find("mavlink");
-    if (it == gimbal.end() || !it->is_object()) return o;
-    const nlohmann::json& m = *it;
-    read(m, "system_id", o.system_id);
-    read(m, "component_id", o.component_id);
-    read(m, "device_component_id", o.device_component_id);
-    read(m, "hfov_deg", o.hfov_deg);
-    read(m, "vfov_deg", o.vfov_deg);
-    read(m, "geoid_undulation_m", o.geoid_undulation_m);
-    read(m, "ground_alt_m", o.ground_alt_m);
-    if (const auto key = m.find("signing_key_file"); key != m.end() && key->is_string())
-        o.signing_key_file = key->get<std::string>();
+    static_cast<MavlinkDeviceConfig&>(o) = config::read_checked<MavlinkDeviceConfig>(gimbal);
     return o;
+}
+
+command::Result<mavlink::SigningKey> load_signing_key(const std::string& path,
+                                                      const SecretReader& read_secret) {
+    if (!read_secret)
+        return command::Error{command::code::internal, path + ": no way to read a key file here"};
+    const auto text = read_secret(path);
+    if (!text) return text.error();
+    if (auto key = mavlink::parse_signing_key(*text)) return *key;
+    return command::Error{command::code::bad_request,
+                          path + ": must hold 32 bytes, or 64 hex digits"};
 }
 
 }  // namespace gimbal::protocols

@@ -1,6 +1,7 @@
 #include "protocols/orion/orion_entry.hpp"
 
 #include "protocols/orion/orion_capabilities.hpp"
+#include "protocols/orion/orion_config.hpp"
 #include "protocols/orion/orion_feed.hpp"
 #include "protocols/orion/orion_protocol.hpp"
 #include "protocols/orion/orion_track.hpp"
@@ -47,6 +48,9 @@ Entry make_entry() {
     e.dissector = "orion";
     e.commands = commands;
     e.capabilities = &orion_capabilities();
+    e.read_config = [](config::Fields& gimbal, const ConfigContext&) {
+        return config::read_and_write<OrionConfig>(gimbal);
+    };
     e.make_session = make_session;
     e.make_feeder = make_orion_feeder;
     e.make_splitter = [] {

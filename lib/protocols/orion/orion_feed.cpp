@@ -1,6 +1,7 @@
 #include "protocols/orion/orion_feed.hpp"
 
 #include "orion/framing.hpp"
+#include "protocols/orion/orion_config.hpp"
 #include "vehicle/feeds.hpp"
 
 namespace gimbal::protocols {
@@ -28,10 +29,8 @@ void OrionFeeder::connection_changed(const vehicle::VehicleState& v, const FeedT
 }
 
 std::unique_ptr<VehicleFeeder> make_orion_feeder(const nlohmann::json& gimbal) {
-    const auto feed = gimbal.find("feed");
-    const bool has = feed != gimbal.end() && feed->is_object();
-    return std::make_unique<OrionFeeder>(has ? feed->value("autopilot", true) : true,
-                                         has ? feed->value("gps", false) : false);
+    const auto c = config::read_checked<OrionConfig>(gimbal);
+    return std::make_unique<OrionFeeder>(c.feed_autopilot, c.feed_gps);
 }
 
 }  // namespace gimbal::protocols

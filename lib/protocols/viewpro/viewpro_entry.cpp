@@ -1,6 +1,7 @@
 #include "protocols/viewpro/viewpro_entry.hpp"
 
 #include "protocols/viewpro/viewpro_capabilities.hpp"
+#include "protocols/viewpro/viewpro_config.hpp"
 #include "protocols/viewpro/viewpro_feed.hpp"
 #include "protocols/viewpro/viewpro_protocol.hpp"
 #include "protocols/viewpro/viewpro_track.hpp"
@@ -22,26 +23,11 @@ std::size_t frame_size(const viewpro::OutputFrame& f) {
     return f.size;
 }
 
-// gimbals[].viewpro.output: the mode command sent on every (re)connect.
-viewpro::Mode output_mode(const nlohmann::json& gimbal) {
-    viewpro::Mode mode;
-    const auto section = gimbal.find("viewpro");
-    if (section == gimbal.end() || !section->is_object()) return mode;
-    const auto out = section->find("output");
-    if (out == section->end() || !out->is_object()) return mode;
-    if (auto osd = viewpro::parse_osd(out->value("osd", std::string("target")))) mode.osd = *osd;
-    mode.serial = out->value("serial", mode.serial);
-    mode.network = out->value("network", mode.network);
-    if (auto format = viewpro::parse_out_format(out->value("format", std::string("out3"))))
-        mode.format = *format;
-    return mode;
-}
-
 std::unique_ptr<session::Protocol> make_session(const SessionSettings& s,
                                                 const nlohmann::json& gimbal) {
     ViewproOptions options;
     options.stale_after_s = s.stale_after_s;
-    options.output = output_mode(gimbal);
+    options.output = config::read_checked<ViewproConfig>(gimbal).output;
     return std::make_unique<ViewproProtocol>(options);
 }
 
@@ -53,6 +39,10 @@ Entry make_entry() {
     e.dissector = "viewpro";
     e.commands = commands;
     e.capabilities = &viewpro_capabilities();
+    e.config_section = "viewpro";
+    e.read_config = [](config::Fields& gimbal, const ConfigContext&) {
+        return config::read_and_write<ViewproConfig>(gimbal);
+    };
     e.make_session = make_session;
     e.make_feeder = make_viewpro_feeder;
     e.make_splitter = [] {

@@ -12,11 +12,11 @@ constexpr std::uint64_t frame_ticks = ticks_per(0.1);  // 10 Hz
 
 std::string_view ViewproFeeder::kind() const {
     switch (frames_) {
-        case Frames::in2:
+        case ViewproFeed::in2:
             return "in2";
-        case Frames::in1:
+        case ViewproFeed::in1:
             return "in1";
-        case Frames::mavlink:
+        case ViewproFeed::mavlink:
             return "mavlink";
     }
     return "in2";
@@ -25,25 +25,19 @@ std::string_view ViewproFeeder::kind() const {
 void ViewproFeeder::tick(const vehicle::VehicleState& v, const FeedTime& t,
                          std::vector<FeedBytes>& out) {
     if (t.tick % frame_ticks != 0) return;
-    if (frames_ == Frames::mavlink) {
+    if (frames_ == ViewproFeed::mavlink) {
         auto bytes = vehicle::mavlink_forward(v, t.now_s, mavlink_seq_);
         if (!bytes.empty()) out.push_back(std::move(bytes));
         return;
     }
     const auto frame =
-        frames_ == Frames::in1 ? vehicle::ViewproFrame::in1 : vehicle::ViewproFrame::in2;
+        frames_ == ViewproFeed::in1 ? vehicle::ViewproFrame::in1 : vehicle::ViewproFrame::in2;
     if (auto bytes = vehicle::viewpro_in(v, t.now_s, t.unix_s, frame))
         out.push_back(std::move(*bytes));
 }
 
 std::unique_ptr<VehicleFeeder> make_viewpro_feeder(const nlohmann::json& gimbal) {
-    const auto feed = gimbal.find("feed");
-    const std::string name =
-        feed != gimbal.end() && feed->is_string() ? feed->get<std::string>() : std::string("in2");
-    const auto frames = name == "in1"       ? ViewproFeeder::Frames::in1
-                        : name == "mavlink" ? ViewproFeeder::Frames::mavlink
-                                            : ViewproFeeder::Frames::in2;
-    return std::make_unique<ViewproFeeder>(frames);
+    return std::make_unique<ViewproFeeder>(config::read_checked<ViewproConfig>(gimbal).feed);
 }
 
 }  // namespace gimbal::protocols

@@ -6,13 +6,13 @@
 #include <nlohmann/json.hpp>
 
 #include "protocols/vehicle_feeder.hpp"
+#include "protocols/viewpro/viewpro_config.hpp"
 
 namespace gimbal::protocols {
 
 class ViewproFeeder final : public VehicleFeeder {
   public:
-    enum class Frames { in2, in1, mavlink };
-    explicit ViewproFeeder(Frames frames) : frames_(frames) {}
+    explicit ViewproFeeder(ViewproFeed frames) : frames_(frames) {}
 
     std::string_view kind() const override;
     void tick(const vehicle::VehicleState& vehicle, const FeedTime& t,
@@ -21,7 +21,7 @@ class ViewproFeeder final : public VehicleFeeder {
                             std::vector<FeedBytes>&) override {}
 
   private:
-    Frames frames_;
+    ViewproFeed frames_;
     std::uint8_t mavlink_seq_ = 0;  // the sequence counter of the forwarded MAVLink
 };
 

@@ -14,9 +14,16 @@
 #include <vector>
 
 #include "config.hpp"
+#include "protocols/mavlink_device/mavlink_device_config.hpp"
+#include "protocols/orion/orion_config.hpp"
+#include "protocols/viewpro/viewpro_config.hpp"
 #include "video/video_config.hpp"
 
 using namespace gimbal::daemon;
+using gimbal::protocols::MavlinkDeviceConfig;
+using gimbal::protocols::OrionConfig;
+using gimbal::protocols::ViewproConfig;
+using gimbal::protocols::ViewproFeed;
 using nlohmann::json;
 
 namespace {
@@ -196,19 +203,21 @@ TEST_CASE("defaults are applied to absent keys", "[config]") {
     CHECK(tcp.discover_port == 8745);
     CHECK(tcp.discover_reply_port == 8746);
     CHECK_FALSE(tcp.discover());
-    CHECK(c.gimbals[0].orion_feed.autopilot);
-    CHECK_FALSE(c.gimbals[0].orion_feed.gps);
+    const auto orion = gimbal::config::read_checked<OrionConfig>(c.gimbals[0].protocol_config);
+    CHECK(orion.feed_autopilot);
+    CHECK_FALSE(orion.feed_gps);
 
     const auto& serial = std::get<SerialLink>(c.gimbals[1].link);
     CHECK(serial.device == "/dev/ttyUSB0");
     CHECK(serial.baud == 115200);
     CHECK(serial.reconnect_min_s == 0.2);
     CHECK(serial.reconnect_max_s == 5.0);
-    CHECK(c.gimbals[1].viewpro.output.osd == ViewproOsd::target);
-    CHECK(c.gimbals[1].viewpro.output.serial);
-    CHECK_FALSE(c.gimbals[1].viewpro.output.network);
-    CHECK(c.gimbals[1].viewpro.output.format == ViewproFormat::out3);
-    CHECK(c.gimbals[1].viewpro_feed == ViewproFeed::in2);
+    const auto viewpro = gimbal::config::read_checked<ViewproConfig>(c.gimbals[1].protocol_config);
+    CHECK(viewpro.output.osd == gimbal::viewpro::Osd::target);
+    CHECK(viewpro.output.serial);
+    CHECK_FALSE(viewpro.output.network);
+    CHECK(viewpro.output.format == gimbal::viewpro::OutFormat::out3);
+    CHECK(viewpro.feed == ViewproFeed::in2);
     CHECK(std::holds_alternative<SimLink>(c.gimbals[2].link));
 
     CHECK(c.command.bind.to_string() == "127.0.0.1");
@@ -276,11 +285,13 @@ TEST_CASE("given values are read", "[config]") {
     CHECK(tcp.discover_address == "192.168.1.255");
     CHECK(tcp.discover_port == 9745);
     CHECK(tcp.discover_reply_port == 9746);
-    CHECK_FALSE(c.gimbals[0].orion_feed.autopilot);
-    CHECK(c.gimbals[0].orion_feed.gps);
-    CHECK(c.gimbals[1].viewpro.output ==
-          ViewproOutput{ViewproOsd::uav, false, true, ViewproFormat::out1});
-    CHECK(c.gimbals[1].viewpro_feed == ViewproFeed::mavlink);
+    const auto orion = gimbal::config::read_checked<OrionConfig>(c.gimbals[0].protocol_config);
+    CHECK_FALSE(orion.feed_autopilot);
+    CHECK(orion.feed_gps);
+    const auto viewpro = gimbal::config::read_checked<ViewproConfig>(c.gimbals[1].protocol_config);
+    CHECK(viewpro.output == gimbal::viewpro::Mode{gimbal::viewpro::Osd::uav, true, false,
+                                                  gimbal::viewpro::OutFormat::out1});
+    CHECK(viewpro.feed == ViewproFeed::mavlink);
     CHECK(c.command.bind.to_string() == "::1");
     CHECK(c.command.max_skew_s == 12);
     CHECK(c.command.rate_limit == RateLimitConfig{50, 60});
@@ -747,9 +758,10 @@ TEST_CASE("a MAVLink gimbal device: its mavlink section and a UDP link", "[confi
     REQUIRE(result.ok());
     const auto& g = result.config.gimbals.back();
     CHECK(g.protocol == Protocol::mavlink);
-    CHECK(g.mavlink.hfov_deg == 45);
-    CHECK(g.mavlink.vfov_deg == 34);
-    CHECK(g.mavlink.device_component_id == 155);
+    const auto device = gimbal::config::read_checked<MavlinkDeviceConfig>(g.protocol_config);
+    CHECK(device.hfov_deg == 45);
+    CHECK(device.vfov_deg == 34);
+    CHECK(device.device_component_id == 155);
     const auto& udp = std::get<UdpLink>(g.link);
     CHECK(udp.host == "192.168.1.30");
     CHECK(udp.port == 14570);
