@@ -200,13 +200,7 @@ void App::start_video() {
 
 void App::start_http() {
     const auto& h = *config_.http;
-    http::HttpServerOptions options;
-    options.bind = h.bind.to_string();
-    options.port = h.port;
-    options.max_connections = h.max_connections;
-    options.max_connections_per_client = h.max_connections_per_client;
-    options.idle_timeout_s = h.idle_timeout_s;
-    options.ws_queue_max = h.ws_queue_max;
+    http::HttpServerOptions options(h);
     options.video.idle_timeout_s = h.idle_timeout_s;
     options.api.console = h.console;
     options.api.web_root =
@@ -244,10 +238,7 @@ void App::start_http() {
 // Interfaces (docs/recording.md): one per gimbal in config order, then `mavlink` when a
 // vehicle source exists, then `json`.
 void App::start_recorder() {
-    record::RecorderOptions options;
-    options.dir = config_.record->dir;
-    options.max_file_mb = config_.record->max_file_mb;
-    options.max_total_mb = config_.record->max_total_mb;
+    record::RecorderOptions options(*config_.record);
     options.user_application = std::string("gimbald ") + GIMBALD_VERSION;
     for (const auto& g : config_.gimbals) {
         const auto protocol = std::string(cfg::to_string(g.protocol));

@@ -131,20 +131,6 @@ void read_device(Fields& f, std::string_view key, std::string& out) {
     }
 }
 
-void read_address(Fields& f, std::string_view key, boost::asio::ip::address& out) {
-    const json* value = f.find(key);
-    if (value == nullptr) return;
-    boost::system::error_code ec;
-    if (value->is_string()) {
-        auto address = boost::asio::ip::make_address(value->get_ref<const std::string&>(), ec);
-        if (!ec) {
-            out = address;
-            return;
-        }
-    }
-    f.problem(key, "must be an IPv4 or IPv6 address");
-}
-
 void read_reconnect(Fields& f, double& min_s, double& max_s) {
     f.number("reconnect_min_s", min_s, reconnect_min_range);
     f.number("reconnect_max_s", max_s, reconnect_max_range);
@@ -540,241 +526,6 @@ void read_mavlink(Fields& f, MavlinkConfig& m) {
     }
 }
 
-// ---- mqtt (contract section 9) -----------------------------------------------------------
-
-// The host name lower-cased, every character outside [a-z0-9_-] replaced by '-', cut at 32.
-std::string default_station() {
-    char name[256] = {};
-    if (::gethostname(name, sizeof name - 1) != 0 || name[0] == '\0') return "gimbald";
-    std::string station;
-    for (const char* c = name; *c != '\0' && station.size() < 32; ++c) {
-        const char lower = static_cast<char>(std::tolower(static_cast<unsigned char>(*c)));
-        const bool ok = (lower >= 'a' && lower <= 'z') || (lower >= '0' && lower <= '9') ||
-                        lower == '_' || lower == '-';
-        station += ok ? lower : '-';
-    }
-    return station;
-}
-
-// A file named in the config that must be readable now (CA, certificate, key).
-void check_readable(Fields& f, std::string_view key, const std::optional<std::string>& path) {
-    if (!path) return;
-    std::FILE* file = std::fopen(path->c_str(), "rbe");
-    if (file == nullptr) {
-        f.problem(key, fmt::format("{}: {}", *path, std::strerror(errno)));
-        return;
-    }
-    std::fclose(file);
-}
-
-void optional_string(Fields& f, std::string_view key, std::optional<std::string>& out) {
-    const json* value = f.find(key);
-    if (value == nullptr || value->is_null()) return;
-    if (!value->is_string() || value->get_ref<const std::string&>().empty()) {
-        f.problem(key, "must be null or a non-empty string");
-        return;
-    }
-    out = value->get<std::string>();
-}
-
-MqttConfig read_mqtt(Fields& f) {
-    static const std::regex station_pattern("[a-z0-9_-]{1,32}");
-    MqttConfig mqtt;
-    if (f.string("url", mqtt.url)) {
-        auto url = parse_mqtt_url(mqtt.url);
-        if (auto* parsed = std::get_if<MqttUrl>(&url)) {
-            mqtt.tls = parsed->tls;
-            mqtt.host = parsed->host;
-            mqtt.port = parsed->port;
-        } else {
-            f.problem("url", std::get<std::string>(url));
-        }
-    }
-    std::optional<std::string> station;
-    optional_string(f, "station", station);
-    if (station && !std::regex_match(*station, station_pattern))
-        f.problem("station", "must match [a-z0-9_-]{1,32}");
-    mqtt.station = station ? *station : default_station();
-    if (f.string("prefix", mqtt.prefix)) {
-        const auto& p = mqtt.prefix;
-        if (p.empty() || p.size() > 128 || p.front() == '/' || p.back() == '/' ||
-            p.find("//") != std::string::npos || p.find_first_of("+#") != std::string::npos)
-            f.problem("prefix",
-                      "must be 1 to 128 characters of topic levels (no '+', '#', empty level "
-                      "or leading/trailing '/')");
-    }
-    std::optional<std::string> client_id;
-    optional_string(f, "client_id", client_id);
-    if (client_id && client_id->size() > 128) f.problem("client_id", "longer than 128 characters");
-    mqtt.client_id = client_id ? *client_id : "gimbald-" + mqtt.station;
-    optional_string(f, "username", mqtt.username);
-    optional_string(f, "password_file", mqtt.password_file);
-    if (mqtt.password_file) {
-        const auto text = read_secret_file(*mqtt.password_file);
-        if (!text) {
-            f.problem("password_file", text.error().message);
-        } else {
-            mqtt.password = *text;
-            // One line: the trailing newline an editor adds is not part of the password.
-            while (!mqtt.password.empty() &&
-                   (mqtt.password.back() == '\n' || mqtt.password.back() == '\r'))
-                mqtt.password.pop_back();
-        }
-        if (!mqtt.username) f.problem("password_file", "needs \"username\"");
-    }
-    optional_string(f, "ca_file", mqtt.ca_file);
-    optional_string(f, "cert_file", mqtt.cert_file);
-    optional_string(f, "key_file", mqtt.key_file);
-    check_readable(f, "ca_file", mqtt.ca_file);
-    check_readable(f, "cert_file", mqtt.cert_file);
-    if (mqtt.key_file) {
-        const auto key = read_secret_file(*mqtt.key_file);
-        if (!key) f.problem("key_file", key.error().message);
-    }
-    if (mqtt.cert_file.has_value() != mqtt.key_file.has_value())
-        f.problem(mqtt.cert_file ? "key_file" : "cert_file",
-                  "cert_file and key_file go together (the client certificate and its key)");
-    if (!mqtt.tls && (mqtt.ca_file || mqtt.cert_file))
-        f.problem("url", "ca_file/cert_file are set: use mqtts:// for TLS");
-    f.number("keepalive_s", mqtt.keepalive_s, {5, 3600});  // libmosquitto's minimum
-    f.number("state_rate_hz", mqtt.state_rate_hz, {0.1, 50});
-    if (const json* keys = f.find("state_keys"); keys != nullptr && !keys->is_null()) {
-        auto names = gimbal::state::read_state_keys(*keys);
-        if (!names)
-            f.problem("state_keys", names.error().message);
-        else
-            mqtt.state_keys = std::move(names).value();
-    }
-    f.boolean("state_changes", mqtt.state_changes);
-    f.number("state_full_every_s", mqtt.state_full_every_s, {1, 3600});
-    f.boolean("commands", mqtt.commands);
-    f.integer("queue_max", mqtt.queue_max, {10, 1000000});
-    return mqtt;
-}
-
-// ---- record (contract section 12) ----------------------------------------------------------
-
-RecordConfig read_record(Fields& f) {
-    RecordConfig record;
-    if (f.string("dir", record.dir, Presence::required)) {
-        // Checked here so --check-config and start-up both name the path and the reason.
-        struct stat info {};
-        if (record.dir.empty())
-            f.problem("dir", "must not be empty");
-        else if (::stat(record.dir.c_str(), &info) != 0)
-            f.problem("dir", fmt::format("{}: {}", record.dir, std::strerror(errno)));
-        else if (!S_ISDIR(info.st_mode))
-            f.problem("dir", fmt::format("{}: not a directory", record.dir));
-        else if (::access(record.dir.c_str(), W_OK | X_OK) != 0)
-            f.problem("dir", fmt::format("{}: not writable: {}", record.dir, std::strerror(errno)));
-    }
-    f.number("max_file_mb", record.max_file_mb, {0.001, 1e6});
-    f.number("max_total_mb", record.max_total_mb, {0.001, 1e9});
-    if (record.max_total_mb < record.max_file_mb)
-        f.problem("max_total_mb", "must be at least max_file_mb");
-    return record;
-}
-
-// ---- terrain (contract section 15) ---------------------------------------------------------
-
-TerrainConfig read_terrain(Fields& f) {
-    TerrainConfig terrain;
-    if (const json* files = f.required("files")) {
-        if (!files->is_array() || files->empty()) {
-            f.problem("files", "must be a non-empty array of paths or globs");
-        } else {
-            for (std::size_t i = 0; i < files->size(); ++i) {
-                const json& file = (*files)[i];
-                if (!file.is_string() || file.get_ref<const std::string&>().empty())
-                    f.problems().add(index_path(f.path("files"), i),
-                                     "must be a path or glob, e.g. \"/var/lib/gimbald/dem/*.tif\"");
-                else
-                    terrain.files.push_back(file.get<std::string>());
-            }
-        }
-    }
-    std::string geoid = "egm96";
-    if (f.choice("geoid", geoid, {"egm96", "none"}))
-        terrain.geoid = geoid == "none" ? TerrainGeoid::none : TerrainGeoid::egm96;
-    f.integer("cache_mb", terrain.cache_mb, {1, 65536});
-    return terrain;
-}
-
-json mqtt_to_json(const MqttConfig& m) {
-    auto optional = [](const std::optional<std::string>& s) {
-        return s ? json(*s) : json(nullptr);
-    };
-    return {{"url", m.url},
-            {"station", m.station},
-            {"prefix", m.prefix},
-            {"client_id", m.client_id},
-            {"username", optional(m.username)},
-            {"password_file", optional(m.password_file)},
-            {"ca_file", optional(m.ca_file)},
-            {"cert_file", optional(m.cert_file)},
-            {"key_file", optional(m.key_file)},
-            {"keepalive_s", m.keepalive_s},
-            {"state_rate_hz", m.state_rate_hz},
-            {"state_keys", m.state_keys ? json(*m.state_keys) : json(nullptr)},
-            {"state_changes", m.state_changes},
-            {"state_full_every_s", m.state_full_every_s},
-            {"commands", m.commands},
-            {"queue_max", m.queue_max}};
-}
-
-// ---- http (contract section 11) ----------------------------------------------------------
-
-HttpConfig read_http(Fields& f) {
-    HttpConfig http;
-    read_address(f, "bind", http.bind);
-    f.integer("port", http.port, {0, 65535});  // 0: any free port (tests)
-    f.boolean("console", http.console);
-    optional_string(f, "tiles_url", http.tiles_url);
-    if (http.tiles_url && (http.tiles_url->find("{z}") == std::string::npos ||
-                           http.tiles_url->find("{x}") == std::string::npos ||
-                           http.tiles_url->find("{y}") == std::string::npos))
-        f.problem("tiles_url", "must be an XYZ template with {z}, {x} and {y}");
-    optional_string(f, "web_root", http.web_root);
-    if (http.web_root && http.web_root->front() != '/')
-        f.problem("web_root", "must be an absolute path");
-    f.integer("max_connections", http.max_connections, {1, 10000});
-    f.integer("max_connections_per_client", http.max_connections_per_client, {1, 10000});
-    f.number("idle_timeout_s", http.idle_timeout_s, {1, 3600});
-    f.integer("ws_queue_max", http.ws_queue_max, {2, 100000});
-    if (const json* hosts = f.find("allowed_hosts")) {
-        if (!hosts->is_array()) {
-            f.problem("allowed_hosts", "must be an array of host names");
-        } else {
-            for (std::size_t i = 0; i < hosts->size(); ++i) {
-                const json& h = (*hosts)[i];
-                const std::string name = h.is_string() ? h.get<std::string>() : std::string();
-                if (name.empty() || name.find_first_of(":/ []") != std::string::npos)
-                    f.problems().add(index_path(f.path("allowed_hosts"), i),
-                                     "must be a host name without port, e.g. \"ground-1.lan\"");
-                else
-                    http.allowed_hosts.push_back(name);
-            }
-        }
-    }
-    return http;
-}
-
-json http_to_json(const HttpConfig& h) {
-    auto optional = [](const std::optional<std::string>& s) {
-        return s ? json(*s) : json(nullptr);
-    };
-    return {{"bind", h.bind.to_string()},
-            {"port", h.port},
-            {"console", h.console},
-            {"tiles_url", optional(h.tiles_url)},
-            {"web_root", optional(h.web_root)},
-            {"max_connections", h.max_connections},
-            {"max_connections_per_client", h.max_connections_per_client},
-            {"idle_timeout_s", h.idle_timeout_s},
-            {"ws_queue_max", h.ws_queue_max},
-            {"allowed_hosts", h.allowed_hosts}};
-}
-
 // Object sections with no cross-dependencies: read each when present.
 template <class Read>
 void section(Fields& root, std::string_view key, Read read) {
@@ -782,6 +533,12 @@ void section(Fields& root, std::string_view key, Read read) {
         read(*f);
         f->finish();
     }
+}
+
+// A section that is off unless present: read through its fields() when it is.
+template <class Section>
+void optional_section(Fields& root, std::string_view key, std::optional<Section>& out) {
+    section(root, key, [&out](Fields& f) { fields(f, out.emplace()); });
 }
 
 void check_serial_devices_unique(const Config& config, Problems& problems) {
@@ -954,10 +711,10 @@ ConfigResult parse_config(std::string_view text, GimbalsSection gimbals) {
     section(root, "log", [&](Fields& f) { read_log(f, config.log); });
     section(root, "vehicle", [&](Fields& f) { config.vehicle = read_vehicle(f); });
     section(root, "mavlink", [&](Fields& f) { read_mavlink(f, config.mavlink); });
-    section(root, "mqtt", [&](Fields& f) { config.mqtt = read_mqtt(f); });
-    section(root, "http", [&](Fields& f) { config.http = read_http(f); });
-    section(root, "record", [&](Fields& f) { config.record = read_record(f); });
-    section(root, "terrain", [&](Fields& f) { config.terrain = read_terrain(f); });
+    optional_section(root, "mqtt", config.mqtt);
+    optional_section(root, "http", config.http);
+    optional_section(root, "record", config.record);
+    optional_section(root, "terrain", config.terrain);
     root.finish();
     // POST /api/command reaches the laser like a datagram: the same start-up refusal.
     if (config.http && config.laser.allow_fire && !config.http->bind.is_loopback() &&
@@ -1152,16 +909,10 @@ json to_json(const Config& config, bool show_token) {
         {"commands", m.commands},
         {"home_alt_msl", m.home_alt_msl ? json(*m.home_alt_msl) : json(nullptr)},
         {"signing_state_file", m.signing_state_file ? json(*m.signing_state_file) : json(nullptr)}};
-    if (config.mqtt) out["mqtt"] = mqtt_to_json(*config.mqtt);
-    if (config.http) out["http"] = http_to_json(*config.http);
-    if (config.record)
-        out["record"] = {{"dir", config.record->dir},
-                         {"max_file_mb", config.record->max_file_mb},
-                         {"max_total_mb", config.record->max_total_mb}};
-    if (config.terrain)
-        out["terrain"] = {{"files", config.terrain->files},
-                          {"geoid", config.terrain->geoid == TerrainGeoid::none ? "none" : "egm96"},
-                          {"cache_mb", config.terrain->cache_mb}};
+    if (config.mqtt) out["mqtt"] = config::write(*config.mqtt);
+    if (config.http) out["http"] = config::write(*config.http);
+    if (config.record) out["record"] = config::write(*config.record);
+    if (config.terrain) out["terrain"] = config::write(*config.terrain);
     return out;
 }
 

@@ -15,8 +15,12 @@
 #include <vector>
 
 #include "config/fields.hpp"
+#include "http/http_config.hpp"
 #include "logging.hpp"
+#include "mqtt/mqtt_config.hpp"
 #include "protocols/protocol_id.hpp"
+#include "record/record_config.hpp"
+#include "terrain/terrain_config.hpp"
 #include "video/video_config.hpp"
 
 namespace gimbal::daemon {
@@ -199,66 +203,8 @@ struct MavlinkConfig {
     bool operator==(const MavlinkConfig&) const = default;
 };
 
-// mqtt (contract section 9): the bridge to an MQTT broker; off unless the section is set.
-struct MqttConfig {
-    std::string url = "mqtt://127.0.0.1:1883";
-    bool tls = false;  // mqtts://
-    std::string host = "127.0.0.1";
-    std::uint16_t port = 1883;
-    std::string station;  // default: the host name, lower-cased, [^a-z0-9_-] -> '-'
-    std::string prefix = "gimbald";
-    std::string client_id;  // default: gimbald-{station}
-    std::optional<std::string> username;
-    std::optional<std::string> password_file;
-    std::string password;  // read from password_file at load time, never printed
-    std::optional<std::string> ca_file;
-    std::optional<std::string> cert_file;
-    std::optional<std::string> key_file;
-    double keepalive_s = 10;
-    double state_rate_hz = 2;
-    std::optional<std::vector<std::string>> state_keys;
-    bool state_changes = false;      // delta stream: merge patches between full STATEs
-    double state_full_every_s = 10;  // with state_changes: a full STATE this often
-    bool commands = false;
-    unsigned queue_max = 1000;
-    bool operator==(const MqttConfig&) const = default;
-};
-
-// http (contract section 11): metrics, health, API, WebSocket stream and the operator console;
-// off unless the section is set. Limits: docs/http.md.
-struct HttpConfig {
-    boost::asio::ip::address bind = boost::asio::ip::make_address_v4("127.0.0.1");
-    std::uint16_t port = 8761;
-    bool console = true;                       // serve the console (GET / and static files)
-    std::optional<std::string> tiles_url;      // XYZ template for the console's background map
-    std::optional<std::string> web_root;       // null: the installed console directory
-    unsigned max_connections = 64;             // HTTP and WebSocket connections together
-    unsigned max_connections_per_client = 16;  // the same, from one client address
-    double idle_timeout_s = 30;  // a request must arrive (its header then within 10 s)
-    unsigned ws_queue_max = 64;  // messages queued for one WebSocket client
-    // Host names browsers may use besides addresses and localhost (DNS-rebinding guard).
-    std::vector<std::string> allowed_hosts;
-    bool operator==(const HttpConfig&) const = default;
-};
-
-// record (contract section 12, docs/recording.md): the flight recorder; off unless set.
-// Sizes are megabytes (10^6 bytes) and may be fractions (tests rotate at 0.05).
-struct RecordConfig {
-    std::string dir;
-    double max_file_mb = 100;
-    double max_total_mb = 2000;
-    bool operator==(const RecordConfig&) const = default;
-};
-
-// terrain (contract section 15, docs/terrain.md): elevation models; off unless set. The
-// files are opened at start and by --check-config (daemon/terrain_model.hpp), not here.
-enum class TerrainGeoid { egm96, none };
-struct TerrainConfig {
-    std::vector<std::string> files;  // paths or globs, as written (relative: to the working dir)
-    TerrainGeoid geoid = TerrainGeoid::egm96;
-    int cache_mb = 64;
-    bool operator==(const TerrainConfig&) const = default;
-};
+// The sections declared next to what they configure (each with its fields()).
+using TerrainConfig = gimbal::terrain::TerrainConfig;
 
 struct Config {
     std::vector<GimbalConfig> gimbals;

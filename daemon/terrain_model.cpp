@@ -5,11 +5,7 @@ namespace gimbal::daemon {
 OpenedTerrain open_terrain(const Config& config) {
     OpenedTerrain out;
     if (!config.terrain) return out;
-    terrain::TerrainOptions options;
-    options.files = config.terrain->files;
-    options.geoid = config.terrain->geoid == TerrainGeoid::none ? terrain::GeoidModel::none
-                                                                : terrain::GeoidModel::egm96;
-    options.cache_mb = config.terrain->cache_mb;
+    const terrain::TerrainOptions options(*config.terrain);
     auto opened = terrain::ElevationModel::open(options);
     if (!opened.model)
         out.problem = Problem{"terrain.files", opened.error};

@@ -38,7 +38,7 @@ HttpServer::HttpServer(asio::io_context& io, HttpServerOptions options, DaemonVi
                      "http.max_connections_per_client"),
       cross_site_(log::Level::warn, "http_cross_site",
                   "HTTP requests refused by the Host/Origin checks") {
-    const tcp::endpoint local(asio::ip::make_address(options_.bind), options_.port);
+    const tcp::endpoint local(options_.bind, options_.port);
     acceptor_.open(local.protocol());
     // TCP needs it to rebind at once after a restart (TIME_WAIT); a second daemon still fails.
     acceptor_.set_option(asio::socket_base::reuse_address(true));

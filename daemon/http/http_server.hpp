@@ -15,6 +15,7 @@
 #include "client_slots.hpp"
 #include "daemon_view.hpp"
 #include "http_api.hpp"
+#include "http_config.hpp"
 #include "logging.hpp"
 #include "state/event.hpp"
 #include "stream_hub.hpp"
@@ -24,13 +25,10 @@ namespace gimbald::http {
 
 class HttpConnection;
 
-struct HttpServerOptions {
-    std::string bind = "127.0.0.1";
-    std::uint16_t port = 8761;
-    std::size_t max_connections = 64;
-    std::size_t max_connections_per_client = 16;  // HTTP and WebSocket together
-    double idle_timeout_s = 30;
-    std::size_t ws_queue_max = 64;
+// The `http` section (http_config.hpp) and what the daemon derives from it or adds.
+struct HttpServerOptions : gimbal::daemon::HttpConfig {
+    explicit HttpServerOptions(gimbal::daemon::HttpConfig config = {})
+        : HttpConfig(std::move(config)) {}
     VideoFeedOptions video;
     ApiOptions api;
     std::function<bool(const boost::asio::ip::address&)> allowed;

@@ -25,16 +25,17 @@
 
 #include "logging.hpp"
 #include "record/pcapng_writer.hpp"
+#include "record/record_config.hpp"
 #include "record/record_files.hpp"
 
 namespace gimbald::record {
 
 using gimbal::record::Direction;
 
-struct RecorderOptions {
-    std::string dir;
-    double max_file_mb = 100;
-    double max_total_mb = 2000;
+// The `record` section (record_config.hpp) and what the daemon adds.
+struct RecorderOptions : gimbal::daemon::RecordConfig {
+    explicit RecorderOptions(gimbal::daemon::RecordConfig config = {})
+        : RecordConfig(std::move(config)) {}
     std::size_t buffer_bytes = 8 * 1024 * 1024;  // about 8 s of 10,000 packets/s
     std::string user_application = "gimbald";
     std::vector<gimbal::record::Interface> interfaces;

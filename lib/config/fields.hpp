@@ -146,6 +146,34 @@ class Fields {
         return false;
     }
 
+    // An array of strings, each kept when `valid(item)`; `shape` is the message for a value
+    // that is not an array (or an empty one, with `non_empty`), `item_message` for a bad item
+    // (reported at "key[i]"). A valid array replaces `out`.
+    template <class Valid>
+    bool string_list(std::string_view key, std::vector<std::string>& out, Valid&& valid,
+                     std::string_view shape, std::string_view item_message,
+                     Presence presence = Presence::optional, bool non_empty = false) {
+        const nlohmann::json* value = lookup(key, presence);
+        if (value == nullptr) return false;
+        if (!value->is_array() || (non_empty && value->empty())) {
+            problem(key, std::string(shape));
+            return false;
+        }
+        std::vector<std::string> read;
+        bool all = true;
+        for (std::size_t i = 0; i < value->size(); ++i) {
+            const nlohmann::json& item = (*value)[i];
+            if (item.is_string() && valid(item.get_ref<const std::string&>())) {
+                read.push_back(item.get<std::string>());
+            } else {
+                problems_->add(index_path(path(key), i), std::string(item_message));
+                all = false;
+            }
+        }
+        out = std::move(read);
+        return all;
+    }
+
     // The nested object under `key`; a present non-object is reported.
     std::optional<Fields> object(std::string_view key, Presence presence = Presence::optional);
     // The nested object under `key` visited by `visit(Fields&)`, its unknown keys reported.
@@ -172,7 +200,9 @@ class Fields {
     bool check_unknown_ = true;
 };
 
-// The same visit writing a section back: every key, with its value or null.
+// The same visit writing a section back: every key, with its value or null. Its methods
+// return false (nothing was read), so a check written as `if (v.string(...) && ...)` runs
+// only while reading.
 class Writer {
   public:
     static constexpr bool reading = false;
@@ -204,8 +234,14 @@ class Writer {
     bool choice(std::string_view key, E value, const Options& options,
                 Presence = Presence::optional) {
         for (const auto& option : options)
-            if (option.value == value) return set(key, option.name);
-        return false;
+            if (option.value == value) return set(key, std::string(option.name));
+        return set(key, nullptr);
+    }
+    template <class Valid>
+    bool string_list(std::string_view key, const std::vector<std::string>& value, Valid&&,
+                     std::string_view, std::string_view, Presence = Presence::optional,
+                     bool = false) {
+        return set(key, value);
     }
     template <class Visit>
     void section(std::string_view key, Visit&& visit) {
@@ -214,12 +250,15 @@ class Writer {
         set(key, nested.take());
     }
 
+    // A key whose JSON the section builds itself (a list of its own shape).
+    void set_json(std::string_view key, nlohmann::json value) { set(key, std::move(value)); }
+
     nlohmann::json take() { return std::move(out_); }
 
   private:
     bool set(std::string_view key, nlohmann::json value) {
         out_[std::string(key)] = std::move(value);
-        return true;
+        return false;
     }
     nlohmann::json out_ = nlohmann::json::object();
 };

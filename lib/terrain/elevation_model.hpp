@@ -25,16 +25,13 @@
 #include "geo/surface.hpp"
 #include "terrain/block_cache.hpp"
 #include "terrain/geoid.hpp"
+#include "terrain/terrain_config.hpp"
 
 namespace gimbal::terrain {
 
-enum class GeoidModel { egm96, none };
-
-// The config section `terrain` (contract section 15).
-struct TerrainOptions {
-    std::vector<std::string> files;  // paths or globs
-    GeoidModel geoid = GeoidModel::egm96;
-    int cache_mb = 64;
+// The config section `terrain` (terrain_config.hpp) and where the EGM96 grid is.
+struct TerrainOptions : TerrainConfig {
+    explicit TerrainOptions(TerrainConfig config = {}) : TerrainConfig(std::move(config)) {}
     // The EGM96 grid; empty: Geoid::find_egm96().
     std::string geoid_grid;
 };
