@@ -309,34 +309,13 @@ std::unique_ptr<gimbal::session::Protocol> App::make_protocol(const protocols::E
 
 std::unique_ptr<Link> App::make_link(const cfg::GimbalConfig& g) {
     if (const auto* tcp = std::get_if<cfg::TcpLink>(&g.link)) {
-        TcpLinkOptions o;
-        o.host = tcp->host;
-        o.port = tcp->port;
-        o.connect_timeout_s = tcp->connect_timeout_s;
-        o.reconnect_min_s = tcp->reconnect_min_s;
-        o.reconnect_max_s = tcp->reconnect_max_s;
-        o.silence_timeout_s = tcp->silence_timeout_s;
-        o.discovery.address = tcp->discover_address;
-        o.discovery.port = tcp->discover_port;
-        o.discovery.reply_port = tcp->discover_reply_port;
-        return std::make_unique<TcpLink>(io_, o);
+        return std::make_unique<TcpLink>(io_, TcpLinkOptions(*tcp));
     }
     if (const auto* serial = std::get_if<cfg::SerialLink>(&g.link)) {
-        SerialLinkOptions o;
-        o.device = serial->device;
-        o.baud = serial->baud;
-        o.reconnect_min_s = serial->reconnect_min_s;
-        o.reconnect_max_s = serial->reconnect_max_s;
-        return std::make_unique<SerialLink>(io_, o);
+        return std::make_unique<SerialLink>(io_, SerialLinkOptions(*serial));
     }
     if (const auto* udp = std::get_if<cfg::UdpLink>(&g.link)) {
-        UdpLinkOptions o;
-        o.host = udp->host;
-        o.port = udp->port;
-        o.local_port = udp->local_port;
-        o.reconnect_min_s = udp->reconnect_min_s;
-        o.reconnect_max_s = udp->reconnect_max_s;
-        return std::make_unique<UdpLink>(io_, o);
+        return std::make_unique<UdpLink>(io_, UdpLinkOptions(*udp));
     }
     // The models read no clock: start their time at now so reported times are current.
     protocols::SimScenario scenario;

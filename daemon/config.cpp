@@ -91,118 +91,7 @@ json parse_rejecting_duplicates(std::string_view text, Problems& problems) {
 
 // ---- The configuration sections ---------------------------------------------------------
 
-constexpr std::array<std::uint32_t, 22> baud_rates = {
-    1200,   1800,   2400,   4800,    9600,    19200,   38400,   57600,   115200,  230400,  460800,
-    500000, 576000, 921600, 1000000, 1152000, 1500000, 2000000, 2500000, 3000000, 3500000, 4000000};
-
 constexpr std::size_t max_gimbals = 32;
-
-// Ranges shared by several keys; docs/configuration.md lists them.
-constexpr Range connect_timeout_range{0.1, 60};
-constexpr Range reconnect_min_range{0.01, 60};
-constexpr Range reconnect_max_range{0.1, 3600};
-constexpr Range silence_timeout_range{0.1, 3600};
-
-std::string baud_message() {
-    std::string rates;
-    for (auto rate : baud_rates) rates += (rates.empty() ? "" : ", ") + std::to_string(rate);
-    return "must be one of " + rates;
-}
-
-void read_baud(Fields& f, std::string_view key, std::uint32_t& out) {
-    const json* value = f.required(key);
-    if (value == nullptr) return;
-    if (value->is_number_unsigned() || value->is_number_integer()) {
-        const auto rate = value->get<std::int64_t>();
-        for (auto standard : baud_rates) {
-            if (rate == standard) {
-                out = standard;
-                return;
-            }
-        }
-    }
-    f.problem(key, baud_message());
-}
-
-void read_device(Fields& f, std::string_view key, std::string& out) {
-    if (!f.string(key, out, Presence::required)) return;
-    if (out.empty() || out.front() != '/') {
-        f.problem(key, "must be an absolute path such as /dev/ttyUSB0");
-    }
-}
-
-void read_reconnect(Fields& f, double& min_s, double& max_s) {
-    f.number("reconnect_min_s", min_s, reconnect_min_range);
-    f.number("reconnect_max_s", max_s, reconnect_max_range);
-    if (max_s < min_s) {
-        f.problem("reconnect_max_s",
-                  fmt::format("must not be less than reconnect_min_s ({:g})", min_s));
-    }
-}
-
-TcpLink read_tcp(Fields& f) {
-    TcpLink link;
-    if (f.string("host", link.host, Presence::required)) {
-        const bool has_space = std::any_of(link.host.begin(), link.host.end(),
-                                           [](char c) { return c <= ' ' || c > '~'; });
-        if (link.host.empty() || link.host.size() > 253 || has_space) {
-            f.problem("host", "must be a host name, an IP address or \"discover\"");
-        }
-    }
-    f.integer("port", link.port, {1, 65535}, Presence::required);
-    f.number("connect_timeout_s", link.connect_timeout_s, connect_timeout_range);
-    read_reconnect(f, link.reconnect_min_s, link.reconnect_max_s);
-    f.number("silence_timeout_s", link.silence_timeout_s, silence_timeout_range);
-
-    boost::asio::ip::address discover_address =
-        boost::asio::ip::make_address_v4(link.discover_address);
-    read_address(f, "discover_address", discover_address);
-    if (!discover_address.is_v4()) {
-        f.problem("discover_address", "must be an IPv4 address");
-    } else {
-        link.discover_address = discover_address.to_string();
-    }
-    f.integer("discover_port", link.discover_port, {1, 65535});
-    f.integer("discover_reply_port", link.discover_reply_port, {1, 65535});
-    return link;
-}
-
-SerialLink read_serial(Fields& f) {
-    SerialLink link;
-    read_device(f, "device", link.device);
-    read_baud(f, "baud", link.baud);
-    read_reconnect(f, link.reconnect_min_s, link.reconnect_max_s);
-    return link;
-}
-
-UdpLink read_udp(Fields& f) {
-    UdpLink link;
-    if (f.string("host", link.host, Presence::required)) {
-        const bool has_space = std::any_of(link.host.begin(), link.host.end(),
-                                           [](char c) { return c <= ' ' || c > '~'; });
-        if (link.host.empty() || link.host.size() > 253 || has_space)
-            f.problem("host", "must be a host name or an IP address");
-    }
-    f.integer("port", link.port, {1, 65535}, Presence::required);
-    if (const json* local = f.find("local_port"); local != nullptr && !local->is_null()) {
-        std::uint16_t port = 0;
-        if (f.integer("local_port", port, {1, 65535})) link.local_port = port;
-    }
-    read_reconnect(f, link.reconnect_min_s, link.reconnect_max_s);
-    return link;
-}
-
-std::optional<Link> read_link(Fields& f) {
-    std::string type;
-    if (!f.choice("type", type, {"tcp", "serial", "sim", "udp"}, Presence::required)) {
-        f.keep_unknown_keys();  // which keys belong here depends on the type
-        return std::nullopt;
-    }
-    if (type == "tcp") return read_tcp(f);
-    if (type == "serial") return read_serial(f);
-    if (type == "udp") return read_udp(f);
-    return SimLink{};
-}
 
 // `video` (contract section 17): its reading is daemon/video/video_config.cpp's.
 void read_video(Fields& f, GimbalConfig& gimbal) {
@@ -577,36 +466,6 @@ std::string syntax_problem(std::string_view text, const json::parse_error& e) {
 
 }  // namespace
 
-std::span<const std::uint32_t> standard_baud_rates() {
-    return baud_rates;
-}
-
-std::string_view link_type(const Link& link) {
-    static constexpr std::string_view names[] = {"tcp", "serial", "sim", "udp"};
-    return names[link.index()];
-}
-
-std::string describe(const Link& link) {
-    if (const auto* tcp = std::get_if<TcpLink>(&link)) {
-        if (tcp->discover()) {
-            return fmt::format("discover via {}:{}", tcp->discover_address, tcp->discover_port);
-        }
-        if (tcp->host.find(':') != std::string::npos) {
-            return fmt::format("[{}]:{}", tcp->host, tcp->port);
-        }
-        return fmt::format("{}:{}", tcp->host, tcp->port);
-    }
-    if (const auto* serial = std::get_if<SerialLink>(&link)) {
-        return fmt::format("{}@{}", serial->device, serial->baud);
-    }
-    if (const auto* udp = std::get_if<UdpLink>(&link)) {
-        if (udp->host.find(':') != std::string::npos)
-            return fmt::format("udp [{}]:{}", udp->host, udp->port);
-        return fmt::format("udp {}:{}", udp->host, udp->port);
-    }
-    return "sim";
-}
-
 std::optional<Cidr> Cidr::parse(std::string_view text) {
     const auto slash = text.find('/');
     boost::system::error_code ec;
@@ -805,41 +664,10 @@ std::vector<GimbalConfig> sim_gimbals(std::span<const Protocol> protocols,
 
 namespace {
 
-json link_to_json(const Link& link) {
-    if (const auto* tcp = std::get_if<TcpLink>(&link)) {
-        return {{"type", "tcp"},
-                {"host", tcp->host},
-                {"port", tcp->port},
-                {"connect_timeout_s", tcp->connect_timeout_s},
-                {"reconnect_min_s", tcp->reconnect_min_s},
-                {"reconnect_max_s", tcp->reconnect_max_s},
-                {"silence_timeout_s", tcp->silence_timeout_s},
-                {"discover_address", tcp->discover_address},
-                {"discover_port", tcp->discover_port},
-                {"discover_reply_port", tcp->discover_reply_port}};
-    }
-    if (const auto* serial = std::get_if<SerialLink>(&link)) {
-        return {{"type", "serial"},
-                {"device", serial->device},
-                {"baud", serial->baud},
-                {"reconnect_min_s", serial->reconnect_min_s},
-                {"reconnect_max_s", serial->reconnect_max_s}};
-    }
-    if (const auto* udp = std::get_if<UdpLink>(&link)) {
-        return {{"type", "udp"},
-                {"host", udp->host},
-                {"port", udp->port},
-                {"local_port", udp->local_port ? json(*udp->local_port) : json(nullptr)},
-                {"reconnect_min_s", udp->reconnect_min_s},
-                {"reconnect_max_s", udp->reconnect_max_s}};
-    }
-    return {{"type", "sim"}};
-}
-
 json gimbal_to_json(const GimbalConfig& gimbal) {
     json out = {{"name", gimbal.name},
                 {"protocol", to_string(gimbal.protocol)},
-                {"link", link_to_json(gimbal.link)}};
+                {"link", write_link(gimbal.link)}};
     out.update(gimbal.protocol_config);  // its protocol's own keys, every default present
     if (gimbal.video) out["video"] = gimbald::video::to_json(*gimbal.video);
     return out;

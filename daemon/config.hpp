@@ -16,6 +16,7 @@
 
 #include "config/fields.hpp"
 #include "http/http_config.hpp"
+#include "link/link_config.hpp"
 #include "logging.hpp"
 #include "mqtt/mqtt_config.hpp"
 #include "protocols/protocol_id.hpp"
@@ -29,54 +30,6 @@ namespace gimbal::daemon {
 using Protocol = gimbal::protocols::ProtocolId;
 using gimbal::protocols::parse_protocol;
 using gimbal::protocols::to_string;
-
-// The termios rates from 1200 baud up; a serial link's `baud` must be one of them.
-std::span<const std::uint32_t> standard_baud_rates();
-
-struct TcpLink {
-    std::string host;  // name or address, or "discover" (Orion SDK broadcast discovery)
-    std::uint16_t port = 0;
-    double connect_timeout_s = 3.0;
-    double reconnect_min_s = 0.2;
-    double reconnect_max_s = 5.0;
-    double silence_timeout_s = 3.0;  // no byte for this long: the peer is dead, reconnect
-    // Used only when host is "discover".
-    std::string discover_address = "255.255.255.255";
-    std::uint16_t discover_port = 8745;
-    std::uint16_t discover_reply_port = 8746;
-
-    bool discover() const { return host == "discover"; }
-    bool operator==(const TcpLink&) const = default;
-};
-
-struct SerialLink {
-    std::string device;
-    std::uint32_t baud = 0;  // 8N1, no flow control
-    double reconnect_min_s = 0.2;
-    double reconnect_max_s = 5.0;
-    bool operator==(const SerialLink&) const = default;
-};
-
-struct SimLink {
-    bool operator==(const SimLink&) const = default;
-};
-
-// Datagrams to host:port from local_port (an ephemeral port when unset); only host's are
-// taken (contract section 19, MAVLink gimbal devices).
-struct UdpLink {
-    std::string host;
-    std::uint16_t port = 0;
-    std::optional<std::uint16_t> local_port;
-    double reconnect_min_s = 0.2;
-    double reconnect_max_s = 5.0;
-    bool operator==(const UdpLink&) const = default;
-};
-
-using Link = std::variant<TcpLink, SerialLink, SimLink, UdpLink>;
-std::string_view link_type(const Link& link);  // "tcp", "serial", "sim", "udp"
-// "192.168.1.20:8747", "[fe80::1]:8747", "discover via 255.255.255.255:8745",
-// "/dev/ttyUSB0@115200", "sim"
-std::string describe(const Link& link);
 
 struct GimbalConfig {
     std::string name;

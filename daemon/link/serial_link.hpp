@@ -17,15 +17,16 @@
 #include <boost/asio/posix/stream_descriptor.hpp>
 
 #include "link/backoff.hpp"
+#include "link/link_config.hpp"
 #include "link/stream_link.hpp"
 
 namespace gimbald {
 
-struct SerialLinkOptions {
-    std::string device;  // e.g. /dev/ttyUSB0; re-resolved on every attempt (symlinks welcome)
-    unsigned baud = 115200;
-    double reconnect_min_s = 0.2;
-    double reconnect_max_s = 5.0;
+// The `link` section of type "serial" (link_config.hpp: the device, re-resolved on every
+// attempt so symlinks are welcome; baud; reconnect delays) and what the daemon adds.
+struct SerialLinkOptions : gimbal::daemon::SerialLink {
+    SerialLinkOptions() { baud = 115200; }
+    explicit SerialLinkOptions(gimbal::daemon::SerialLink config) : SerialLink(std::move(config)) {}
     double silence_timeout_s = 0.0;  // 0: off (a quiet serial gimbal is not necessarily dead)
     SendQueueLimits queue;
     double send_now_timeout_s = 0.25;

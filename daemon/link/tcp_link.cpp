@@ -31,8 +31,10 @@ TcpLink::TcpLink(asio::io_context& io, TcpLinkOptions options, Backoff backoff)
       options_(std::move(options)),
       resolver_(io),
       connect_timer_(io) {
-    if (options_.host == TcpLinkOptions::discover_host) {
-        discovery_.emplace(io, options_.discovery);
+    if (options_.discover()) {
+        discovery_.emplace(
+            io, DiscoveryOptions{options_.discover_address, options_.discover_port,
+                                 options_.discover_reply_port, options_.discover_timeout_s});
     } else {
         target_host_ = options_.host;
     }

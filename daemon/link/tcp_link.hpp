@@ -13,21 +13,18 @@
 
 #include "link/backoff.hpp"
 #include "link/discovery.hpp"
+#include "link/link_config.hpp"
 #include "link/stream_link.hpp"
 
 namespace gimbald {
 
-struct TcpLinkOptions {
-    static constexpr const char* discover_host = "discover";
+// The `link` section of type "tcp" (link_config.hpp: host or "discover", port, timeouts - the
+// connect timeout covers resolve + connect; silence 0 disables - and where discovery asks)
+// and what the daemon adds.
+struct TcpLinkOptions : gimbal::daemon::TcpLink {
+    explicit TcpLinkOptions(gimbal::daemon::TcpLink config = {}) : TcpLink(std::move(config)) {}
 
-    std::string host;  // name or address, or "discover"
-    std::uint16_t port = 8747;
-    double connect_timeout_s = 3.0;  // covers resolve + connect
-    double reconnect_min_s = 0.2;
-    double reconnect_max_s = 5.0;
-    // The Orion sends telemetry at 10 Hz: nothing for this long means a dead peer. 0 disables.
-    double silence_timeout_s = 3.0;
-    DiscoveryOptions discovery;  // used when host == "discover"
+    double discover_timeout_s = 1.5;  // a discovery round without a reply fails
     SendQueueLimits queue;
     double send_now_timeout_s = 0.25;
     // SO_SNDBUF of the connection. The kernel would otherwise grow it to megabytes while the

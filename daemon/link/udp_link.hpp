@@ -16,16 +16,15 @@
 #include "link/backoff.hpp"
 #include "link/lifetime.hpp"
 #include "link/link.hpp"
+#include "link/link_config.hpp"
 #include "link/send_queue.hpp"
 
 namespace gimbald {
 
-struct UdpLinkOptions {
-    std::string host;
-    std::uint16_t port = 0;
-    std::optional<std::uint16_t> local_port;  // nullopt: an ephemeral port
-    double reconnect_min_s = 0.2;
-    double reconnect_max_s = 5.0;
+// The `link` section of type "udp" (link_config.hpp; no local_port: an ephemeral port) and
+// what the daemon adds.
+struct UdpLinkOptions : gimbal::daemon::UdpLink {
+    explicit UdpLinkOptions(gimbal::daemon::UdpLink config = {}) : UdpLink(std::move(config)) {}
     SendQueueLimits queue;
 };
 

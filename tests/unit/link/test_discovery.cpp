@@ -61,8 +61,10 @@ gimbald::TcpLinkOptions discovering(std::uint16_t tcp_port, std::uint16_t discov
     options.reconnect_min_s = 0.02;
     options.reconnect_max_s = 0.1;
     options.silence_timeout_s = 0.0;
-    options.discovery = {
-        .address = "127.0.0.1", .port = discover_port, .reply_port = 0, .timeout_s = 0.2};
+    options.discover_address = "127.0.0.1";
+    options.discover_port = discover_port;
+    options.discover_reply_port = 0;
+    options.discover_timeout_s = 0.2;
     return options;
 }
 
