@@ -97,14 +97,11 @@ constexpr std::size_t max_gimbals = 32;
 void read_video(Fields& f, GimbalConfig& gimbal) {
     const json* video = f.find("video");
     if (video == nullptr || video->is_null()) return;
-    gimbal.video = gimbald::video::read_video_config(
-        *video, f.path("video"), [&f](std::string path, std::string message) {
-            f.problems().add(std::move(path), std::move(message));
-        });
-    if (!video->is_object()) return;  // reported by read_video_config
-    Fields keys(*video, f.path("video"), f.problems());
-    for (const auto key : gimbald::video::video_keys) keys.find(key);
-    keys.finish();
+    if (!video->is_object()) {
+        f.problem("video", "must be an object with at least \"input\"");
+        return;
+    }
+    f.section("video", [&gimbal](Fields& v) { fields(v, gimbal.video.emplace()); });
 }
 
 // Under --sim the file's gimbals are replaced, but their `video` sections still apply to
@@ -669,7 +666,7 @@ json gimbal_to_json(const GimbalConfig& gimbal) {
                 {"protocol", to_string(gimbal.protocol)},
                 {"link", write_link(gimbal.link)}};
     out.update(gimbal.protocol_config);  // its protocol's own keys, every default present
-    if (gimbal.video) out["video"] = gimbald::video::to_json(*gimbal.video);
+    if (gimbal.video) out["video"] = config::write(*gimbal.video);
     return out;
 }
 

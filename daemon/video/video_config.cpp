@@ -90,22 +90,21 @@ std::string_view to_string(KlvMode mode) {
     return "auto";
 }
 
-VideoConfig read_video_config(const json& value, const std::string& path,
-                              const ProblemSink& problem) {
-    VideoConfig config;
-    const auto at = [&path](std::string_view key) { return fmt::format("{}.{}", path, key); };
-    if (!value.is_object()) {
-        problem(path, "must be an object with at least \"input\"");
-        return config;
-    }
+void read_video_fields(gimbal::config::Fields& f, VideoConfig& config) {
+    const auto at = [&f](std::string_view key) { return f.path(key); };
+    const ProblemSink problem = [&f](std::string where, std::string message) {
+        f.problems().add(std::move(where), std::move(message));
+    };
+    // Every key is looked up (and so known to the unknown-key check) before it is read.
+    const auto lookup = [&f](std::string_view key) { return f.find(key); };
     std::optional<gv::VideoUrl> input;
-    if (const auto it = value.find("input"); it == value.end()) {
+    if (const json* it = lookup("input"); it == nullptr) {
         problem(at("input"), "required: udp://HOST:PORT or rtsp://HOST/PATH");
     } else if ((input = read_url(*it, at("input"), true, problem))) {
         config.input = it->get<std::string>();
     }
 
-    if (const auto it = value.find("klv"); it != value.end()) {
+    if (const json* it = lookup("klv"); it != nullptr) {
         const std::string mode = it->is_string() ? it->get<std::string>() : std::string();
         if (mode == "auto") {
             config.klv = KlvMode::automatic;
@@ -120,7 +119,7 @@ VideoConfig read_video_config(const json& value, const std::string& path,
         }
     }
 
-    if (const auto it = value.find("klv_rate_hz"); it != value.end()) {
+    if (const json* it = lookup("klv_rate_hz"); it != nullptr) {
         if (!it->is_number() || !(it->get<double>() >= min_klv_rate_hz) ||
             !(it->get<double>() <= max_klv_rate_hz)) {
             problem(at("klv_rate_hz"), fmt::format("must be a number between {:g} and {:g}",
@@ -130,7 +129,7 @@ VideoConfig read_video_config(const json& value, const std::string& path,
         }
     }
 
-    if (const auto it = value.find("outputs"); it != value.end()) {
+    if (const json* it = lookup("outputs"); it != nullptr) {
         if (!it->is_array()) {
             problem(at("outputs"), "must be an array of udp:// or klv-udp:// URLs");
         } else if (it->size() > max_outputs) {
@@ -156,7 +155,7 @@ VideoConfig read_video_config(const json& value, const std::string& path,
         }
     }
 
-    if (const auto it = value.find("mission_id"); it != value.end() && !it->is_null()) {
+    if (const json* it = lookup("mission_id"); it != nullptr && !it->is_null()) {
         if (!it->is_string()) {
             problem(at("mission_id"), "must be a string or null");
         } else if (it->get_ref<const std::string&>().empty() ||
@@ -167,15 +166,6 @@ VideoConfig read_video_config(const json& value, const std::string& path,
             config.mission_id = it->get<std::string>();
         }
     }
-    return config;
-}
-
-json to_json(const VideoConfig& config) {
-    return {{"input", config.input},
-            {"klv", std::string(to_string(config.klv))},
-            {"klv_rate_hz", config.klv_rate_hz},
-            {"outputs", config.outputs},
-            {"mission_id", config.mission_id ? json(*config.mission_id) : json(nullptr)}};
 }
 
 }  // namespace gimbald::video

@@ -1,15 +1,18 @@
 // gimbals[].video (contract section 17): the gimbal's video input, what to do with its KLV
-// and where to relay it. This section's reading lives here, beside the code it configures;
-// daemon/config.cpp calls read_video_config() for each gimbal that has the key and writes it
-// back with to_json(). Keys, ranges and defaults: docs/configuration.md, docs/video.md.
+// and where to relay it. Declared once here as a fields() visit, read and written by the
+// generic reader (lib/config/fields.hpp). Keys, ranges and defaults: docs/configuration.md,
+// docs/video.md.
 #pragma once
 
+#include <array>
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include "config/fields.hpp"
 
 namespace gimbald::video {
 
@@ -35,19 +38,28 @@ inline constexpr double max_klv_rate_hz = 60;
 inline constexpr std::size_t max_outputs = 8;
 inline constexpr std::size_t max_mission_id_bytes = 127;  // ST 0601 tag 3
 
-// The section's keys. Unknown ones are reported by daemon/config.cpp, in the wording (and
-// with the "did you mean" of) every other section.
-inline constexpr std::string_view video_keys[] = {"input", "klv", "klv_rate_hz", "outputs",
-                                                  "mission_id"};
+inline constexpr std::array<gimbal::config::Named<KlvMode>, 4> klv_mode_names{
+    {{"auto", KlvMode::automatic},
+     {"parse", KlvMode::parse},
+     {"generate", KlvMode::generate},
+     {"off", KlvMode::off}}};
 
-// Reads one gimbal's `video` object at JSON path `path` ("gimbals[0].video"); every problem
-// of a known key goes to `problem(path, message)`. Returns the section as far as it could be read
-// (only meaningful when no problem was reported).
+// Reading, in this section's own words (URLs checked for where they may appear, outputs that
+// would feed the relay back into itself refused): docs/video.md.
 using ProblemSink = std::function<void(std::string path, std::string message)>;
-VideoConfig read_video_config(const nlohmann::json& value, const std::string& path,
-                              const ProblemSink& problem);
+void read_video_fields(gimbal::config::Fields& f, VideoConfig& config);
 
-// Every key, with its value (the inverse of read_video_config).
-nlohmann::json to_json(const VideoConfig& config);
+template <class V>
+void fields(V& v, VideoConfig& c) {
+    if constexpr (V::reading) {
+        read_video_fields(v, c);
+    } else {
+        v.string("input", c.input);
+        v.choice("klv", c.klv, klv_mode_names);
+        v.number("klv_rate_hz", c.klv_rate_hz, {min_klv_rate_hz, max_klv_rate_hz});
+        v.set_json("outputs", c.outputs);
+        v.optional_string("mission_id", c.mission_id);
+    }
+}
 
 }  // namespace gimbald::video
