@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include "command/params.hpp"
+#include "geoid_source.hpp"
 #include "http/static_files.hpp"
 #include "link/serial_link.hpp"
 #include "link/sim_link.hpp"
@@ -48,6 +49,7 @@ App::App(const cfg::Config& config, std::unique_ptr<gimbal::terrain::ElevationMo
     if (config_.record) start_recorder();
     // Each protocol reads its own keys (feed, options) from its gimbal's configuration object.
     const nlohmann::json gimbal_objects = cfg::to_json(config_)["gimbals"];
+    open_geoid_if_needed(gimbal_objects);
     std::vector<GimbalSession*> raw;
     for (std::size_t i = 0; i < config_.gimbals.size(); ++i) {
         const auto& g = config_.gimbals[i];
@@ -289,6 +291,28 @@ void App::tap_recorder() {
 
 App::~App() = default;
 
+// Once, before the sessions: the geoid grid when a gimbal's protocol asks for the undulation
+// where the aircraft flies; without one those sessions use 0, which is said once here.
+void App::open_geoid_if_needed(const nlohmann::json& gimbal_objects) {
+    std::vector<std::string> needing;
+    for (std::size_t i = 0; i < config_.gimbals.size(); ++i) {
+        const auto& protocol = protocols::entry(config_.gimbals[i].protocol);
+        if (protocol.needs_geoid && protocol.needs_geoid(gimbal_objects[i]))
+            needing.push_back(config_.gimbals[i].name);
+    }
+    if (needing.empty()) return;
+    auto opened = open_geoid(terrain_.get());
+    if (!opened.undulation) {
+        log::warn("geoid_missing",
+                  opened.problem + ": the geoid undulation is 0 (set geoid_undulation_m)",
+                  {{"gimbals", needing}});
+        return;
+    }
+    log::info("geoid", "EGM96 geoid for the vehicle's MSL altitudes",
+              {{"gimbals", needing}, {"source", opened.source}});
+    geoid_ = std::move(opened.undulation);
+}
+
 std::unique_ptr<gimbal::session::Protocol> App::make_protocol(const protocols::Entry& protocol,
                                                               const nlohmann::json& gimbal) {
     protocols::SessionSettings settings;
@@ -297,6 +321,7 @@ std::unique_ptr<gimbal::session::Protocol> App::make_protocol(const protocols::E
     settings.allow_fire = config_.laser.allow_fire;
     settings.allow_safety_bypass = config_.laser.allow_safety_bypass;
     settings.terrain = terrain_.get();
+    settings.geoid_undulation = geoid_;
     settings.unix_clock = [] {
         return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch())
             .count();

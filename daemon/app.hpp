@@ -5,7 +5,9 @@
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/signal_set.hpp>
 #include <boost/asio/steady_timer.hpp>
+#include <functional>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "command_server.hpp"
@@ -50,6 +52,7 @@ class App {
     void start_http();
     void start_video();
     void update_status();
+    void open_geoid_if_needed(const nlohmann::json& gimbal_objects);
 
     gimbal::daemon::Config config_;
     boost::asio::io_context io_;
@@ -58,6 +61,8 @@ class App {
     // Contract section 15: one model shared by every gimbal; declared before them so it
     // outlives them.
     std::unique_ptr<gimbal::terrain::ElevationModel> terrain_;
+    // The EGM96 undulation for sessions that ask (open_geoid), after terrain_ it may use.
+    std::function<std::optional<double>(double, double)> geoid_;
     // Declared before everything that records into it, so it outlives them.
     std::unique_ptr<record::Recorder> recorder_;  // contract section 12; null unless `record`
     std::vector<std::unique_ptr<GimbalSession>> sessions_;

@@ -8,6 +8,7 @@
 #include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -41,6 +42,10 @@ struct SessionSettings {
     // A secret file's text (a protocol's key), read as the daemon reads every secret file:
     // owner-only, or an error naming the file and why.
     std::function<command::Result<std::string>(const std::string& path)> read_secret;
+    // The EGM96 geoid's height above the ellipsoid at a point (metres), for a protocol that
+    // turns the vehicle's MSL altitudes into ellipsoid heights itself; nullopt (or an empty
+    // function) where no geoid grid is known.
+    std::function<std::optional<double>(double lat_deg, double lon_deg)> geoid_undulation;
 };
 
 // What reading a protocol's configuration keys may need of the daemon.
@@ -76,6 +81,9 @@ struct Entry {
     std::unique_ptr<session::Protocol> (*make_session)(const SessionSettings& settings,
                                                        const nlohmann::json& gimbal) = nullptr;
     std::unique_ptr<VehicleFeeder> (*make_feeder)(const nlohmann::json& gimbal) = nullptr;
+    // Whether a session of this gimbal will ask SessionSettings::geoid_undulation (the daemon
+    // then opens the geoid grid at start); null: never.
+    bool (*needs_geoid)(const nlohmann::json& gimbal) = nullptr;
     // The gimbal-to-ground stream split as its framer splits it (the flight recorder).
     std::unique_ptr<framing::StreamSplitter> (*make_splitter)() = nullptr;
     // The gimbal-to-ground stream as track points (gimbal-export).

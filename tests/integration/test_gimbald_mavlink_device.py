@@ -7,7 +7,10 @@ Checked: STATE `device` from GIMBAL_DEVICE_INFORMATION / ATTITUDE_STATUS, the Or
 `telemetry`, a `position` command reaching the device as common.xml's quaternion (the
 simulator's rx log), AUTOPILOT_STATE_FOR_GIMBAL_DEVICE at 10-50 Hz, staleness when the device
 goes quiet, and the stare target: while the aircraft circles a geopoint, the line of sight
-stays within 0.5 degrees of it at p95 after the first 2 s. And towards ground stations: a
+stays within 0.5 degrees of it at p95 after the first 2 s; a geopoint with `stare` gives one
+`stare_start` event on a subscriber once the device is on the point, a stabilized position
+keeps its yaw from north while the aircraft turns, and the geoid undulation is EGM96's
+where none is configured. And towards ground stations: a
 ground station (tests/integration/mavlinktest.py) on gimbald's own MAVLink gimbal manager
 steers the device with DO_GIMBAL_MANAGER_PITCHYAW and reads its attitude and limits. With a
 signing key on both sides (gimbals[].mavlink.signing_key_file, gimbal-sim --signing-key)
@@ -98,11 +101,21 @@ def los_error_deg(state):
             math.cos(pitch) * math.sin(math.radians(yaw)), -math.sin(pitch))
     north = math.radians(POINT[0] - t["lat"]) * 6378137.0
     east = math.radians(POINT[1] - t["lon"]) * 6378137.0 * math.cos(math.radians(POINT[0]))
-    down = t["alt"] - POINT[2]
+    down = t["alt_msl"] - POINT[2]  # both above MSL (the geoid is EGM96 there)
     n = math.sqrt(north * north + east * east + down * down)
     want = (north / n, east / n, down / n)
     dot = sum(a * b for a, b in zip(have, want))
     return math.degrees(math.acos(max(-1.0, min(1.0, dot))))
+
+
+def earth_yaw(state):
+    """The device's line of sight from north (degrees), from STATE."""
+    t, att = state["telemetry"], state["device"]["attitude"]
+    return att["yaw"] + (0.0 if att["frame"] == "earth" else t["yaw"])
+
+
+def wrap180(a):
+    return (a + 180.0) % 360.0 - 180.0
 
 
 class MavlinkDeviceTest(gt.GimbaldTestCase):
@@ -201,6 +214,74 @@ class MavlinkDeviceTest(gt.GimbaldTestCase):
               (len(errors), p95, errors[-1]))
         self.assertGreater(len(errors), 50)
         self.assertLess(p95, 0.5)
+
+    def test_stare_start_and_stabilized_position_while_circling(self):
+        sim, daemon, vport = self.start_pty("--attitude-rate", "25", "--slew-rate", "40")
+        client = self.client(daemon)
+        aircraft = Aircraft(vport)
+        self.addCleanup(aircraft.close)
+        s = self.wait_state(client, lambda s: s["device"]["vendor"] == "gimbald" and
+                            s["telemetry"] and s["telemetry"]["lat"] is not None,
+                            "device information and telemetry")
+        # No geoid_undulation_m configured: EGM96 at the aircraft (about -21 m there).
+        t = s["telemetry"]
+        self.assertAlmostEqual(t["geoid_undulation"], -21.0, delta=2.0)
+        self.assertAlmostEqual(t["alt"], t["alt_msl"] + t["geoid_undulation"], delta=0.01)
+        self.assertIsNone(s["stare"])
+
+        # Look away first, so the stare has somewhere to come from.
+        self.assertOk(client.request("position", gimbal="cam", pan=0, tilt=0))
+        self.wait_state(client, lambda s: abs(s["telemetry"]["tilt"]) < 1, "tilt 0")
+
+        # geopoint with stare: one stare_start on a subscriber once the device is on it.
+        sub = self.client(daemon)
+        self.assertOk(sub.request("subscribe", rate_hz=0.1, ttl_s=60))
+        self.addCleanup(sub.request, "unsubscribe")
+        self.assertOk(sub.request("geopoint", gimbal="cam", lat=POINT[0], lon=POINT[1],
+                                  alt=POINT[2], alt_ref="msl", stare=True))
+        event = sub.wait_message(gt.is_event("stare_start"), 10.0)
+        self.assertTrue(event, "no stare_start event")
+        self.assertEqual(event["gimbal"], "cam")
+        self.assertAlmostEqual(event["lat"], POINT[0], delta=1e-6)
+        self.assertAlmostEqual(event["lon"], POINT[1], delta=1e-6)
+        undulation = self.state(client)["telemetry"]["geoid_undulation"]
+        self.assertAlmostEqual(event["alt"], POINT[2] + undulation, delta=0.5)
+        slant = math.hypot(RADIUS, HEIGHT)
+        self.assertAlmostEqual(event["slant_range"], slant, delta=10)
+        self.assertTrue(event["gimbal_data_valid"])
+        self.assertEqual(self.state(client)["stare"]["system_time_ms"], event["system_time_ms"])
+        self.assertTrue(daemon.wait_log(lambda e: e.get("event") == "stare_start"))
+        # Once per command: none more while it stays on the point.
+        more = sub.collect(2.0, gt.is_event("stare_start"))
+        self.assertEqual(more, [])
+
+        # A stabilized position keeps its yaw from north while the aircraft turns
+        # (4.3 deg/s on its circle): YAW_IN_EARTH_FRAME | YAW_LOCK, the same set-point.
+        start = len(sim.rx())
+        self.assertOk(client.request("position", gimbal="cam", pan=90, tilt=-30,
+                                     stabilized=True))
+        heading = self.state(client)["telemetry"]["yaw"]
+        entry = sim.wait_rx(lambda e: e["kind"] == "gimbal_device_set_attitude", start=start)
+        self.assertIsNotNone(entry)
+        self.assertEqual(entry["message"]["flags"] & (16 | 32 | 64), 16 | 64)
+        held = entry["message"]["yaw"]
+        self.assertAlmostEqual(wrap180(held - heading - 90), 0, delta=2.0)
+        time.sleep(1.5)  # the device slews there
+        begin = time.monotonic()
+        first = self.state(client)
+        errors = []
+        while time.monotonic() - begin < 6:
+            s = self.state(client)
+            errors.append(abs(wrap180(earth_yaw(s) - held)))
+            time.sleep(0.1)
+        turned = abs(wrap180(s["telemetry"]["yaw"] - first["telemetry"]["yaw"]))
+        print("stabilized position: aircraft turned %.1f deg, yaw from north off by %.2f max"
+              % (turned, max(errors)))
+        self.assertGreater(turned, 20)
+        self.assertLess(max(errors), 1.0)
+        later = [e for e in sim.rx()[start:] if e["kind"] == "gimbal_device_set_attitude"]
+        self.assertGreater(len(later), 50)  # re-sent at 20 Hz
+        self.assertTrue(all(abs(wrap180(e["message"]["yaw"] - held)) < 1e-3 for e in later))
 
     def test_udp_device_state_position_and_stare(self):
         sim = self.start_sim("--protocol", "mavlink", "--udp", "0", tcp=False, want=("udp",))

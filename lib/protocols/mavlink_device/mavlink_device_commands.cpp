@@ -7,6 +7,7 @@
 
 #include "command/params.hpp"
 #include "command/path_request.hpp"
+#include "session/capabilities.hpp"
 
 namespace gimbal::protocols {
 
@@ -29,24 +30,33 @@ command::Error no_fix(std::string_view cmd) {
                                    "MAVLink device itself (configure `vehicle`)"};
 }
 
-command::Result<Hold> position(Params& p) {
+// The Orion's meaning of `stabilized` (contract section 4): held in the earth frame. Roll
+// and pitch are levelled by the device either way.
+command::Result<Hold> position(Params& p, const DeviceCommandContext& ctx) {
     const auto pan = p.number("pan", -180.0, 180.0, true);
     const auto tilt = p.number("tilt", -180.0, 180.0, true);
-    (void)p.boolean_or("stabilized", false);  // the device keeps roll and pitch level anyway
+    const bool stabilized = p.boolean_or("stabilized", false);
     (void)p.number_or("impulse_time_s", 0.0, 25.5, 0.0);
     p.reject_unknown();
     if (!p.ok()) return p.error();
-    return Hold{HoldAngles{*pan, *tilt}};
+    if (!stabilized) return Hold{HoldAngles{*pan, *tilt}};
+    // The pan becomes a yaw from north now: it needs the aircraft's heading.
+    if (!ctx.has_vehicle_fix)
+        return command::Error{code::unavailable,
+                              "position with stabilized true needs the vehicle's heading (the "
+                              "pan is held from north): configure `vehicle`, or send "
+                              "stabilized false"};
+    return Hold{HoldHeading{session::wrap180(ctx.vehicle_heading_deg + *pan), *tilt}};
 }
 
 command::Result<Hold> rate(Params& p, const DeviceCommandContext& ctx) {
     const auto pan = p.number("pan", -max_rate_dps, max_rate_dps, true);
     const auto tilt = p.number("tilt", -max_rate_dps, max_rate_dps, true);
-    (void)p.boolean_or("stabilized", true);
+    const bool stabilized = p.boolean_or("stabilized", true);
     const double impulse = p.number_or("impulse_time_s", 0.0, 25.5, 0.0);
     p.reject_unknown();
     if (!p.ok()) return p.error();
-    HoldRates r{*pan, *tilt, std::nullopt};
+    HoldRates r{*pan, *tilt, std::nullopt, stabilized};
     if (impulse > 0) r.until_s = ctx.now_s + impulse;
     return Hold{r};
 }
@@ -58,12 +68,18 @@ command::Result<Hold> geopoint(Params& p, const DeviceCommandContext& ctx) {
     static constexpr std::array<std::string_view, 3> refs{"wgs84", "msl", "terrain"};
     const auto ref = p.choice("alt_ref", refs, false).value_or("wgs84");
     const auto vel = p.numbers("vel_ned", 3, -max_velocity, max_velocity, false);
-    // The Orion's own geopoint options: a device has no stare or closure of its own.
-    (void)p.integer_or("joystick_range_m", 0, 65535, 0);
-    (void)p.boolean_or("stare", false);
+    const auto joystick_range = p.integer_or("joystick_range_m", 0, 65535, 0);
+    // stare: gimbald watches the device's line of sight (mavlink_device_stare.hpp). closure
+    // (the Orion's "drive at maximum performance"): a device always slews at its own
+    // maximum rate towards the set-point, so the flag changes nothing.
+    const bool stare = p.boolean_or("stare", false);
     (void)p.boolean_or("closure", false);
     p.reject_unknown();
     if (!p.ok()) return p.error();
+    if (joystick_range != 0)
+        return command::Error{code::bad_request,
+                              "joystick_range_m must be 0 for a MAVLink gimbal device: there is "
+                              "no joystick on the device's link"};
     if (ref == "terrain")
         return command::Error{code::unavailable,
                               "alt_ref 'terrain' needs gimbald's terrain section"};
@@ -72,6 +88,7 @@ command::Result<Hold> geopoint(Params& p, const DeviceCommandContext& ctx) {
     g.point = {*lat, *lon, ref == "msl" ? *alt + ctx.geoid_undulation_m : *alt};
     if (vel) g.vel_ned = {(*vel)[0], (*vel)[1], (*vel)[2]};
     g.since_s = ctx.now_s;
+    g.stare = stare;
     return Hold{g};
 }
 
@@ -102,7 +119,7 @@ bool is_device_command(std::string_view cmd) {
 command::Result<Hold> plan_device_command(std::string_view cmd, const json& request,
                                           const DeviceCommandContext& context) {
     Params p(request);
-    if (cmd == "position") return position(p);
+    if (cmd == "position") return position(p, context);
     if (cmd == "rate") return rate(p, context);
     if (cmd == "geopoint") return geopoint(p, context);
     if (cmd == "path") return path(p, context);

@@ -14,9 +14,10 @@
 namespace gimbal::protocols {
 
 struct DeviceCommandContext {
-    double now_s = 0;               // monotonic, for a rate's impulse and a path's timing
-    bool has_vehicle_fix = false;   // geopoint and path aim from the aircraft's position
-    double geoid_undulation_m = 0;  // alt_ref "msl"
+    double now_s = 0;                // monotonic, for a rate's impulse and a path's timing
+    bool has_vehicle_fix = false;    // geopoint and path aim from the aircraft's position
+    double vehicle_heading_deg = 0;  // with the fix: a stabilized position's yaw from north
+    double geoid_undulation_m = 0;   // alt_ref "msl"
 };
 
 bool is_device_command(std::string_view cmd);

@@ -26,8 +26,10 @@ struct MavlinkDeviceConfig {
     double hfov_deg = 60;
     double vfov_deg = 34;
     // The geoid's height above the ellipsoid where the aircraft flies (metres): the vehicle
-    // reports MSL altitudes, STATE and geometry use the ellipsoid.
-    double geoid_undulation_m = 0;
+    // reports MSL altitudes, STATE and geometry use the ellipsoid. A number is a fixed
+    // override; null (the default): the EGM96 geoid at the aircraft's position
+    // (MavlinkDeviceOptions::geoid), else 0.
+    std::optional<double> geoid_undulation_m;
     // The flat world where no terrain answers: this altitude above the ellipsoid (metres).
     double ground_alt_m = 0;
     // MAVLink 2 message signing on the device link (docs/mavlink-device.md).
@@ -43,7 +45,7 @@ void fields(V& v, MavlinkDeviceConfig& c) {
         m.integer("device_component_id", c.device_component_id, {1, 255});
         m.number("hfov_deg", c.hfov_deg, {0.1, 179.9});
         m.number("vfov_deg", c.vfov_deg, {0.1, 179.9});
-        m.number("geoid_undulation_m", c.geoid_undulation_m, {-200, 200});
+        m.optional_number("geoid_undulation_m", c.geoid_undulation_m, {-200, 200});
         m.number("ground_alt_m", c.ground_alt_m, {-2000, 10000});
         m.optional_string("signing_key_file", c.signing_key_file);
     });

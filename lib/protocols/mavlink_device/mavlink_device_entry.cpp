@@ -14,10 +14,15 @@ namespace {
 
 // The catalogue commands a MAVLink gimbal device plans (mavlink_device_commands.cpp).
 constexpr PlannedCommand commands[] = {
-    {"geopoint", "GIMBAL_DEVICE_SET_ATTITUDE (284), recomputed at 20 Hz"},
+    {"geopoint",
+     "GIMBAL_DEVICE_SET_ATTITUDE (284), recomputed at 20 Hz; `stare`: a `stare_start` event "
+     "once on the point; `joystick_range_m` must be 0"},
     {"path", "GIMBAL_DEVICE_SET_ATTITUDE (284) along the path, at 20 Hz"},
-    {"position", "GIMBAL_DEVICE_SET_ATTITUDE (284), yaw in the vehicle frame"},
-    {"rate", "GIMBAL_DEVICE_SET_ATTITUDE (284) with angular velocities"},
+    {"position",
+     "GIMBAL_DEVICE_SET_ATTITUDE (284), yaw in the vehicle frame; `stabilized`: held from "
+     "north (heading + pan)"},
+    {"rate",
+     "GIMBAL_DEVICE_SET_ATTITUDE (284) with angular velocities, from north when `stabilized`"},
 };
 
 std::unique_ptr<session::Protocol> make_session(const SessionSettings& s,
@@ -26,6 +31,7 @@ std::unique_ptr<session::Protocol> make_session(const SessionSettings& s,
     options.stale_after_s = s.stale_after_s;
     options.terrain = s.terrain;
     options.unix_clock = s.unix_clock;
+    options.geoid = s.geoid_undulation;
     if (options.signing_key_file) {
         // config.cpp has checked the file; it may have changed since.
         auto key = load_signing_key(*options.signing_key_file, s.read_secret);
@@ -46,6 +52,12 @@ nlohmann::json read_config(config::Fields& gimbal, const ConfigContext& context)
     return config::write(read);
 }
 
+// A configured geoid_undulation_m is a fixed override; without it the session asks the
+// geoid at the aircraft's position.
+bool needs_geoid(const nlohmann::json& gimbal) {
+    return !read_mavlink_device_options(gimbal).geoid_undulation_m.has_value();
+}
+
 std::size_t frame_size(const ScannedFrame& f) {
     return f.bytes.size();
 }
@@ -62,6 +74,7 @@ Entry make_entry() {
     e.read_config = read_config;
     e.make_session = make_session;
     e.make_feeder = make_mavlink_device_feeder;
+    e.needs_geoid = needs_geoid;
     e.make_splitter = [] {
         return std::unique_ptr<framing::StreamSplitter>(
             std::make_unique<framing::FramerSplitter<MavlinkFrameScanner, frame_size>>());

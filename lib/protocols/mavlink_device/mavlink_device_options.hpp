@@ -17,6 +17,9 @@ namespace gimbal::protocols {
 struct MavlinkDeviceOptions : MavlinkDeviceConfig {
     double stale_after_s = 1.0;
     geo::Surface* terrain = nullptr;  // telemetry's footprint and ground (SessionSettings)
+    // The EGM96 undulation at a point (SessionSettings::geoid_undulation), asked at the
+    // aircraft's position when geoid_undulation_m is not configured; empty: none (0).
+    std::function<std::optional<double>(double lat_deg, double lon_deg)> geoid;
     // The signing key once read from signing_key_file (make_session), and the UTC clock the
     // signatures carry.
     std::optional<mavlink::SigningKey> signing_key;

@@ -2,6 +2,7 @@
 
 #include "protocols/mavlink_device/mavlink_device_capabilities.hpp"
 #include "protocols/mavlink_device/mavlink_device_commands.hpp"
+#include "protocols/mavlink_device/mavlink_device_stare.hpp"
 
 namespace gimbal::protocols {
 
@@ -27,14 +28,16 @@ MavlinkDeviceProtocol::MavlinkDeviceProtocol(const MavlinkDeviceOptions& options
       sender_(options.system_id, options.component_id, options.signing_key) {}
 
 void MavlinkDeviceProtocol::receive(std::span<const std::uint8_t> bytes, double now_s,
-                                    std::vector<state::Event>&,
+                                    std::vector<state::Event>& events,
                                     std::vector<session::Bytes>& replies) {
     framer_.push(bytes, [&](const mavlink::Message& m) {
         if (!signatures_.accept(m, unix_now())) return;  // unsigned, forged or replayed
         const bool had_information = state_.has_information();
         state_.apply(m, now_s);
         if (!had_information && state_.has_information())
-            steering_.set_earth_frame(state_.earth_frame_supported());
+            steering_.set_north_yaw(north_yaw_of(state_.cap_flags()));
+        if (std::holds_alternative<mavlink::GimbalDeviceAttitudeStatus>(m.payload))
+            check_stare(now_s, events);
     });
     // Without a vehicle feed there are no steering ticks: the device's own reports pace the
     // heartbeat and the information request then.
@@ -78,19 +81,30 @@ std::vector<session::Bytes> MavlinkDeviceProtocol::on_connect() {
 }
 
 std::optional<mavlink::GimbalDeviceSetAttitude> MavlinkDeviceProtocol::set_attitude(double now_s) {
-    const auto& fix = state_.vehicle();
-    std::optional<geo::Lla> camera;
-    if (fix)
-        camera = geo::Lla{fix->lat_deg, fix->lon_deg,
-                          geo::ellipsoid_from_msl(fix->alt_msl_m, options_.geoid_undulation_m)};
     std::optional<Aim> aim;
     if (const auto los = state_.line_of_sight()) aim = Aim{*los};
-    auto m = steering_.command(fix, camera, aim, now_s);
+    auto m = steering_.command(state_.vehicle(), state_.camera(), aim, now_s);
     if (!m) return std::nullopt;
     m->target_system = state_.device_system().value_or(0);
     m->target_component =
         state_.device_system() ? state_.device_component() : options_.device_component_id;
     return m;
+}
+
+void MavlinkDeviceProtocol::check_stare(double now_s, std::vector<state::Event>& events) {
+    auto* g = std::get_if<HoldGeopoint>(&steering_.held());
+    if (!g || !g->stare || g->stared) return;
+    const auto camera = state_.camera();
+    const auto los = state_.line_of_sight();
+    const auto& attitude = state_.attitude();
+    if (!camera || !los || !attitude) return;
+    auto fields = stare_start(
+        geopoint_at(*g, now_s),
+        StareView{*camera, *los, state_.pan_deg(), attitude->pitch_deg, attitude->time_boot_ms});
+    if (!fields) return;
+    g->stared = true;
+    state_.set_stare(*fields);
+    events.push_back(state::Event{"stare_start", std::move(*fields)});
 }
 
 void MavlinkDeviceProtocol::steer(const vehicle::VehicleState& vehicle, double vehicle_now_s,
@@ -136,7 +150,8 @@ std::optional<command::Error> MavlinkDeviceProtocol::plan(std::string_view cmd,
     DeviceCommandContext ctx;
     ctx.now_s = now.mono_s;
     ctx.has_vehicle_fix = state_.vehicle().has_value();
-    ctx.geoid_undulation_m = options_.geoid_undulation_m;
+    if (ctx.has_vehicle_fix) ctx.vehicle_heading_deg = state_.vehicle()->yaw_deg;
+    ctx.geoid_undulation_m = state_.geoid_undulation();
     auto hold = plan_device_command(cmd, request, ctx);
     if (!hold) return hold.error();
     steering_.hold(std::move(hold).value());

@@ -37,12 +37,15 @@ class MavlinkDeviceProtocol final : public session::Protocol {
                                        const session::Now& now, command::Plan& plan) override;
 
     const MavlinkDeviceState& state() const { return state_; }
+    const MavlinkDeviceSteering& steering() const { return steering_; }
 
   private:
     session::Bytes request_information();
     // The heartbeat (1 Hz) and, until it arrives, the information request (every 2 s).
     void housekeeping(double now_s, std::vector<session::Bytes>& out);
     std::optional<mavlink::GimbalDeviceSetAttitude> set_attitude(double now_s);
+    // A held geopoint with stare: stare_start once the device's line of sight is on it.
+    void check_stare(double now_s, std::vector<state::Event>& events);
     double unix_now() const { return options_.unix_clock ? options_.unix_clock() : 0.0; }
     session::Bytes frame(const mavlink::Payload& payload) {
         return sender_.frame(payload, unix_now());

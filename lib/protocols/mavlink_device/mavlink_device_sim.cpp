@@ -60,6 +60,10 @@ double MavlinkDeviceSim::vehicle_yaw_deg(double now_s) const {
     return session::wrap180(vehicle_yaw_ + vehicle_yaw_rate_ * dt);
 }
 
+double MavlinkDeviceSim::vehicle_yaw_rate_at(double now_s) const {
+    return now_s - vehicle_yaw_s_ <= max_extrapolation_s ? vehicle_yaw_rate_ : 0.0;
+}
+
 void MavlinkDeviceSim::receive(std::span<const std::uint8_t> bytes, double now_s) {
     framer_.push(bytes, [&](const mavlink::Message& m) {
         if (!signatures_.accept(m, options_.unix_time_s + now_s)) return;
@@ -136,7 +140,10 @@ void MavlinkDeviceSim::step(double dt, double now_s) {
         const double p = pitch_ + limit(target_->pitch_rate) * dt;
         pitch_ = std::clamp(p, options_.pitch_min_deg, options_.pitch_max_deg);
         pitch_limit = pitch_ != p;
-        yaw_ += limit(target_->yaw_rate) * dt;
+        // A yaw rate from north turns the axis against the aircraft's own turn.
+        const double yaw_rate =
+            target_->yaw_rate - (target_->earth ? vehicle_yaw_rate_at(now_s) : 0.0);
+        yaw_ += limit(yaw_rate) * dt;
     }
     yaw_ = clamp_yaw(yaw_, yaw_limit);
     if (dt > 0) {

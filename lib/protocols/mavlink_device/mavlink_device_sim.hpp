@@ -61,6 +61,8 @@ class MavlinkDeviceSim final : public sim::Device {
     void send_status(double now_s, std::vector<std::uint8_t>& out);
     void send_information(std::vector<std::uint8_t>& out);
     bool yaw_continuous() const;
+    // The vehicle's turn rate while its yaw is fresh enough to extrapolate, else 0.
+    double vehicle_yaw_rate_at(double now_s) const;
     double clamp_yaw(double yaw, bool& at_limit) const;
 
     std::vector<std::uint8_t> make_frame(const mavlink::Payload& payload) {

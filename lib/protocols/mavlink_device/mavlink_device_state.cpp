@@ -85,6 +85,7 @@ void MavlinkDeviceState::on_attitude(const mavlink::GimbalDeviceAttitudeStatus& 
                               radians_per_second(m.angular_velocity_y),
                               radians_per_second(m.angular_velocity_z)};
     a.failure_flags = m.failure_flags;
+    a.time_boot_ms = m.time_boot_ms;
     a.received_s = now_s;
     attitude_ = a;
     ++attitudes_;
@@ -94,6 +95,20 @@ void MavlinkDeviceState::on_attitude(const mavlink::GimbalDeviceAttitudeStatus& 
 
 void MavlinkDeviceState::on_information(const mavlink::GimbalDeviceInformation& m, double) {
     information_ = m;
+}
+
+void MavlinkDeviceState::set_vehicle(const std::optional<VehicleFix>& fix) {
+    vehicle_ = fix;
+    if (options_.geoid_undulation_m)
+        geoid_undulation_m_ = *options_.geoid_undulation_m;
+    else if (fix && options_.geoid)
+        geoid_undulation_m_ = options_.geoid(fix->lat_deg, fix->lon_deg).value_or(0.0);
+}
+
+std::optional<geo::Lla> MavlinkDeviceState::camera() const {
+    if (!vehicle_) return std::nullopt;
+    return geo::Lla{vehicle_->lat_deg, vehicle_->lon_deg,
+                    geo::ellipsoid_from_msl(vehicle_->alt_msl_m, geoid_undulation_m_)};
 }
 
 bool MavlinkDeviceState::earth_frame_supported() const {
@@ -134,13 +149,12 @@ json MavlinkDeviceState::telemetry_json() const {
         return t;
     }
     const VehicleFix& v = *vehicle_;
-    const geo::Lla camera_at{v.lat_deg, v.lon_deg,
-                             geo::ellipsoid_from_msl(v.alt_msl_m, options_.geoid_undulation_m)};
+    const geo::Lla camera_at = *camera();
     t["lat"] = latlon_deg(camera_at.lat_deg);
     t["lon"] = latlon_deg(camera_at.lon_deg);
     t["alt"] = metres(camera_at.alt_m);
     t["alt_msl"] = metres(v.alt_msl_m);
-    t["geoid_undulation"] = metres(options_.geoid_undulation_m);
+    t["geoid_undulation"] = metres(geoid_undulation_m_);
     t["roll"] = angle_deg(v.roll_deg);
     t["pitch"] = angle_deg(v.pitch_deg);
     t["yaw"] = angle_deg(v.yaw_deg);
@@ -206,7 +220,7 @@ void MavlinkDeviceState::tick(double now_s, std::vector<state::Event>& events) {
 }
 
 json MavlinkDeviceState::snapshot(double now_s) const {
-    return {{"device", device_json(now_s)}, {"telemetry", telemetry_}};
+    return {{"device", device_json(now_s)}, {"telemetry", telemetry_}, {"stare", stare_}};
 }
 
 }  // namespace gimbal::protocols

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "geo/attitude.hpp"
+#include "geo/wgs84.hpp"
 #include "mavlink/messages.hpp"
 #include "protocols/mavlink_device/mavlink_device_options.hpp"
 #include "protocols/mavlink_device/mavlink_device_wire.hpp"
@@ -25,6 +26,7 @@ struct DeviceAttitude {
     bool earth_frame = false;  // yaw from north, else from the vehicle's heading
     std::array<double, 3> angular_velocity_dps{};
     std::uint32_t failure_flags = 0;
+    std::uint32_t time_boot_ms = 0;  // the device's clock at the report
     double received_s = 0;
 };
 
@@ -34,9 +36,16 @@ class MavlinkDeviceState {
 
     // One decoded message from the device link; false when it is not the device's.
     bool apply(const mavlink::Message& message, double now_s);
-    // The vehicle's latest fix (nullopt: lost); telemetry follows at the next attitude.
-    void set_vehicle(const std::optional<VehicleFix>& fix) { vehicle_ = fix; }
+    // The vehicle's latest fix (nullopt: lost); telemetry follows at the next attitude. The
+    // geoid undulation follows the fix: the configured override, else the geoid model at
+    // the aircraft's position, else 0 (kept while the fix is lost).
+    void set_vehicle(const std::optional<VehicleFix>& fix);
     const std::optional<VehicleFix>& vehicle() const { return vehicle_; }
+    double geoid_undulation() const { return geoid_undulation_m_; }
+    // The camera's position above the ellipsoid, from the fix.
+    std::optional<geo::Lla> camera() const;
+    // The latest stare_start's fields: STATE `stare`, as an Orion's latest StareStart.
+    void set_stare(nlohmann::json fields) { stare_ = std::move(fields); }
     // Appends a `lost` event when the attitude goes stale (once per loss).
     void tick(double now_s, std::vector<state::Event>& events);
 
@@ -48,6 +57,8 @@ class MavlinkDeviceState {
     bool has_information() const { return information_.has_value(); }
     // GIMBAL_DEVICE_CAP_FLAGS_SUPPORTS_YAW_IN_EARTH_FRAME, from the information.
     bool earth_frame_supported() const;
+    // GIMBAL_DEVICE_CAP_FLAGS, from the information (0 before it).
+    std::uint32_t cap_flags() const { return information_ ? information_->cap_flags : 0; }
     // The device's MAVLink address (from its messages), once heard.
     std::optional<std::uint8_t> device_system() const { return device_system_; }
     std::uint8_t device_component() const { return device_component_; }
@@ -65,6 +76,8 @@ class MavlinkDeviceState {
 
     MavlinkDeviceOptions options_;
     std::optional<VehicleFix> vehicle_;
+    double geoid_undulation_m_ = 0;
+    nlohmann::json stare_ = nullptr;
     std::optional<DeviceAttitude> attitude_;
     std::optional<mavlink::GimbalDeviceInformation> information_;
     std::optional<std::uint8_t> device_system_;

@@ -13,6 +13,9 @@ constexpr double deg_to_rad = 3.14159265358979323846 / 180.0;
 // The look-ahead of the line of sight's rate (feed-forward for the device between updates).
 constexpr double rate_dt_s = 0.05;
 constexpr std::uint16_t locks = device_flags::roll_lock | device_flags::pitch_lock;
+// GIMBAL_DEVICE_CAP_FLAGS.
+constexpr std::uint32_t cap_has_yaw_lock = 1024;
+constexpr std::uint32_t cap_yaw_in_earth_frame = 4096;
 
 mavlink::GimbalDeviceSetAttitude attitude(double roll_deg, double pitch_deg, double yaw_deg,
                                           std::uint16_t frame_flag) {
@@ -30,7 +33,31 @@ geo::Lla moved(const geo::Lla& p, const std::array<double, 3>& v_ned, double dt)
     return geo::ecef_to_lla(geo::lla_to_ecef(p) + d);
 }
 
+// The frame flags of a stabilized (earth-frame) set-point: YAW_LOCK asks the device to keep
+// the heading between set-points, the frame flag says how the yaw is given.
+std::uint16_t north_flags(NorthYaw how) {
+    switch (how) {
+        case NorthYaw::earth_frame:
+            return device_flags::yaw_lock | device_flags::yaw_in_earth_frame;
+        case NorthYaw::yaw_lock:
+            return device_flags::yaw_lock;
+        case NorthYaw::from_heading:
+            break;
+    }
+    return device_flags::yaw_in_vehicle_frame;
+}
+
 }  // namespace
+
+NorthYaw north_yaw_of(std::uint32_t cap_flags) {
+    if ((cap_flags & cap_yaw_in_earth_frame) != 0) return NorthYaw::earth_frame;
+    if ((cap_flags & cap_has_yaw_lock) != 0) return NorthYaw::yaw_lock;
+    return NorthYaw::from_heading;
+}
+
+geo::Lla geopoint_at(const HoldGeopoint& g, double now_s) {
+    return moved(g.point, g.vel_ned, now_s - g.since_s);
+}
 
 mavlink::GimbalDeviceSetAttitude vehicle_frame_attitude(double pan_deg, double tilt_deg) {
     return attitude(0, tilt_deg, pan_deg, device_flags::yaw_in_vehicle_frame);
@@ -41,21 +68,14 @@ std::optional<mavlink::GimbalDeviceSetAttitude> MavlinkDeviceSteering::command(
     const std::optional<Aim>& aim, double now_s) {
     if (const auto* a = std::get_if<HoldAngles>(&hold_))
         return vehicle_frame_attitude(a->pan_deg, a->tilt_deg);
-    if (const auto* r = std::get_if<HoldRates>(&hold_)) {
-        mavlink::GimbalDeviceSetAttitude m;
-        m.q = {mavlink::nan_f, mavlink::nan_f, mavlink::nan_f, mavlink::nan_f};
-        const bool running = !r->until_s || now_s < *r->until_s;
-        m.angular_velocity_y = static_cast<float>(running ? r->tilt_dps * deg_to_rad : 0.0);
-        m.angular_velocity_z = static_cast<float>(running ? r->pan_dps * deg_to_rad : 0.0);
-        m.flags = static_cast<std::uint16_t>(locks | device_flags::yaw_in_vehicle_frame);
-        return m;
-    }
+    if (const auto* h = std::get_if<HoldHeading>(&hold_)) return heading(*h, fix);
+    if (const auto* r = std::get_if<HoldRates>(&hold_)) return rates(*r, fix, now_s);
     if (!fix || !camera) return std::nullopt;
 
     geo::Lla target;
     std::array<double, 3> target_vel{};
     if (auto* g = std::get_if<HoldGeopoint>(&hold_)) {
-        target = moved(g->point, g->vel_ned, now_s - g->since_s);
+        target = geopoint_at(*g, now_s);
         target_vel = g->vel_ned;
     } else if (auto* p = std::get_if<HoldPath>(&hold_)) {
         const geo::Vec3 at = geo::lla_to_ecef(*camera);
@@ -83,7 +103,7 @@ std::optional<mavlink::GimbalDeviceSetAttitude> MavlinkDeviceSteering::command(
     const double pitch_rate = (ahead.elevation_deg - look.elevation_deg) / rate_dt_s;
 
     mavlink::GimbalDeviceSetAttitude m;
-    if (earth_frame_) {
+    if (north_yaw_ == NorthYaw::earth_frame) {
         m = attitude(0, look.elevation_deg, look.azimuth_deg, device_flags::yaw_in_earth_frame);
         m.angular_velocity_z = static_cast<float>(yaw_rate * deg_to_rad);
     } else {
@@ -92,6 +112,39 @@ std::optional<mavlink::GimbalDeviceSetAttitude> MavlinkDeviceSteering::command(
         m.angular_velocity_z = static_cast<float>((yaw_rate - fix->yaw_rate_dps) * deg_to_rad);
     }
     m.angular_velocity_y = static_cast<float>(pitch_rate * deg_to_rad);
+    return m;
+}
+
+std::optional<mavlink::GimbalDeviceSetAttitude> MavlinkDeviceSteering::heading(
+    const HoldHeading& h, const std::optional<VehicleFix>& fix) const {
+    if (north_yaw_ != NorthYaw::from_heading)
+        return attitude(0, h.tilt_deg, h.yaw_deg, north_flags(north_yaw_));
+    // The device takes only yaw from the nose: the heading's, now, and the aircraft's turn
+    // against it as feed-forward so the device holds between set-points.
+    if (!fix) return std::nullopt;
+    auto m = attitude(0, h.tilt_deg, session::wrap180(h.yaw_deg - fix->yaw_deg),
+                      device_flags::yaw_in_vehicle_frame);
+    m.angular_velocity_z = static_cast<float>(-fix->yaw_rate_dps * deg_to_rad);
+    return m;
+}
+
+mavlink::GimbalDeviceSetAttitude MavlinkDeviceSteering::rates(const HoldRates& r,
+                                                              const std::optional<VehicleFix>& fix,
+                                                              double now_s) const {
+    mavlink::GimbalDeviceSetAttitude m;
+    m.q = {mavlink::nan_f, mavlink::nan_f, mavlink::nan_f, mavlink::nan_f};
+    const bool running = !r.until_s || now_s < *r.until_s;
+    double pan_dps = running ? r.pan_dps : 0.0;
+    m.angular_velocity_y = static_cast<float>(running ? r.tilt_dps * deg_to_rad : 0.0);
+    std::uint16_t frame = device_flags::yaw_in_vehicle_frame;
+    if (r.earth) {
+        frame = north_flags(north_yaw_);
+        // A device that integrates only from the nose is given the aircraft's turn against
+        // the rate (without a fix it integrates from the nose).
+        if (north_yaw_ == NorthYaw::from_heading && fix) pan_dps -= fix->yaw_rate_dps;
+    }
+    m.angular_velocity_z = static_cast<float>(pan_dps * deg_to_rad);
+    m.flags = static_cast<std::uint16_t>(locks | frame);
     return m;
 }
 

@@ -762,6 +762,7 @@ TEST_CASE("a MAVLink gimbal device: its mavlink section and a UDP link", "[confi
     CHECK(device.hfov_deg == 45);
     CHECK(device.vfov_deg == 34);
     CHECK(device.device_component_id == 155);
+    CHECK_FALSE(device.geoid_undulation_m);  // null: EGM96 where the aircraft flies
     const auto& udp = std::get<UdpLink>(g.link);
     CHECK(udp.host == "192.168.1.30");
     CHECK(udp.port == 14570);
@@ -772,6 +773,7 @@ TEST_CASE("a MAVLink gimbal device: its mavlink section and a UDP link", "[confi
     const json written = to_json(result.config);
     const json& cam = written["gimbals"][3];
     CHECK(cam["mavlink"]["system_id"] == 1);
+    CHECK(cam["mavlink"]["geoid_undulation_m"].is_null());
     CHECK(cam["link"]["local_port"].is_null());
     CHECK(cam.find("feed") == cam.end());
     const auto again = parse_config(written.dump());
@@ -789,6 +791,18 @@ TEST_CASE("a MAVLink gimbal device: its mavlink section and a UDP link", "[confi
           std::vector<std::string>{"gimbals[3].link.local_port: must be between 1 and 65535"});
     CHECK(bad([](json& x) { x["mavlink"]["hfov_deg"] = 180; }) ==
           std::vector<std::string>{"gimbals[3].mavlink.hfov_deg: must be between 0.1 and 179.9"});
+    CHECK(bad([](json& x) { x["mavlink"]["geoid_undulation_m"] = nullptr; }).empty());
+    CHECK(bad([](json& x) { x["mavlink"]["geoid_undulation_m"] = "egm96"; }) ==
+          std::vector<std::string>{
+              "gimbals[3].mavlink.geoid_undulation_m: must be a number between -200 and 200"});
+    json fixed = config;
+    fixed["gimbals"][3]["mavlink"]["geoid_undulation_m"] = -19.5;
+    const auto overridden = parse_config(fixed.dump());
+    REQUIRE(overridden.ok());
+    CHECK(gimbal::config::read_checked<MavlinkDeviceConfig>(
+              overridden.config.gimbals.back().protocol_config)
+              .geoid_undulation_m == -19.5);
+    CHECK(to_json(overridden.config)["gimbals"][3]["mavlink"]["geoid_undulation_m"] == -19.5);
     CHECK(bad([](json& x) { x["feed"] = "in2"; }) ==
           std::vector<std::string>{"gimbals[3].feed: unknown key"});
 }
