@@ -37,7 +37,7 @@ using gimbal::protocols::to_string;
 
 struct GimbalConfig {
     std::string name;
-    Protocol protocol = Protocol::orion;
+    Protocol protocol = gimbal::protocols::all_protocol_ids.front();
     Link link = SimLink{};
     // The keys its protocol owns (`feed`, `viewpro`, `mavlink`...), declared in
     // lib/protocols/<protocol>/<protocol>_config.hpp and read through the registry: every

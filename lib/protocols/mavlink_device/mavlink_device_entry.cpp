@@ -17,7 +17,9 @@ constexpr PlannedCommand commands[] = {
     {"geopoint",
      "GIMBAL_DEVICE_SET_ATTITUDE (284), recomputed at 20 Hz; `stare`: a `stare_start` event "
      "once on the point; `joystick_range_m` must be 0"},
-    {"path", "GIMBAL_DEVICE_SET_ATTITUDE (284) along the path, at 20 Hz"},
+    {"path",
+     "GIMBAL_DEVICE_SET_ATTITUDE (284) along the path, at 20 Hz; step-stare: a `stare_start` "
+     "event at each stare"},
     {"position",
      "GIMBAL_DEVICE_SET_ATTITUDE (284), yaw in the vehicle frame; `stabilized`: held from "
      "north (heading + pan)"},

@@ -92,6 +92,18 @@ std::optional<mavlink::GimbalDeviceSetAttitude> MavlinkDeviceProtocol::set_attit
 }
 
 void MavlinkDeviceProtocol::check_stare(double now_s, std::vector<state::Event>& events) {
+    if (auto begun = steering_.take_stare_begin()) {
+        std::optional<StareView> view;
+        const auto camera = state_.camera();
+        const auto los = state_.line_of_sight();
+        if (const auto& attitude = state_.attitude(); camera && los && attitude)
+            view = StareView{*camera, *los, state_.pan_deg(), attitude->pitch_deg,
+                             attitude->time_boot_ms};
+        auto fields = path_stare_start(*begun, view);
+        state_.set_stare(fields);
+        events.push_back(state::Event{"stare_start", std::move(fields)});
+        return;
+    }
     auto* g = std::get_if<HoldGeopoint>(&steering_.held());
     if (!g || !g->stare || g->stared) return;
     const auto camera = state_.camera();

@@ -23,9 +23,9 @@ double pointing_error_deg(const geo::Lla& point, const geo::Lla& camera,
     return std::acos(std::clamp(geo::dot(want, have) / n, -1.0, 1.0)) * 180.0 / std::numbers::pi;
 }
 
-std::optional<json> stare_start(const geo::Lla& point, const StareView& view) {
-    if (pointing_error_deg(point, view.camera, view.line_of_sight) > stare_tolerance_deg)
-        return std::nullopt;
+namespace {
+
+json stare_fields(const geo::Lla& point, const StareView& view) {
     const auto& q = view.line_of_sight;
     const double range = geo::norm(geo::lla_to_ecef(point) - geo::lla_to_ecef(view.camera));
     return json{{"system_time_ms", view.time_boot_ms},
@@ -44,6 +44,33 @@ std::optional<json> stare_start(const geo::Lla& point, const StareView& view) {
                 {"pan", view.pan_deg ? json(angle_deg(*view.pan_deg)) : json(nullptr)},
                 {"tilt", angle_deg(view.tilt_deg)},
                 {"slant_range", metres(range)}};
+}
+
+}  // namespace
+
+std::optional<json> stare_start(const geo::Lla& point, const StareView& view) {
+    if (pointing_error_deg(point, view.camera, view.line_of_sight) > stare_tolerance_deg)
+        return std::nullopt;
+    return stare_fields(point, view);
+}
+
+json path_stare_start(const sim::StareBegin& begun, const std::optional<StareView>& view) {
+    const geo::Lla point = geo::ecef_to_lla(begun.point_ecef);
+    json fields = view ? stare_fields(point, *view)
+                       : json{{"system_time_ms", 0},
+                              {"gimbal_data_valid", false},
+                              {"lat", latlon_deg(point.lat_deg)},
+                              {"lon", latlon_deg(point.lon_deg)},
+                              {"alt", metres(point.alt_m)}};
+    fields["along_track_stare"] = begun.along_track;
+    fields["stare_started_by_time"] = begun.started_by_time;
+    fields["prev_stare_terminated_by_time"] = begun.prev_terminated_by_time;
+    fields["max_stare_time_s"] = state::round_decimals(begun.max_stare_time_s, 2);
+    fields["prev_stare_time_s"] = state::round_decimals(begun.prev_stare_time_s, 2);
+    fields["stare_load"] = state::round_decimals(begun.stare_load, 3);
+    fields["cross_stare_angle"] = angle_deg(begun.cross_angle * 180.0 / std::numbers::pi);
+    fields["slant_range"] = metres(begun.slant_range_m);
+    return fields;
 }
 
 }  // namespace gimbal::protocols

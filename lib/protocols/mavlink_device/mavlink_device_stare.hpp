@@ -10,6 +10,7 @@
 
 #include "geo/attitude.hpp"
 #include "geo/wgs84.hpp"
+#include "sim/path_follower.hpp"
 
 namespace gimbal::protocols {
 
@@ -30,6 +31,11 @@ struct StareView {
 // point, the gimbal's position, attitude and angles, and the slant range; system_time_ms is
 // the device's time_boot_ms of the report.
 std::optional<nlohmann::json> stare_start(const geo::Lla& point, const StareView& view);
+
+// A `path` with step-stare (sim::PathFollower, the Orion's semantics) began a stare at a
+// station: the stare_start fields with the stare's own flags and timings. `view` is the
+// device's latest report (nullopt: gimbal_data_valid false, only the desired point).
+nlohmann::json path_stare_start(const sim::StareBegin& begun, const std::optional<StareView>& view);
 
 // The angle between the line of sight and the direction to `point` (degrees).
 double pointing_error_deg(const geo::Lla& point, const geo::Lla& camera,

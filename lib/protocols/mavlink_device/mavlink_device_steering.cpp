@@ -85,7 +85,8 @@ std::optional<mavlink::GimbalDeviceSetAttitude> MavlinkDeviceSteering::command(
                 geo::ned_to_ecef(geo::rotate(aim->camera_to_ned, geo::Vec3{1, 0, 0}), *camera);
             error = sim::angle_between(los, p->follower->look_point() - at);
         }
-        p->follower->step(std::max(0.0, now_s - p->last_s), at, error);
+        if (auto begun = p->follower->step(std::max(0.0, now_s - p->last_s), at, error))
+            stare_began_ = begun;
         p->last_s = now_s;
         target = geo::ecef_to_lla(p->follower->look_point());
     } else {

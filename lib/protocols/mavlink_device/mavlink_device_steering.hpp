@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -91,6 +92,8 @@ class MavlinkDeviceSteering {
                                                             const std::optional<geo::Lla>& camera,
                                                             const std::optional<Aim>& aim,
                                                             double now_s);
+    // The stare a held path's step-stare began at the latest command(), once (stare_start).
+    std::optional<sim::StareBegin> take_stare_begin() { return std::exchange(stare_began_, {}); }
 
   private:
     std::optional<mavlink::GimbalDeviceSetAttitude> heading(
@@ -99,6 +102,7 @@ class MavlinkDeviceSteering {
                                            double now_s) const;
 
     Hold hold_;
+    std::optional<sim::StareBegin> stare_began_;
     NorthYaw north_yaw_ = NorthYaw::from_heading;
 };
 

@@ -445,3 +445,57 @@ TEST_CASE("geoid_undulation_m: null (the default) asks the geoid, a number overr
     session->receive(device_frame(status(0, -45, 0, 32)), 1.0, events, replies);
     CHECK(session->snapshot(1.0)["telemetry"]["geoid_undulation"].get<double>() == Approx(12.5));
 }
+
+TEST_CASE("path with step-stare: a stare_start at each station, with the Orion's flags") {
+    // The aircraft flies north at 40 m/s, 500 m up; the path runs 1.5 km along the ground to
+    // its east. Along-track steps of 5 degrees: the follower slews to a station, stares (its
+    // stare time runs out: a device has no StareAck) and steps on.
+    MavlinkDeviceProtocol p(MavlinkDeviceOptions{});
+    protocols::MavlinkDeviceSim sim(protocols::MavlinkDeviceSimOptions{});
+    vehicle::VehicleState v(vehicle_fixtures::options());
+    connect(p, sim);
+    const auto flying = [](double t) {
+        Aircraft a;
+        a.lat = 45.7 + 40 * t / 111'000.0;
+        a.yaw = 0;
+        a.vn = 40;
+        return a;
+    };
+    report(v, flying(0.1), 0.1);
+    steered(p, v, 0.1);
+    const json request = {{"points",
+                           {{{"lat", 45.7}, {"lon", -121.49}, {"alt", 0}},
+                            {{"lat", 45.7135}, {"lon", -121.49}, {"alt", 0}}}},
+                          {"along_step_deg", 5}};
+    command::Plan plan;
+    REQUIRE_FALSE(p.plan("path", request, {0.1, 1.79e9}, plan));
+
+    std::vector<json> stares;
+    std::vector<double> at;
+    fly(p, sim, v, 0.1, 20.0, flying, [&](double t, const std::vector<state::Event>& events) {
+        for (const auto& e : events) {
+            if (e.kind != "stare_start") continue;
+            stares.push_back(e.fields);
+            at.push_back(t);
+        }
+    });
+    INFO(stares.size() << " stares");
+    REQUIRE(stares.size() >= 3);
+    for (std::size_t i = 0; i < stares.size(); ++i) {
+        const auto& s = stares[i];
+        INFO(s.dump());
+        CHECK(s["along_track_stare"] == true);
+        CHECK(s["gimbal_data_valid"] == true);
+        CHECK(s["lon"].get<double>() == Approx(-121.49).margin(1e-6));
+        CHECK(s["lat"].get<double>() >= 45.7 - 1e-6);
+        CHECK(s["lat"].get<double>() <= 45.7135 + 1e-6);
+        CHECK(s["max_stare_time_s"].get<double>() > 0);
+        CHECK(s["slant_range"].get<double>() > 500);
+        if (i > 0) {
+            CHECK(s["lat"].get<double>() > stares[i - 1]["lat"].get<double>());  // stepping on
+            CHECK(at[i] - at[i - 1] >= 0.9 * s["prev_stare_time_s"].get<double>());
+        }
+    }
+    // STATE `stare` holds the latest.
+    CHECK(p.snapshot(20.0)["stare"] == stares.back());
+}
