@@ -10,7 +10,8 @@ goes quiet, and the stare target: while the aircraft circles a geopoint, the lin
 stays within 0.5 degrees of it at p95 after the first 2 s; a geopoint with `stare` gives one
 `stare_start` event on a subscriber once the device is on the point, a stabilized position
 keeps its yaw from north while the aircraft turns, and the geoid undulation is EGM96's
-where none is configured. And towards ground stations: a
+where none is configured; a path's step-stare gives a stare_start at each stare, and a
+stare_ack echoing one ends it at once. And towards ground stations: a
 ground station (tests/integration/mavlinktest.py) on gimbald's own MAVLink gimbal manager
 steers the device with DO_GIMBAL_MANAGER_PITCHYAW and reads its attitude and limits. With a
 signing key on both sides (gimbals[].mavlink.signing_key_file, gimbal-sim --signing-key)
@@ -282,6 +283,47 @@ class MavlinkDeviceTest(gt.GimbaldTestCase):
         later = [e for e in sim.rx()[start:] if e["kind"] == "gimbal_device_set_attitude"]
         self.assertGreater(len(later), 50)  # re-sent at 20 Hz
         self.assertTrue(all(abs(wrap180(e["message"]["yaw"] - held)) < 1e-3 for e in later))
+
+    def test_path_step_stare_and_stare_ack(self):
+        """A path with along-track steps gives a stare_start at each stare; a stare_ack that
+        echoes its system_time_ms ends it at once (nothing goes to the device); without one
+        the stare runs out its time."""
+        sim, daemon, vport = self.start_pty("--attitude-rate", "25", "--slew-rate", "60")
+        client = self.client(daemon)
+        aircraft = Aircraft(vport)
+        self.addCleanup(aircraft.close)
+        self.wait_state(client, lambda s: s["device"]["vendor"] == "gimbald" and
+                        s["telemetry"] and s["telemetry"]["lat"] is not None,
+                        "device information and telemetry")
+        sub = self.client(daemon)
+        self.assertOk(sub.request("subscribe", rate_hz=0.1, ttl_s=60))
+        self.addCleanup(sub.request, "unsubscribe")
+        # 600 m of ground through the circle's centre, north to south, in 5-degree steps.
+        dlat = math.degrees(300.0 / 6378137.0)
+        points = [{"lat": POINT[0] + dlat, "lon": POINT[1], "alt": 0},
+                  {"lat": POINT[0] - dlat, "lon": POINT[1], "alt": 0}]
+        self.assertOk(client.request("path", gimbal="cam", points=points, along_step_deg=5))
+        first = sub.wait_message(gt.is_event("stare_start"), 10.0)
+        self.assertTrue(first, "no stare_start from the path")
+        self.assertTrue(first["along_track_stare"])
+        start = len(sim.rx())
+        reply = client.request("stare_ack", gimbal="cam", system_time_ms=first["system_time_ms"])
+        self.assertOk(reply)
+        self.assertEqual(reply["sent"], [])
+        acked = sub.wait_message(gt.is_event("stare_start"), 10.0)
+        self.assertTrue(acked, "no stare_start after the ack")
+        print("stare ended by stare_ack after %.2f s" % acked["prev_stare_time_s"])
+        self.assertFalse(acked["prev_stare_terminated_by_time"])
+        self.assertLess(acked["prev_stare_time_s"], 0.5)
+        # Nothing but set-points (and the feed) went to the device for the ack.
+        kinds = {e["kind"] for e in sim.rx()[start:]}
+        self.assertLessEqual(kinds, {"gimbal_device_set_attitude", "autopilot_state_for_gimbal_device",
+                                     "heartbeat", "command_long"})
+        # Unacknowledged, the stare runs out its time.
+        timed = sub.wait_message(gt.is_event("stare_start"), 10.0)
+        self.assertTrue(timed, "no third stare_start")
+        self.assertTrue(timed["prev_stare_terminated_by_time"])
+        self.assertGreater(timed["prev_stare_time_s"], 0.8)
 
     def test_udp_device_state_position_and_stare(self):
         sim = self.start_sim("--protocol", "mavlink", "--udp", "0", tcp=False, want=("udp",))

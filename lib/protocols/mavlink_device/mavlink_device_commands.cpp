@@ -113,7 +113,8 @@ command::Result<Hold> path(Params& p, const DeviceCommandContext& ctx) {
 }  // namespace
 
 bool is_device_command(std::string_view cmd) {
-    return cmd == "position" || cmd == "rate" || cmd == "geopoint" || cmd == "path";
+    return cmd == "position" || cmd == "rate" || cmd == "geopoint" || cmd == "path" ||
+           cmd == "stare_ack";
 }
 
 command::Result<Hold> plan_device_command(std::string_view cmd, const json& request,

@@ -20,6 +20,7 @@ constexpr PlannedCommand commands[] = {
     {"path",
      "GIMBAL_DEVICE_SET_ATTITUDE (284) along the path, at 20 Hz; step-stare: a `stare_start` "
      "event at each stare"},
+    {"stare_ack", "nothing on the wire: ends the current stare of a path's step-stare"},
     {"position",
      "GIMBAL_DEVICE_SET_ATTITUDE (284), yaw in the vehicle frame; `stabilized`: held from "
      "north (heading + pan)"},
@@ -31,6 +32,7 @@ std::unique_ptr<session::Protocol> make_session(const SessionSettings& s,
                                                 const nlohmann::json& gimbal) {
     MavlinkDeviceOptions options = read_mavlink_device_options(gimbal);
     options.stale_after_s = s.stale_after_s;
+    options.auto_ack_stare = s.auto_ack_stare;
     options.terrain = s.terrain;
     options.unix_clock = s.unix_clock;
     options.geoid = s.geoid_undulation;

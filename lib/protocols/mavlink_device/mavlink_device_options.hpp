@@ -16,6 +16,7 @@ namespace gimbal::protocols {
 // The configuration section (mavlink_device_config.hpp) and what the daemon adds at run time.
 struct MavlinkDeviceOptions : MavlinkDeviceConfig {
     double stale_after_s = 1.0;
+    bool auto_ack_stare = false;      // stare.auto_ack: end each path stare as it begins
     geo::Surface* terrain = nullptr;  // telemetry's footprint and ground (SessionSettings)
     // The EGM96 undulation at a point (SessionSettings::geoid_undulation), asked at the
     // aircraft's position when geoid_undulation_m is not configured; empty: none (0).

@@ -1,5 +1,6 @@
 #include "protocols/mavlink_device/mavlink_device_protocol.hpp"
 
+#include "command/params.hpp"
 #include "protocols/mavlink_device/mavlink_device_capabilities.hpp"
 #include "protocols/mavlink_device/mavlink_device_commands.hpp"
 #include "protocols/mavlink_device/mavlink_device_stare.hpp"
@@ -100,6 +101,9 @@ void MavlinkDeviceProtocol::check_stare(double now_s, std::vector<state::Event>&
             view = StareView{*camera, *los, state_.pan_deg(), attitude->pitch_deg,
                              attitude->time_boot_ms};
         auto fields = path_stare_start(*begun, view);
+        last_stare_time_ms_ = fields["system_time_ms"].get<std::uint32_t>();
+        if (options_.auto_ack_stare)
+            if (auto* p = std::get_if<HoldPath>(&steering_.held())) p->follower->acknowledge();
         state_.set_stare(fields);
         events.push_back(state::Event{"stare_start", std::move(fields)});
         return;
@@ -115,6 +119,7 @@ void MavlinkDeviceProtocol::check_stare(double now_s, std::vector<state::Event>&
         StareView{*camera, *los, state_.pan_deg(), attitude->pitch_deg, attitude->time_boot_ms});
     if (!fields) return;
     g->stared = true;
+    last_stare_time_ms_ = (*fields)["system_time_ms"].get<std::uint32_t>();
     state_.set_stare(*fields);
     events.push_back(state::Event{"stare_start", std::move(*fields)});
 }
@@ -159,6 +164,7 @@ std::optional<command::Error> MavlinkDeviceProtocol::plan(std::string_view cmd,
                                                           const nlohmann::json& request,
                                                           const session::Now& now,
                                                           command::Plan& plan) {
+    if (cmd == "stare_ack") return acknowledge_stare(request);
     DeviceCommandContext ctx;
     ctx.now_s = now.mono_s;
     ctx.has_vehicle_fix = state_.vehicle().has_value();
@@ -173,6 +179,22 @@ std::optional<command::Error> MavlinkDeviceProtocol::plan(std::string_view cmd,
         w.sent = {{"id", mavlink::GimbalDeviceSetAttitude::id}, {"len", set_attitude_length}};
         plan.packets.push_back(std::move(w));
     }
+    return std::nullopt;
+}
+
+std::optional<command::Error> MavlinkDeviceProtocol::acknowledge_stare(
+    const nlohmann::json& request) {
+    command::Params p(request);
+    const auto time = p.integer("system_time_ms", 0, 4294967295LL, false);
+    p.reject_unknown();
+    if (!p.ok()) return p.error();
+    if (!time && !last_stare_time_ms_)
+        return command::Error{command::code::unavailable,
+                              "no stare_start yet: give 'system_time_ms'"};
+    const auto echo = time ? static_cast<std::uint32_t>(*time) : *last_stare_time_ms_;
+    // As an Orion: an ack that matches no current stare changes nothing.
+    if (echo == last_stare_time_ms_)
+        if (auto* path = std::get_if<HoldPath>(&steering_.held())) path->follower->acknowledge();
     return std::nullopt;
 }
 

@@ -46,6 +46,9 @@ class MavlinkDeviceProtocol final : public session::Protocol {
     std::optional<mavlink::GimbalDeviceSetAttitude> set_attitude(double now_s);
     // A held geopoint with stare: stare_start once the device's line of sight is on it.
     void check_stare(double now_s, std::vector<state::Event>& events);
+    // stare_ack: the Orion's StareAck, kept by gimbald (a device has no step-stare of its
+    // own): a matching system_time_ms ends the current stare of a held path.
+    std::optional<command::Error> acknowledge_stare(const nlohmann::json& request);
     double unix_now() const { return options_.unix_clock ? options_.unix_clock() : 0.0; }
     session::Bytes frame(const mavlink::Payload& payload) {
         return sender_.frame(payload, unix_now());
@@ -62,6 +65,7 @@ class MavlinkDeviceProtocol final : public session::Protocol {
     MavlinkDeviceSteering steering_;
     MavlinkSender sender_;
     std::optional<double> last_heartbeat_s_;
+    std::optional<std::uint32_t> last_stare_time_ms_;  // the latest stare_start's
     std::optional<double> last_request_s_;
     bool fed_fix_ = false;  // the last AUTOPILOT_STATE carried a valid fix
 };

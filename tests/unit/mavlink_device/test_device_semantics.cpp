@@ -499,3 +499,79 @@ TEST_CASE("path with step-stare: a stare_start at each station, with the Orion's
     // STATE `stare` holds the latest.
     CHECK(p.snapshot(20.0)["stare"] == stares.back());
 }
+
+TEST_CASE("stare_ack ends a path's stare when it echoes the stare's system_time_ms") {
+    const auto flying = [](double t) {
+        Aircraft a;
+        a.lat = 45.7 + 40 * t / 111'000.0;
+        a.yaw = 0;
+        a.vn = 40;
+        return a;
+    };
+    const json request = {{"points",
+                           {{{"lat", 45.7}, {"lon", -121.49}, {"alt", 0}},
+                            {{"lat", 45.7135}, {"lon", -121.49}, {"alt", 0}}}},
+                          {"along_step_deg", 5}};
+    // `ack(fields)`: what is sent back at each stare_start (nullopt: nothing).
+    const auto run = [&](auto ack, bool auto_ack = false) {
+        MavlinkDeviceOptions options;
+        options.auto_ack_stare = auto_ack;
+        MavlinkDeviceProtocol p(options);
+        protocols::MavlinkDeviceSim sim(protocols::MavlinkDeviceSimOptions{});
+        vehicle::VehicleState v(vehicle_fixtures::options());
+        connect(p, sim);
+        report(v, flying(0.1), 0.1);
+        steered(p, v, 0.1);
+        command::Plan plan;
+        REQUIRE_FALSE(p.plan("path", request, {0.1, 1.79e9}, plan));
+        std::vector<json> stares;
+        fly(p, sim, v, 0.1, 12.0, flying, [&](double t, const std::vector<state::Event>& events) {
+            for (const auto& e : events) {
+                if (e.kind != "stare_start") continue;
+                stares.push_back(e.fields);
+                if (const std::optional<json> reply = ack(e.fields)) {
+                    command::Plan acked;
+                    const auto error = p.plan("stare_ack", *reply, {t, 1.79e9}, acked);
+                    INFO((error ? error->message : "ok"));
+                    CHECK_FALSE(error);
+                    CHECK(acked.packets.empty());  // nothing goes to the device
+                }
+            }
+        });
+        return stares;
+    };
+    const auto no_ack = [](const json&) { return std::optional<json>(); };
+    const auto matching = [](const json& s) {
+        return std::optional<json>(json{{"system_time_ms", s["system_time_ms"]}});
+    };
+    const auto wrong = [](const json& s) {
+        return std::optional<json>(
+            json{{"system_time_ms", s["system_time_ms"].get<std::uint32_t>() + 1}});
+    };
+    const auto unacked = run(no_ack);
+    const auto acked = run(matching);
+    const auto mismatched = run(wrong);
+    const auto automatic = run(no_ack, true);
+    INFO(unacked.size() << " stares unacknowledged, " << acked.size() << " acknowledged, "
+                        << mismatched.size() << " with a wrong time, " << automatic.size()
+                        << " with stare.auto_ack");
+    REQUIRE(unacked.size() >= 3);
+    for (const auto* stares : {&acked, &automatic}) {
+        REQUIRE(stares->size() > unacked.size());  // each stare ends as it begins
+        for (std::size_t i = 1; i < stares->size(); ++i) {
+            CHECK((*stares)[i]["prev_stare_terminated_by_time"] == false);
+            CHECK((*stares)[i]["prev_stare_time_s"].get<double>() < 0.3);
+        }
+    }
+    CHECK(mismatched.size() == unacked.size());  // a wrong echo ends nothing
+    for (std::size_t i = 1; i < unacked.size(); ++i)
+        CHECK(unacked[i]["prev_stare_terminated_by_time"] == true);
+
+    // Before any stare the time must be given.
+    MavlinkDeviceProtocol fresh(MavlinkDeviceOptions{});
+    command::Plan plan;
+    const auto error = fresh.plan("stare_ack", json::object(), {1.0, 1.79e9}, plan);
+    REQUIRE(error);
+    CHECK(error->code == command::ErrorCode::unavailable);
+    CHECK_FALSE(fresh.plan("stare_ack", {{"system_time_ms", 5}}, {1.0, 1.79e9}, plan));
+}
