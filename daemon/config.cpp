@@ -274,6 +274,13 @@ ConfigResult parse_config(std::string_view text, GimbalsSection gimbals) {
     } catch (const json::parse_error& e) {
         result.problems.push_back({"", syntax_problem(text, e)});
         return result;
+    } catch (const json::exception& e) {
+        // A number too large for a double ("1e999") is out_of_range, not a parse_error.
+        std::string what = e.what();
+        if (const auto bracket = what.find("] "); bracket != std::string::npos)
+            what = what.substr(bracket + 2);
+        result.problems.push_back({"", what});
+        return result;
     }
     if (!document.is_object()) {
         problems.add("", "the configuration must be a JSON object");

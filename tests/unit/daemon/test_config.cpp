@@ -627,6 +627,9 @@ TEST_CASE("JSON syntax errors give line and column", "[config]") {
     CHECK(problem_texts(parse_config("[1, 2]")) ==
           std::vector<std::string>{"the configuration must be a JSON object"});
     CHECK(problem_texts(parse_config("")).size() == 1);
+    // A number beyond a double is one problem, not an exception (found by fuzz_config).
+    CHECK(problem_texts(parse_config("{\"telemetry\": {\"stale_after_s\": 1e5200}}")) ==
+          std::vector<std::string>{"number overflow parsing '1e5200'"});
 }
 
 TEST_CASE("an unreadable file is one problem", "[config]") {
