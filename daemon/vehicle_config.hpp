@@ -43,13 +43,7 @@ void fields(V& v, UdpSource& c) {
 
 template <class V>
 void fields(V& v, SerialSource& c) {
-    if constexpr (V::reading) {
-        read_device(v, "device", c.device);
-        read_baud(v, "baud", c.baud);
-    } else {
-        v.string("device", c.device);
-        v.integer("baud", c.baud, {});
-    }
+    serial_port_fields(v, c.device, c.baud);
 }
 
 // `source`: its `type` chooses the struct.

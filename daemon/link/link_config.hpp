@@ -97,15 +97,21 @@ void fields(V& v, TcpLink& c) {
     v.integer("discover_reply_port", c.discover_reply_port, {1, 65535});
 }
 
+// A serial port's `device` and `baud`: a gimbal's serial link, the vehicle's serial source.
+template <class V>
+void serial_port_fields(V& v, std::string& device, std::uint32_t& baud) {
+    if constexpr (V::reading) {
+        read_device(v, "device", device);
+        read_baud(v, "baud", baud);
+    } else {
+        v.string("device", device);
+        v.integer("baud", baud, {});
+    }
+}
+
 template <class V>
 void fields(V& v, SerialLink& c) {
-    if constexpr (V::reading) {
-        read_device(v, "device", c.device);
-        read_baud(v, "baud", c.baud);
-    } else {
-        v.string("device", c.device);
-        v.integer("baud", c.baud, {});
-    }
+    serial_port_fields(v, c.device, c.baud);
     reconnect_fields(v, c.reconnect_min_s, c.reconnect_max_s);
 }
 

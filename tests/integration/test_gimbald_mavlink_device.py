@@ -131,6 +131,11 @@ class MavlinkDeviceTest(gt.GimbaldTestCase):
         self.assertTrue(found, "STATE never showed " + what)
         return found
 
+    def wait_device(self, client, what="device information and telemetry"):
+        """STATE once the device has sent its information and the aircraft its position."""
+        return self.wait_state(client, lambda s: s["device"]["vendor"] == "gimbald" and
+                               s["telemetry"] and s["telemetry"]["lat"] is not None, what)
+
     def start_pty(self, *sim_args, stale_after_s=None, manager=False):
         device = os.path.join(self.workdir, "ttyGIMBAL")
         sim = self.start_sim("--protocol", "mavlink", *sim_args, tcp=False, pty_link=device)
@@ -156,9 +161,7 @@ class MavlinkDeviceTest(gt.GimbaldTestCase):
         self.addCleanup(aircraft.close)
 
         # STATE device: the simulator's information, its attitude; telemetry with positions.
-        s = self.wait_state(client, lambda s: s["device"]["vendor"] == "gimbald" and
-                            s["telemetry"] and s["telemetry"]["lat"] is not None,
-                            "device information and telemetry")
+        s = self.wait_device(client)
         self.assertEqual(s["protocol"], "mavlink")
         d = s["device"]
         self.assertEqual(d["model"], "simulated MAVLink gimbal")
@@ -221,9 +224,7 @@ class MavlinkDeviceTest(gt.GimbaldTestCase):
         client = self.client(daemon)
         aircraft = Aircraft(vport)
         self.addCleanup(aircraft.close)
-        s = self.wait_state(client, lambda s: s["device"]["vendor"] == "gimbald" and
-                            s["telemetry"] and s["telemetry"]["lat"] is not None,
-                            "device information and telemetry")
+        s = self.wait_device(client)
         # No geoid_undulation_m configured: EGM96 at the aircraft (about -21 m there).
         t = s["telemetry"]
         self.assertAlmostEqual(t["geoid_undulation"], -21.0, delta=2.0)
@@ -292,9 +293,7 @@ class MavlinkDeviceTest(gt.GimbaldTestCase):
         client = self.client(daemon)
         aircraft = Aircraft(vport)
         self.addCleanup(aircraft.close)
-        self.wait_state(client, lambda s: s["device"]["vendor"] == "gimbald" and
-                        s["telemetry"] and s["telemetry"]["lat"] is not None,
-                        "device information and telemetry")
+        self.wait_device(client)
         sub = self.client(daemon)
         self.assertOk(sub.request("subscribe", rate_hz=0.1, ttl_s=60))
         self.addCleanup(sub.request, "unsubscribe")
@@ -338,9 +337,7 @@ class MavlinkDeviceTest(gt.GimbaldTestCase):
         client = self.client(daemon)
         aircraft = Aircraft(vport)
         self.addCleanup(aircraft.close)
-        s = self.wait_state(client, lambda s: s["device"]["vendor"] == "gimbald" and
-                            s["telemetry"] and s["telemetry"]["lat"] is not None,
-                            "device information and telemetry over UDP")
+        s = self.wait_device(client, "device information and telemetry over UDP")
         self.assertEqual(s["link"]["type"], "udp")
         self.assertEqual(s["link"]["endpoint"], "127.0.0.1:%d" % sim_port)
         self.assertFalse(s["stale"])
@@ -375,9 +372,7 @@ class MavlinkDeviceTest(gt.GimbaldTestCase):
         self.addCleanup(aircraft.close)
         gcs = mt.Peer(vport)
         self.addCleanup(gcs.close)
-        self.wait_state(client, lambda s: s["device"]["vendor"] == "gimbald" and
-                        s["telemetry"] and s["telemetry"]["lat"] is not None,
-                        "device information and telemetry")
+        self.wait_device(client)
 
         # DO_GIMBAL_MANAGER_PITCHYAW (yaw from the nose) -> position -> the device's set-point.
         start = len(sim.rx())

@@ -37,15 +37,7 @@ TEST_CASE("a MAVLink device session with the daemon's geoid shows EGM96 in STATE
 
     // The aircraft 500 m above MSL at the demo area, the device looking down.
     vehicle::VehicleState v(vehicle_fixtures::options());
-    mavlink::Heartbeat hb;
-    hb.system_status = static_cast<std::uint8_t>(mavlink::MavState::active);
-    v.apply(vehicle_fixtures::from(1, hb), 1.0);
-    v.apply(vehicle_fixtures::from(1, mavlink::Attitude{}), 1.0);
-    mavlink::GlobalPositionInt p;
-    p.lat = 457000000;
-    p.lon = -1215000000;
-    p.alt = 500000;
-    v.apply(vehicle_fixtures::from(1, p), 1.0);
+    vehicle_fixtures::fix_at(v, 1.0);
     std::vector<session::Bytes> out;
     session->steer(v, 1.0, 1.0, out);
     mavlink::GimbalDeviceAttitudeStatus status;

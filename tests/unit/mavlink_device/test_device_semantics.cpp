@@ -96,6 +96,31 @@ void connect(MavlinkDeviceProtocol& p, protocols::MavlinkDeviceSim& sim) {
     REQUIRE(p.state().has_information());
 }
 
+// The session, the simulated device and the aircraft's vehicle state, connected.
+struct Loop {
+    explicit Loop(MavlinkDeviceOptions options = {}) : p(std::move(options)) { connect(p, sim); }
+    MavlinkDeviceProtocol p;
+    protocols::MavlinkDeviceSim sim{protocols::MavlinkDeviceSimOptions{}};
+    vehicle::VehicleState v{vehicle_fixtures::options()};
+};
+
+// The aircraft flying north at 40 m/s, 500 m up.
+Aircraft flying_north(double t) {
+    Aircraft a;
+    a.lat = 45.7 + 40 * t / 111'000.0;
+    a.yaw = 0;
+    a.vn = 40;
+    return a;
+}
+
+// 1.5 km of ground to the east of its track, in along-track steps of 5 degrees.
+json stepped_path() {
+    return {{"points",
+             {{{"lat", 45.7}, {"lon", -121.49}, {"alt", 0}},
+              {{"lat", 45.7135}, {"lon", -121.49}, {"alt", 0}}}},
+            {"along_step_deg", 5}};
+}
+
 }  // namespace
 
 TEST_CASE("position stabilized: the yaw from north is held while the aircraft turns") {
@@ -181,10 +206,8 @@ TEST_CASE("position stabilized needs the vehicle's heading; refused, it changes 
 TEST_CASE("position stabilized on the simulated device: the camera keeps its direction") {
     // The aircraft turns at 15 deg/s for 12 s (180 degrees); the device's line of sight keeps
     // the heading at the command + 60 degrees from north.
-    MavlinkDeviceProtocol p(MavlinkDeviceOptions{});
-    protocols::MavlinkDeviceSim sim(protocols::MavlinkDeviceSimOptions{});
-    vehicle::VehicleState v(vehicle_fixtures::options());
-    connect(p, sim);
+    Loop loop;
+    auto& [p, sim, v] = loop;
     const auto turning = [](double t) {
         Aircraft a;
         a.yaw = session::wrap180(15 * t);
@@ -242,10 +265,8 @@ TEST_CASE("rate: stabilized (the default) integrates from north, false from the 
 }
 
 TEST_CASE("rate on the simulated device: stabilized 0 holds north, unstabilized follows") {
-    MavlinkDeviceProtocol p(MavlinkDeviceOptions{});
-    protocols::MavlinkDeviceSim sim(protocols::MavlinkDeviceSimOptions{});
-    vehicle::VehicleState v(vehicle_fixtures::options());
-    connect(p, sim);
+    Loop loop;
+    auto& [p, sim, v] = loop;
     const auto turning = [](double t) {
         Aircraft a;
         a.yaw = session::wrap180(-20 * t);
@@ -450,29 +471,16 @@ TEST_CASE("path with step-stare: a stare_start at each station, with the Orion's
     // The aircraft flies north at 40 m/s, 500 m up; the path runs 1.5 km along the ground to
     // its east. Along-track steps of 5 degrees: the follower slews to a station, stares (its
     // stare time runs out: a device has no StareAck) and steps on.
-    MavlinkDeviceProtocol p(MavlinkDeviceOptions{});
-    protocols::MavlinkDeviceSim sim(protocols::MavlinkDeviceSimOptions{});
-    vehicle::VehicleState v(vehicle_fixtures::options());
-    connect(p, sim);
-    const auto flying = [](double t) {
-        Aircraft a;
-        a.lat = 45.7 + 40 * t / 111'000.0;
-        a.yaw = 0;
-        a.vn = 40;
-        return a;
-    };
-    report(v, flying(0.1), 0.1);
+    Loop loop;
+    auto& [p, sim, v] = loop;
+    report(v, flying_north(0.1), 0.1);
     steered(p, v, 0.1);
-    const json request = {{"points",
-                           {{{"lat", 45.7}, {"lon", -121.49}, {"alt", 0}},
-                            {{"lat", 45.7135}, {"lon", -121.49}, {"alt", 0}}}},
-                          {"along_step_deg", 5}};
     command::Plan plan;
-    REQUIRE_FALSE(p.plan("path", request, {0.1, 1.79e9}, plan));
+    REQUIRE_FALSE(p.plan("path", stepped_path(), {0.1, 1.79e9}, plan));
 
     std::vector<json> stares;
     std::vector<double> at;
-    fly(p, sim, v, 0.1, 20.0, flying, [&](double t, const std::vector<state::Event>& events) {
+    fly(p, sim, v, 0.1, 20.0, flying_north, [&](double t, const std::vector<state::Event>& events) {
         for (const auto& e : events) {
             if (e.kind != "stare_start") continue;
             stares.push_back(e.fields);
@@ -501,43 +509,31 @@ TEST_CASE("path with step-stare: a stare_start at each station, with the Orion's
 }
 
 TEST_CASE("stare_ack ends a path's stare when it echoes the stare's system_time_ms") {
-    const auto flying = [](double t) {
-        Aircraft a;
-        a.lat = 45.7 + 40 * t / 111'000.0;
-        a.yaw = 0;
-        a.vn = 40;
-        return a;
-    };
-    const json request = {{"points",
-                           {{{"lat", 45.7}, {"lon", -121.49}, {"alt", 0}},
-                            {{"lat", 45.7135}, {"lon", -121.49}, {"alt", 0}}}},
-                          {"along_step_deg", 5}};
     // `ack(fields)`: what is sent back at each stare_start (nullopt: nothing).
     const auto run = [&](auto ack, bool auto_ack = false) {
         MavlinkDeviceOptions options;
         options.auto_ack_stare = auto_ack;
-        MavlinkDeviceProtocol p(options);
-        protocols::MavlinkDeviceSim sim(protocols::MavlinkDeviceSimOptions{});
-        vehicle::VehicleState v(vehicle_fixtures::options());
-        connect(p, sim);
-        report(v, flying(0.1), 0.1);
+        Loop loop(options);
+        auto& [p, sim, v] = loop;
+        report(v, flying_north(0.1), 0.1);
         steered(p, v, 0.1);
         command::Plan plan;
-        REQUIRE_FALSE(p.plan("path", request, {0.1, 1.79e9}, plan));
+        REQUIRE_FALSE(p.plan("path", stepped_path(), {0.1, 1.79e9}, plan));
         std::vector<json> stares;
-        fly(p, sim, v, 0.1, 12.0, flying, [&](double t, const std::vector<state::Event>& events) {
-            for (const auto& e : events) {
-                if (e.kind != "stare_start") continue;
-                stares.push_back(e.fields);
-                if (const std::optional<json> reply = ack(e.fields)) {
-                    command::Plan acked;
-                    const auto error = p.plan("stare_ack", *reply, {t, 1.79e9}, acked);
-                    INFO((error ? error->message : "ok"));
-                    CHECK_FALSE(error);
-                    CHECK(acked.packets.empty());  // nothing goes to the device
+        fly(p, sim, v, 0.1, 12.0, flying_north,
+            [&](double t, const std::vector<state::Event>& events) {
+                for (const auto& e : events) {
+                    if (e.kind != "stare_start") continue;
+                    stares.push_back(e.fields);
+                    if (const std::optional<json> reply = ack(e.fields)) {
+                        command::Plan acked;
+                        const auto error = p.plan("stare_ack", *reply, {t, 1.79e9}, acked);
+                        INFO((error ? error->message : "ok"));
+                        CHECK_FALSE(error);
+                        CHECK(acked.packets.empty());  // nothing goes to the device
+                    }
                 }
-            }
-        });
+            });
         return stares;
     };
     const auto no_ack = [](const json&) { return std::optional<json>(); };

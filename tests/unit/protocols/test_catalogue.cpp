@@ -28,14 +28,7 @@ Planned plan(const protocols::Entry& e, std::string_view cmd, const json& reques
     const json gimbal = {{"name", "g"}, {"protocol", e.name}};
     auto session = e.make_session(protocols::SessionSettings{}, gimbal);
     vehicle::VehicleState v(vehicle_fixtures::options());
-    mavlink::Heartbeat hb;
-    v.apply(vehicle_fixtures::from(1, hb), 1.0);
-    v.apply(vehicle_fixtures::from(1, mavlink::Attitude{}), 1.0);
-    mavlink::GlobalPositionInt pos;
-    pos.lat = 457000000;
-    pos.lon = -1215000000;
-    pos.alt = 500000;
-    v.apply(vehicle_fixtures::from(1, pos), 1.0);
+    vehicle_fixtures::fix_at(v, 1.0);
     std::vector<session::Bytes> steering;
     session->steer(v, 1.0, 1.0, steering);
     command::Plan p;
