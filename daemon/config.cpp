@@ -1,19 +1,10 @@
 #include "config.hpp"
 
-#include "auth/roles.hpp"
-#include "auth/secret.hpp"
-#include "mqtt/mqtt_url.hpp"
 #include "protocols/registry.hpp"
 #include "secret_file.hpp"
-#include "state/messages.hpp"
-
-#include <sys/stat.h>
-#include <unistd.h>
 
 #include <fmt/format.h>
 #include <algorithm>
-#include <array>
-#include <cctype>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -31,11 +22,9 @@ using nlohmann::json;
 // The generic reader and writer: lib/config/fields.hpp.
 using config::Fields;
 using config::index_path;
-using config::IntRange;
 using config::join_path;
 using config::Presence;
 using config::Problems;
-using config::Range;
 
 // nlohmann keeps the last of two equal keys without a word; in a configuration that is a
 // silent override ("allow_fire" twice), so it is reported with its path.

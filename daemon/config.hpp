@@ -4,14 +4,12 @@
 // at the first. Ranges and meanings of every key: docs/configuration.md.
 #pragma once
 
-#include <boost/asio/ip/address.hpp>
 #include <cstdint>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <span>
 #include <string>
 #include <string_view>
-#include <variant>
 #include <vector>
 
 #include "command_config.hpp"

@@ -123,7 +123,7 @@ std::string indented(std::string_view lines, std::size_t indent) {
 // --help in the layout of a man page: NAME, SYNOPSIS, DESCRIPTION, OPTIONS (from the
 // options themselves, so it cannot drift), then the footer sections.
 std::string man_page(const CLI::App* app) {
-    std::string out = "NAME\n" + indented(name_line(), 2) + "\nSYNOPSIS\n" + indented(synopsis, 2) +
+    std::string out = "NAME\n" + wrap(name_line(), 2) + "\nSYNOPSIS\n" + indented(synopsis, 2) +
                       "\nDESCRIPTION\n" + wrap(description, 2) + "\nOPTIONS\n";
     for (const CLI::Option* option : app->get_options()) {
         std::string names;

@@ -64,7 +64,9 @@ struct Entry {
     ProtocolId id{};
     std::string_view name;          // lower case: configuration, STATE `protocol`, recordings
     std::string_view display_name;  // capitalised: help groups, docs headings
-    std::string_view dissector;     // the recordings' exported-PDU dissector of its frames
+    // The recordings' exported-PDU dissector of its frames; one per protocol, so that
+    // find_by_dissector maps a recording's frames back to their entry.
+    std::string_view dissector;
     std::span<const PlannedCommand> commands;
     const session::Capabilities* capabilities = nullptr;
 
