@@ -113,12 +113,17 @@ Aircraft flying_north(double t) {
     return a;
 }
 
-// 1.5 km of ground to the east of its track, in along-track steps of 5 degrees.
-json stepped_path() {
-    return {{"points",
-             {{{"lat", 45.7}, {"lon", -121.49}, {"alt", 0}},
-              {{"lat", 45.7135}, {"lon", -121.49}, {"alt", 0}}}},
-            {"along_step_deg", 5}};
+// The aircraft flying north (its fix at 0.1 s) given a path over 1.5 km of ground to the
+// east of its track, in along-track steps of 5 degrees.
+void start_stepped_path(Loop& loop) {
+    report(loop.v, flying_north(0.1), 0.1);
+    steered(loop.p, loop.v, 0.1);
+    const json path = {{"points",
+                        {{{"lat", 45.7}, {"lon", -121.49}, {"alt", 0}},
+                         {{"lat", 45.7135}, {"lon", -121.49}, {"alt", 0}}}},
+                       {"along_step_deg", 5}};
+    command::Plan plan;
+    REQUIRE_FALSE(loop.p.plan("path", path, {0.1, 1.79e9}, plan));
 }
 
 }  // namespace
@@ -470,13 +475,10 @@ TEST_CASE("geoid_undulation_m: null (the default) asks the geoid, a number overr
 TEST_CASE("path with step-stare: a stare_start at each station, with the Orion's flags") {
     // The aircraft flies north at 40 m/s, 500 m up; the path runs 1.5 km along the ground to
     // its east. Along-track steps of 5 degrees: the follower slews to a station, stares (its
-    // stare time runs out: a device has no StareAck) and steps on.
+    // stare time runs out: nobody acknowledges) and steps on.
     Loop loop;
     auto& [p, sim, v] = loop;
-    report(v, flying_north(0.1), 0.1);
-    steered(p, v, 0.1);
-    command::Plan plan;
-    REQUIRE_FALSE(p.plan("path", stepped_path(), {0.1, 1.79e9}, plan));
+    start_stepped_path(loop);
 
     std::vector<json> stares;
     std::vector<double> at;
@@ -515,10 +517,7 @@ TEST_CASE("stare_ack ends a path's stare when it echoes the stare's system_time_
         options.auto_ack_stare = auto_ack;
         Loop loop(options);
         auto& [p, sim, v] = loop;
-        report(v, flying_north(0.1), 0.1);
-        steered(p, v, 0.1);
-        command::Plan plan;
-        REQUIRE_FALSE(p.plan("path", stepped_path(), {0.1, 1.79e9}, plan));
+        start_stepped_path(loop);
         std::vector<json> stares;
         fly(p, sim, v, 0.1, 12.0, flying_north,
             [&](double t, const std::vector<state::Event>& events) {
