@@ -83,9 +83,11 @@ class Responder:
 
     def send_to(self, address, obj_or_bytes):
         data = obj_or_bytes if isinstance(obj_or_bytes, bytes) else json.dumps(obj_or_bytes).encode()
-        self.sock.sendto(data, address)
+        # Recorded before it goes: gimbalctl may print the reply and exit, and the test read
+        # `sent`, before this thread runs again.
         if not isinstance(obj_or_bytes, bytes):
             self.sent.append(obj_or_bytes)
+        self.sock.sendto(data, address)
 
     def _run(self):
         while not self._stop.is_set():
