@@ -263,9 +263,18 @@ class MavlinkDeviceTest(gt.GimbaldTestCase):
         self.assertOk(client.request("position", gimbal="cam", pan=90, tilt=-30,
                                      stabilized=True))
         heading = self.state(client)["telemetry"]["yaw"]
-        entry = sim.wait_rx(lambda e: e["kind"] == "gimbal_device_set_attitude", start=start)
-        self.assertIsNotNone(entry)
+        # The geopoint's 20 Hz set-point may still be in flight when the command lands: the
+        # command's own is the first with YAW_LOCK, and at most one tick goes before it.
+        def set_points():
+            return [(i, e) for i, e in enumerate(sim.rx()) if i >= start and
+                    e["kind"] == "gimbal_device_set_attitude"]
+        entry = sim.wait_rx(lambda e: e["kind"] == "gimbal_device_set_attitude" and
+                            e["message"]["flags"] & 16, start=start)
+        self.assertIsNotNone(entry, "no set-point with YAW_LOCK after a stabilized position")
         self.assertEqual(entry["message"]["flags"] & (16 | 32 | 64), 16 | 64)
+        index = next(i for i, e in set_points() if e is entry or e == entry)
+        before = [e for i, e in set_points() if i < index]
+        self.assertLessEqual(len(before), 1, before)
         held = entry["message"]["yaw"]
         self.assertAlmostEqual(wrap180(held - heading - 90), 0, delta=2.0)
         time.sleep(1.5)  # the device slews there
@@ -281,7 +290,7 @@ class MavlinkDeviceTest(gt.GimbaldTestCase):
               % (turned, max(errors)))
         self.assertGreater(turned, 20)
         self.assertLess(max(errors), 1.0)
-        later = [e for e in sim.rx()[start:] if e["kind"] == "gimbal_device_set_attitude"]
+        later = [e for i, e in set_points() if i >= index]
         self.assertGreater(len(later), 50)  # re-sent at 20 Hz
         self.assertTrue(all(abs(wrap180(e["message"]["yaw"] - held)) < 1e-3 for e in later))
 
