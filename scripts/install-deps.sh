@@ -14,6 +14,7 @@ packages=(
   tshark prometheus chromium
   libgdal-dev proj-data gdal-bin python3-gdal
   libavformat-dev libavcodec-dev libavutil-dev ffmpeg
+  libswscale-dev libopencv-dev libopencv-contrib-dev
   gstreamer1.0-tools gstreamer1.0-plugins-base gstreamer1.0-plugins-good
   gstreamer1.0-plugins-bad gstreamer1.0-plugins-ugly python3-gi gir1.2-gst-rtsp-server-1.0
 )
