@@ -199,7 +199,7 @@ FrameResult ObjectTracker::search(const cv::Mat& frame, double t) {
     r.parts = parts;
     r.confidence = std::clamp(std::min(found->score, conf), 0.0, o_.lost_threshold * 0.99);
     const bool good =
-        found->score >= o_.accept_threshold && conf >= o_.lost_threshold &&
+        found->score >= o_.accept_threshold && conf >= o_.reacquire_confidence &&
         inside_fraction(found->box, frame.cols, frame.rows) >= o_.left_picture_fraction;
     if (!good) {
         pending_.reset();

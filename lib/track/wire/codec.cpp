@@ -87,6 +87,10 @@ class Writer {
         put_le(out_, x);
     }
     void u32(std::string_view, std::uint32_t& x, const char*) { put_le(out_, x); }
+    void u32(std::string_view f, std::uint32_t& x, double min, double max, const char*) {
+        rules_.number(f, x, min, max);
+        put_le(out_, x);
+    }
     void i64(std::string_view, std::int64_t& x, const char*) { put_le(out_, x); }
     void f32(std::string_view f, float& x, double min, double max, const char*) {
         rules_.number(f, x, min, max);
@@ -142,6 +146,10 @@ class Reader {
         if (ok()) rules_.number(f, x, min, max);
     }
     void u32(std::string_view f, std::uint32_t& x, const char*) { x = take<std::uint32_t>(f); }
+    void u32(std::string_view f, std::uint32_t& x, double min, double max, const char*) {
+        x = take<std::uint32_t>(f);
+        if (ok()) rules_.number(f, x, min, max);
+    }
     void i64(std::string_view f, std::int64_t& x, const char*) { x = take<std::int64_t>(f); }
     void f32(std::string_view f, float& x, double min, double max, const char*) {
         x = std::bit_cast<float>(take<std::uint32_t>(f));

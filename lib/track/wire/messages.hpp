@@ -119,13 +119,19 @@ struct Start {
     }
 };
 
-// One access unit as the video pipeline delivers it: Annex B, parameter sets in front of
-// key frames. `bytes` views the caller's buffer when encoding and the datagram when decoding.
+// One access unit as the video pipeline delivers it (Annex B, parameter sets in front of key
+// frames), or a piece of one: a datagram on a Unix socket cannot exceed the sender's send
+// buffer (212,992 bytes by default on Debian: net.core.wmem_max), so a larger unit goes as
+// consecutive pieces with the same pts_90k, key, codec and total_bytes and the offsets 0, n1,
+// n1 + n2, ... (AccessUnitAssembler puts them together). `bytes` views the caller's buffer
+// when encoding and the datagram when decoding.
 struct AccessUnit {
     static constexpr MessageType type = MessageType::au;
     std::int64_t pts_90k = 0;
     bool key = false;
     Codec codec = Codec::h264;
+    std::uint32_t total_bytes = 0;
+    std::uint32_t offset = 0;
     std::span<const std::uint8_t> bytes;
 
     template <class V>
@@ -133,7 +139,16 @@ struct AccessUnit {
         v.i64("pts_90k", pts_90k, "presentation time, 90 kHz (echoed in box)");
         v.boolean("key", key, "a key frame (IDR, parameter sets in front)");
         v.enumeration("codec", codec, codec_names, "the stream's codec");
-        v.bytes("bytes", bytes, max_access_unit_bytes, "Annex B byte stream (u32 length first)");
+        v.u32("total_bytes", total_bytes, 0, static_cast<double>(max_access_unit_bytes),
+              "the whole access unit's size");
+        v.u32("offset", offset, 0, static_cast<double>(max_access_unit_bytes),
+              "where this piece starts in it");
+        v.bytes("bytes", bytes, max_access_unit_bytes,
+                "the piece: Annex B bytes (u32 length first)");
+        if constexpr (V::checking) {
+            if (std::uint64_t{offset} + bytes.size() > total_bytes)
+                v.invalid("offset + piece beyond total_bytes");
+        }
     }
 };
 

@@ -72,10 +72,13 @@ TEST_CASE("wire: an access unit carries its bytes after a length", "[track][wire
     au.key = true;
     au.codec = Codec::h265;
     au.bytes = payload;
+    au.total_bytes = 6;
     const Bytes expected{1,    3,                                         // au
                          0xFD, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF,  // pts -3
                          1,                                               // key
                          1,                                               // h265
+                         6,    0,    0,    0,                             // total_bytes
+                         0,    0,    0,    0,                             // offset
                          6,    0,    0,    0,                             // length
                          0,    0,    0,    1,    0x65, 0x88};
     const Bytes bytes = encode(au);
@@ -87,7 +90,9 @@ TEST_CASE("wire: an access unit carries its bytes after a length", "[track][wire
     CHECK(back.key);
     CHECK(back.codec == Codec::h265);
     CHECK(Bytes(back.bytes.begin(), back.bytes.end()) == payload);
-    CHECK(back.bytes.data() == bytes.data() + 16);  // a view, not a copy
+    CHECK(back.total_bytes == 6);
+    CHECK(back.offset == 0);
+    CHECK(back.bytes.data() == bytes.data() + 24);  // a view, not a copy
 }
 
 TEST_CASE("wire: every message survives a round trip", "[track][wire]") {
@@ -159,22 +164,30 @@ TEST_CASE("wire: values outside their declaration are refused", "[track][wire]")
     CHECK(refusal(with(30, {0, 0, 0xC0, 0x3F})) == "box.confidence: out of range");  // 1.5
     CHECK(refusal(with(34, {2})) == "box.state: not one of its values");
 
-    Bytes au{1, 3, 0, 0, 0, 0, 0, 0, 0, 0, 2, 0, 0, 0, 0, 0};  // key = 2
+    // pts 0, key, codec, total_bytes, offset, length
+    Bytes au{1, 3, 0, 0, 0, 0, 0, 0, 0, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
     CHECK(refusal(au) == "au.key: not 0 or 1");
     au[10] = 1;
-    au[11] = 2;  // codec 2
+    au[11] = 2;
     CHECK(refusal(au) == "au.codec: not one of its values");
     au[11] = 0;
     CHECK(decode(au).message);  // an empty access unit is well-formed
-    // A length beyond the cap is refused before anything is read.
+    auto put32 = [&](std::size_t at, std::uint32_t v) {
+        for (std::size_t i = 0; i < 4; ++i) au[at + i] = static_cast<std::uint8_t>(v >> (8 * i));
+    };
     const auto too_long = static_cast<std::uint32_t>(max_access_unit_bytes + 1);
-    au[12] = static_cast<std::uint8_t>(too_long);
-    au[13] = static_cast<std::uint8_t>(too_long >> 8);
-    au[14] = static_cast<std::uint8_t>(too_long >> 16);
-    au[15] = static_cast<std::uint8_t>(too_long >> 24);
+    put32(12, too_long);
+    CHECK(refusal(au) == "au.total_bytes: out of range");
+    put32(12, 10);
+    put32(16, 11);
+    CHECK(refusal(au) == "au: offset + piece beyond total_bytes");
+    put32(16, 0);
+    put32(20, too_long);  // a length beyond the cap is refused before anything is read
     CHECK(refusal(au) == "au.bytes: too long");
-    au[14] = 0x10;  // 1 MiB claimed, none there
+    put32(20, 1u << 20);  // 1 MiB claimed, none there
     CHECK(refusal(au) == "au.bytes: cut short");
+    put32(20, 0);
+    CHECK(decode(au).message);
 
     Start s;
     s.x0 = 0.5f;
