@@ -52,17 +52,23 @@ inline constexpr std::array<std::string_view, 2> box_state_names{"tracking", "lo
 inline constexpr std::array<std::string_view, 4> end_reason_names{"stopped", "overridden",
                                                                   "timeout", "no_video"};
 
+// The name of an enumerator; "unknown" for a value outside the enumeration.
+template <class E, std::size_t N>
+std::string_view name_of(E v, const std::array<std::string_view, N>& names) {
+    const auto i = static_cast<std::size_t>(v);
+    return i < N ? names[i] : std::string_view("unknown");
+}
 inline std::string_view to_string(TrackerKind v) {
-    return tracker_names[static_cast<int>(v)];
+    return name_of(v, tracker_names);
 }
 inline std::string_view to_string(Codec v) {
-    return codec_names[static_cast<int>(v)];
+    return name_of(v, codec_names);
 }
 inline std::string_view to_string(BoxState v) {
-    return box_state_names[static_cast<int>(v)];
+    return name_of(v, box_state_names);
 }
 inline std::string_view to_string(EndReason v) {
-    return end_reason_names[static_cast<int>(v)];
+    return name_of(v, end_reason_names);
 }
 
 // Image coordinates of contract section 16: -1..1 across the picture, x right, y down. A box
