@@ -76,11 +76,12 @@ ObjectTracker::Started ObjectTracker::start(const cv::Mat& frame, const Box& box
 }
 
 ConfidenceParts ObjectTracker::measure(const cv::Mat& frame, const Box& box, bool tracker_ok,
-                                       double t) const {
+                                       double t, const cv::Mat* templ) const {
+    if (templ == nullptr) templ = &template_;
     ConfidenceParts p;
     p.tracker_ok = tracker_ok;
-    const cv::Mat patch = grey_patch(frame, box, template_.size());
-    p.ncc = ncc(patch, template_);
+    const cv::Mat patch = grey_patch(frame, box, templ->size());
+    p.ncc = ncc(patch, *templ);
     p.structure = structure(patch);
     p.colour = similarity(colour_histogram(frame, box), colours_);
     p.distinctness = distinctness(frame, box);
@@ -193,7 +194,8 @@ FrameResult ObjectTracker::search(const cv::Mat& frame, double t) {
         return r;
     }
     r.search_score = found->score;
-    ConfidenceParts parts = measure(frame, found->box, true, t);
+    const cv::Mat templ = turned(template_, found->quarter_turns);
+    ConfidenceParts parts = measure(frame, found->box, true, t, &templ);
     parts.motion = 1;  // the window already bounds how far it may be from the prediction
     const double conf = confidence(parts);
     r.parts = parts;
@@ -205,23 +207,28 @@ FrameResult ObjectTracker::search(const cv::Mat& frame, double t) {
         pending_.reset();
         return r;
     }
-    // A good match is taken when the previous frame had one at a consistent place (moved by
-    // at most a quarter of the object's size beyond the object's own motion): a lone match
-    // on something that merely resembles the object does not re-acquire.
+    // A good match is taken when the previous frame had one, the same way round, at a
+    // consistent place: within a quarter of the object's size plus as far as the object
+    // moves in that time at its speed, whichever way it turned. A lone match on something
+    // that merely resembles the object does not re-acquire.
     const Point c = found->box.centre();
-    const bool confirmed = pending_ && [&] {
+    const bool confirmed = pending_ && pending_->quarter_turns == found->quarter_turns && [&] {
         const Point v = motion_.velocity();
-        const double dt = t - pending_->t;
-        const double dx = c.x - (pending_->centre.x + v.x * dt);
-        const double dy = c.y - (pending_->centre.y + v.y * dt);
-        return std::hypot(dx, dy) <= 0.5 * size;
+        const double reach = 0.25 * size + std::hypot(v.x, v.y) * (t - pending_->t);
+        return std::hypot(c.x - pending_->centre.x, c.y - pending_->centre.y) <= reach;
     }();
-    pending_ = Pending{c, t};
+    pending_ = Pending{c, t, found->quarter_turns};
     if (!confirmed || !tracker_->init(frame, found->box)) return r;
     pending_.reset();
+    // The object turned: so does what it is recognised by.
+    template_ = templ;
     lost_ = false;
     misses_ = 0;
-    motion_.relocate(c, t);
+    // Found the same way round it goes on as it went; turned, its old velocity is no guide.
+    if (found->quarter_turns == 0)
+        motion_.relocate(c, t);
+    else
+        motion_.reset(c, t);
     box_w_ = found->box.width();
     box_h_ = found->box.height();
     last_box_ = found->box;

@@ -103,7 +103,8 @@ class ObjectTracker {
     FrameResult lose(const Box& box, double confidence, const ConfidenceParts& parts,
                      bool left_picture, double t);
     double confidence(const ConfidenceParts& parts) const;
-    ConfidenceParts measure(const cv::Mat& frame, const Box& box, bool tracker_ok, double t) const;
+    ConfidenceParts measure(const cv::Mat& frame, const Box& box, bool tracker_ok, double t,
+                            const cv::Mat* templ = nullptr) const;
     void learn(const cv::Mat& frame, const Box& box);
     void rescale(cv::Size to);
 
@@ -120,6 +121,7 @@ class ObjectTracker {
     struct Pending {
         Point centre;
         double t = 0;
+        int quarter_turns = 0;
     };
     std::optional<Pending> pending_;  // a match waiting for its confirmation
     Box last_box_;

@@ -18,12 +18,18 @@ struct SearchRequest {
     Point predicted;                 // where its centre is expected
     double margin = 0;               // how far beyond the box to look (pixels, each side)
     std::span<const double> scales;  // box sizes tried, relative to width x height
+    bool turns = true;               // also the template turned by 90, 180 and 270 degrees:
+                                     // a vehicle that turned a corner while hidden or lost
 };
 
 struct Candidate {
     Box box;
-    double score = 0;  // normalised cross-correlation with the template, -1..1
+    double score = 0;       // normalised cross-correlation with the template, -1..1
+    int quarter_turns = 0;  // how the template was turned (clockwise, 0..3)
 };
+
+// The template turned clockwise by quarter_turns x 90 degrees.
+cv::Mat turned(const cv::Mat& templ, int quarter_turns);
 
 // The best match in the window (clipped to the frame); nullopt when the window is smaller
 // than the object.

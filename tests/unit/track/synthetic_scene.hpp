@@ -55,6 +55,16 @@ class SyntheticScene {
         return {x0, y0, x1 - x0, y1 - y0};
     }
 
+    // Whether (x, y) lies on the vehicle's body at time t, `margin` pixels around it included.
+    bool on_vehicle(double x, double y, double t, double margin = 2) const {
+        const auto [centre, heading] = pose(t);
+        const double dx = x - centre.x, dy = y - centre.y;
+        const double along = dx * std::cos(heading) + dy * std::sin(heading);
+        const double across = -dx * std::sin(heading) + dy * std::cos(heading);
+        return std::abs(along) <= o_.vehicle.width / 2 + margin &&
+               std::abs(across) <= o_.vehicle.height / 2 + margin;
+    }
+
     // The fraction of the vehicle's box the bridge covers at time t.
     double occluded_fraction(double t) const {
         if (!o_.bridge) return 0;

@@ -76,6 +76,38 @@ TEST_CASE("object tracker: follows a vehicle through a corner within a few pixel
     CHECK(std::hypot(v.x, v.y) == Approx(60).margin(10));
 }
 
+TEST_CASE("object tracker: laps with right-angle corners: on the vehicle or briefly lost",
+          "[track][engine]") {
+    // At a right-angle corner the axis-aligned trackers may let go; the search then finds the
+    // vehicle turned (its template turned by 90 degrees) and the track goes on.
+    cv::setNumThreads(1);
+    const auto kind = GENERATE(wire::TrackerKind::kcf, wire::TrackerKind::csrt);
+    INFO("tracker " << wire::to_string(kind));
+    SceneOptions o;
+    o.route = {{60, 260}, {580, 260}, {580, 110}, {60, 110}, {60, 260}};  // 26 s a lap
+    const SyntheticScene scene(o);
+    const auto started =
+        ObjectTracker::start(scene.render(0), box_of(scene.truth(0)), 0, with(kind));
+    REQUIRE(started.tracker);
+    const Run r = run(scene, started, 25);
+    int lost = 0, run_of_lost = 0, longest = 0;
+    for (std::size_t i = 0; i < r.frames.size(); ++i) {
+        const double t = static_cast<double>(i + 1) / fps;
+        const Point c = r.frames[i].box.centre();
+        INFO("t " << t);
+        if (r.frames[i].lost) {
+            ++lost;
+            longest = std::max(longest, ++run_of_lost);
+            continue;
+        }
+        run_of_lost = 0;
+        CHECK(scene.on_vehicle(c.x, c.y, t));  // never a box off the vehicle
+    }
+    CHECK(lost <= static_cast<int>(r.frames.size()) / 20);
+    CHECK(longest <= static_cast<int>(fps));  // found again within a second each time
+    CHECK_FALSE(r.frames.back().lost);
+}
+
 TEST_CASE("object tracker: a bridge hides the vehicle for 2 s; lost, then re-acquired",
           "[track][engine]") {
     cv::setNumThreads(1);
