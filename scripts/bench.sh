@@ -5,14 +5,16 @@
 # docs/video.md "Relay budget"; VIDEO_SECONDS sets its length, default 10), one ray-terrain
 # intersection on a 1 arc-second model (bench_terrain, docs/terrain.md "Cost"), then the
 # simulated camera's render + encode at 640x360 15 fps (bench_sim_video, docs/simulator.md
-# "Cost"). Extra arguments go to each Google Benchmark program, bench_terrain and
-# bench_sim_video, e.g.
+# "Cost"), and visual tracking: gimbal-track decoding and tracking at the input rate, CSRT and
+# KCF, 640x360 at 15 fps and 1280x720 at 30 fps (bench_track, docs/tracking.md "Cost";
+# TRACK_SECONDS sets each run's length, default 20). Extra arguments go to each Google
+# Benchmark program, bench_terrain and bench_sim_video, e.g.
 #   scripts/bench.sh --benchmark_filter=Decode --benchmark_repetitions=5
 #
-#   --smoke     a few seconds: every codec benchmark once, briefly, the video relay, terrain
-#               and simulated-camera benchmarks in their smoke modes, the recorder for one
-#               second; fails when one does not run or loses something (timings are not
-#               checked). ctest runs it as "bench: bench.sh --smoke".
+#   --smoke     a few seconds: every codec benchmark once, briefly, the video relay, terrain,
+#               simulated-camera and tracking benchmarks in their smoke modes, the recorder
+#               for one second; fails when one does not run or loses something (timings are
+#               not checked). ctest runs it as "bench: bench.sh --smoke".
 #   --no-build  use the programs already built in BUILD_DIR
 #
 # Environment: BUILD_DIR, an already configured build directory instead of build/release;
@@ -36,7 +38,7 @@ else
     cmake --preset release >/dev/null
     build=build/release
 fi
-targets=(bench_orion bench_klv bench_terrain bench_video_relay bench_sim_video)
+targets=(bench_orion bench_klv bench_terrain bench_video_relay bench_sim_video bench_track gimbal-track)
 $smoke && targets+=(bench_record)
 $build_it && cmake --build "$build" --target "${targets[@]}" -j "$jobs"
 bench=$build/tests/bench
@@ -46,6 +48,7 @@ if ! $smoke; then
     "$bench/bench_klv" ${args[@]+"${args[@]}"}
     "$bench/video/bench_video_relay" --seconds "${VIDEO_SECONDS:-10}" --dir "$bench/video"
     "$bench/terrain/bench_terrain" ${args[@]+"${args[@]}"}
+    "$bench/track/bench_track" --seconds "${TRACK_SECONDS:-20}"
     exec "$bench/sim_video/bench_sim_video" ${args[@]+"${args[@]}"}
 fi
 
@@ -82,6 +85,10 @@ echo "bench_terrain --smoke: ran"
 "$bench/sim_video/bench_sim_video" --smoke >"$out/sim_video" 2>&1 ||
     fail "bench_sim_video --smoke: $(tail -5 "$out/sim_video")"
 echo "bench_sim_video --smoke: ran"
+
+# Visual tracking: gimbal-track answers every run (it exits non-zero when one fails).
+"$bench/track/bench_track" --smoke >"$out/track" 2>&1 || fail "bench_track --smoke: $(tail -5 "$out/track")"
+echo "bench_track --smoke: ran"
 
 # The recorder: one second at 10,000 packets/s, every packet written.
 "$bench/record/bench_record" --rate 10000 --seconds 1 --dir "$out" | tee "$out/record"
