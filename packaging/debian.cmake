@@ -1,8 +1,11 @@
-# The Debian package (scripts/package.sh; contract section 13): man pages generated from the
-# built programs and docs/configuration.md, the Debian doc files, and the CPack DEB settings.
-# Included by the top CMakeLists.txt when GIMBAL_PACKAGE is ON (with CMAKE_INSTALL_PREFIX
-# /usr). Every executable installed by an install() rule is packaged; tools listed below
-# also get a man page.
+# The Debian packages (scripts/package.sh; contract sections 13 and 20): man pages generated
+# from the built programs and docs/configuration.md, the Debian doc files, and the CPack DEB
+# settings. Included by the top CMakeLists.txt when GIMBAL_PACKAGE is ON (with
+# CMAKE_INSTALL_PREFIX /usr). Every executable installed by an install() rule is packaged;
+# tools listed below also get a man page. Two packages from one build (CPack components):
+# gimbald (component gimbald: everything but) and gimbald-track (component track: gimbal-track,
+# which links OpenCV). gimbald only Recommends gimbald-track: OpenCV's runtime pulls about 147
+# packages (Qt5, HDF5, tesseract) that a gimbald without visual tracking does not need.
 
 find_package(Python3 REQUIRED COMPONENTS Interpreter)
 set(gimbal_packaging ${CMAKE_CURRENT_SOURCE_DIR}/packaging)
@@ -18,13 +21,17 @@ endif()
 
 # --- man pages: <tool>(1) or gimbald(8) from --help/--version, gimbald.json(5) from the docs
 set(gimbal_man_pages)
-foreach(program IN ITEMS gimbald gimbalctl gimbal-sim gimbal-replay gimbal-export)
+foreach(program IN ITEMS gimbald gimbalctl gimbal-sim gimbal-replay gimbal-export gimbal-track)
   if(NOT TARGET ${program})
     continue()
   endif()
   set(section 1)
   if(program STREQUAL "gimbald")
     set(section 8)
+  endif()
+  set(component gimbald)
+  if(program STREQUAL "gimbal-track")
+    set(component track)
   endif()
   set(page ${gimbal_man_dir}/${program}.${section}.gz)
   add_custom_command(
@@ -35,7 +42,7 @@ foreach(program IN ITEMS gimbald gimbalctl gimbal-sim gimbal-replay gimbal-expor
     COMMENT "Man page ${program}(${section}) from ${program} --help"
     VERBATIM)
   list(APPEND gimbal_man_pages ${page})
-  install(FILES ${page} DESTINATION ${CMAKE_INSTALL_MANDIR}/man${section})
+  install(FILES ${page} DESTINATION ${CMAKE_INSTALL_MANDIR}/man${section} COMPONENT ${component})
 endforeach()
 
 set(config_page ${gimbal_man_dir}/gimbald.json.5.gz)
@@ -64,6 +71,10 @@ add_custom_command(
   VERBATIM)
 add_custom_target(package_docs ALL DEPENDS ${gimbal_man_pages} ${config_page} ${changelog_gz})
 install(FILES ${changelog_gz} ${gimbal_packaging}/debian/copyright DESTINATION ${CMAKE_INSTALL_DOCDIR})
+if(TARGET gimbal-track)
+  install(FILES ${changelog_gz} ${gimbal_packaging}/debian/copyright
+          DESTINATION ${CMAKE_INSTALL_DATAROOTDIR}/doc/gimbald-track COMPONENT track)
+endif()
 
 # --- CPack: gimbald_VERSION_ARCH.deb
 set(CPACK_GENERATOR DEB)
@@ -79,7 +90,7 @@ set(GIMBAL_HOMEPAGE "" CACHE STRING "Homepage field of the .deb (left out when e
 if(GIMBAL_HOMEPAGE)
   set(CPACK_DEBIAN_PACKAGE_HOMEPAGE ${GIMBAL_HOMEPAGE})
 endif()
-set(CPACK_DEBIAN_PACKAGE_DESCRIPTION
+set(CPACK_DEBIAN_GIMBALD_DESCRIPTION
     "ground-control daemon for camera gimbals (Trillium Orion, Viewpro)
 gimbald holds serial and TCP links to Trillium Orion gimbals (OrionPublic
 protocol) and Viewpro gimbals (target-GPS protocol), keeps a live state model
@@ -96,10 +107,32 @@ enabled but not started: list the gimbals in /etc/gimbald/gimbald.json first.")
 # Dependencies from the binaries (dpkg-shlibdeps), plus systemd for the unit and the
 # sysusers file the postinst applies.
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
-set(CPACK_DEBIAN_PACKAGE_DEPENDS "systemd")
-set(CPACK_DEBIAN_PACKAGE_CONTROL_EXTRA
+set(CPACK_DEBIAN_GIMBALD_PACKAGE_DEPENDS "systemd")
+set(CPACK_DEBIAN_GIMBALD_PACKAGE_CONTROL_EXTRA
     ${gimbal_packaging}/debian/conffiles ${gimbal_packaging}/debian/postinst
     ${gimbal_packaging}/debian/prerm ${gimbal_packaging}/debian/postrm)
+
+# The split (contract section 20): one .deb per component, both built from source gimbald.
+set(CPACK_DEB_COMPONENT_INSTALL ON)
+set(CPACK_COMPONENTS_ALL gimbald)
+set(CPACK_DEBIAN_PACKAGE_SOURCE gimbald)
+set(CPACK_DEBIAN_GIMBALD_PACKAGE_NAME gimbald)
+if(TARGET gimbal-track)
+  list(APPEND CPACK_COMPONENTS_ALL track)
+  set(CPACK_DEBIAN_TRACK_PACKAGE_NAME gimbald-track)
+  set(CPACK_DEBIAN_GIMBALD_PACKAGE_RECOMMENDS "gimbald-track")
+  # The wire protocol between the two is versioned, and only this build's pair is tested.
+  set(CPACK_DEBIAN_TRACK_PACKAGE_DEPENDS "gimbald (= ${PROJECT_VERSION})")
+  set(CPACK_DEBIAN_TRACK_DESCRIPTION
+      "visual tracking for gimbald (OpenCV)
+gimbal-track is the process gimbald starts for a gimbal whose video has
+\"tracking\" configured: it decodes the gimbal's video while a track runs,
+follows the object the operator picked in the picture with OpenCV's CSRT or
+KCF tracker, a confidence of its own and a re-detection search, and reports
+its box for every frame to gimbald, which keeps the camera on it and locates
+it on the ground. It is a separate package because OpenCV's runtime is large;
+gimbald works without it, visual tracking then answers \"unavailable\".")
+endif()
 set(CPACK_DEBIAN_PACKAGE_CONTROL_STRICT_PERMISSION TRUE)
 set(CPACK_DEBIAN_COMPRESSION_TYPE xz)
 if(CMAKE_CROSSCOMPILING AND CMAKE_SYSTEM_PROCESSOR STREQUAL "aarch64")

@@ -20,6 +20,7 @@ packages=(
   libboost-dev libspdlog-dev libfmt-dev nlohmann-json3-dev libcli11-dev catch2
   libsystemd-dev libgeographiclib-dev libssl-dev libmosquitto-dev
   libgdal-dev libavformat-dev libavcodec-dev libavutil-dev
+  libswscale-dev libopencv-dev libopencv-contrib-dev
 )
 stamp=$sysroot/.gimbald-sysroot
 # The tree is rebuilt when this script (its package list, its fix-ups) changes.

@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
-# Builds the Debian package gimbald_VERSION_ARCH.deb (contract section 13) from this checkout:
-# installs what is missing, builds the release binaries with Debian's hardening flags in
-# build/package-ARCH, generates the man pages and runs cpack. Prints the .deb's path last.
+# Builds the Debian packages gimbald_VERSION_ARCH.deb and gimbald-track_VERSION_ARCH.deb
+# (contract sections 13 and 20: the tracking process and its OpenCV dependency apart) from this
+# checkout: installs what is missing, builds the release binaries with Debian's hardening
+# flags in build/package-ARCH, generates the man pages and runs cpack. Prints the paths of
+# gimbald-track's .deb, then of gimbald's last (tests/package/check-package.sh takes either
+# from beside the other).
 #   scripts/package.sh                 # amd64 (the build machine's architecture)
 #   scripts/package.sh --arch arm64    # cross-compiled with crossbuild-essential-arm64
 #                                      # against build/sysroot-arm64 (scripts/arm64-sysroot.sh)
@@ -46,7 +49,8 @@ jobs=${JOBS:-$(nproc 2>/dev/null || echo 2)}
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DGIMBAL_WERROR=ON -DGIMBAL_TESTS=OFF \
       -DGIMBAL_BENCH=OFF -DGIMBAL_PACKAGE=ON -DCMAKE_INSTALL_PREFIX=/usr "${cross[@]}" >/dev/null
 cmake --build "$build" -j "$jobs"
-rm -f "$build"/gimbald_*.deb
+rm -f "$build"/gimbald_*.deb "$build"/gimbald-track_*.deb
 (cd "$build" && cpack -G DEB >/dev/null)
+echo "$PWD/$(ls "$build"/gimbald-track_*_"$arch".deb)"
 deb=$(ls "$build"/gimbald_*_"$arch".deb)
 echo "$PWD/$deb"

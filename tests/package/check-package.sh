@@ -1,8 +1,11 @@
 #!/usr/bin/env bash
-# Checks a built gimbald .deb (contract section 13): lintian reports no error, the control
-# fields and the file list are what the contract says, and the programs run from the package
-# unpacked into a scratch root (dpkg-deb -x; no root, no maintainer scripts).
-#   tests/package/check-package.sh build/package-amd64/gimbald_0.1.0_amd64.deb
+# Checks the built gimbald and gimbald-track .debs (contract sections 13 and 20): lintian
+# reports no error, the control fields and the file lists are what the contract says - gimbald
+# free of OpenCV and only recommending gimbald-track, which carries gimbal-track and depends on
+# OpenCV's runtime - and the programs run from the packages unpacked into a scratch root
+# (dpkg-deb -x; no root, no maintainer scripts).
+#   tests/package/check-package.sh build/package-amd64/gimbald_0.1.0_amd64.deb [TRACK_DEB]
+# TRACK_DEB defaults to gimbald-track_VERSION_ARCH.deb beside the gimbald one.
 set -euo pipefail
 deb=$1
 [ -f "$deb" ] || { echo "check-package: no such file: $deb" >&2; exit 1; }
@@ -12,6 +15,7 @@ pass() { echo "check-package: ok: $*"; }
 
 version=$(sed -n 's/^project(gimbald VERSION \([0-9.]*\).*/\1/p' "$(dirname "$0")/../../CMakeLists.txt")
 arch=$(dpkg-deb -f "$deb" Architecture)
+track_deb=${2:-$(dirname "$deb")/gimbald-track_${version}_${arch}.deb}
 
 # --- lintian: no errors (warnings and info tags are printed, see docs/operations.md)
 lintian_out=$(lintian --tag-display-limit 0 "$deb" 2>&1 | grep -v 'running with root privileges' || true)
@@ -30,6 +34,10 @@ depends=$(field Depends)
 for lib in libc6 libstdc++6 libsystemd0 libspdlog libfmt libgeographiclib systemd; do
   grep -q "$lib" <<<"$depends" && pass "Depends has $lib" || fail "Depends lacks $lib: $depends"
 done
+# Visual tracking is apart (contract section 20): no OpenCV here, gimbald-track recommended.
+grep -q 'opencv' <<<"$depends" && fail "gimbald Depends on OpenCV: $depends" || pass "Depends has no OpenCV"
+[ "$(field Recommends)" = gimbald-track ] && pass "Recommends: gimbald-track" \
+  || fail "Recommends is '$(field Recommends)', not gimbald-track"
 control=$(mktemp -d)
 scratch=$(mktemp -d)
 trap 'rm -rf "$control" "$scratch"' EXIT
@@ -67,6 +75,7 @@ grep -qx 'Format: https://www.debian.org/doc/packaging-manuals/copyright-format/
 expect -rw-r--r-- usr/share/doc/gimbald/changelog.gz
 expect -rw-r--r-- usr/share/doc/gimbald/configuration.md
 expect -rw-r--r-- usr/share/doc/gimbald/examples/gimbald.json
+grep -q 'gimbal-track' <<<"$contents" && fail "gimbald holds gimbal-track" || pass "gimbal-track not in gimbald"
 # Tools added later (gimbal-replay, gimbal-export) and the dissector come with their sources.
 src=$(dirname "$0")/../..
 for tool in gimbal-replay gimbal-export; do
@@ -76,6 +85,48 @@ done
 # The operator console (contract section 11), served from here by default.
 [ -f "$src/web/index.html" ] && expect -rw-r--r-- usr/share/gimbald/web/index.html
 [ -f "$src/dissectors/gimbald.lua" ] && expect -rw-r--r-- "usr/lib/.*/wireshark/plugins/gimbald.lua"
+
+# --- gimbald-track: the tracking process and its OpenCV dependency
+if [ -f "$track_deb" ]; then
+  tfield() { dpkg-deb -f "$track_deb" "$1"; }
+  lintian_out=$(lintian --tag-display-limit 0 "$track_deb" 2>&1 | grep -v 'running with root privileges' || true)
+  [ -n "$lintian_out" ] && echo "$lintian_out"
+  if grep -q '^E: ' <<<"$lintian_out"; then fail "gimbald-track: lintian reports errors"; else pass "gimbald-track: lintian: no errors"; fi
+  [ "$(tfield Package)" = gimbald-track ] && pass "gimbald-track: Package" || fail "gimbald-track: Package is $(tfield Package)"
+  [ "$(tfield Version)" = "$version" ] && pass "gimbald-track: Version $version" || fail "gimbald-track: Version $(tfield Version)"
+  [ "$(tfield Architecture)" = "$arch" ] && pass "gimbald-track: Architecture" || fail "gimbald-track: Architecture $(tfield Architecture)"
+  for f in Section Priority Maintainer Description Installed-Size; do
+    [ -n "$(tfield "$f")" ] && pass "gimbald-track: $f present" || fail "gimbald-track: $f missing"
+  done
+  tdepends=$(tfield Depends)
+  # OpenCV's core, image processing and tracking (contrib) modules, libavcodec, libswscale,
+  # and the gimbald it speaks to.
+  for lib in libopencv-core406 libopencv-imgproc406 libopencv-contrib406 libavcodec59 libswscale6 \
+             libc6 libstdc++6 "gimbald (= $version)"; do
+    grep -qF "$lib" <<<"$tdepends" && pass "gimbald-track: Depends has $lib" \
+      || fail "gimbald-track: Depends lacks $lib: $tdepends"
+  done
+  # Only the modules it uses: not highgui (GTK/Qt) or videoio directly.
+  for lib in libopencv-highgui libopencv-videoio libopencv-dnn; do
+    grep -q "$lib" <<<"$tdepends" && fail "gimbald-track: Depends on $lib: $tdepends" \
+      || pass "gimbald-track: no direct $lib"
+  done
+  tcontents=$(dpkg-deb -c "$track_deb" | awk '{print $1, $6}')
+  texpect() {
+    grep -q "^$1[^ ]* \./$2\$" <<<"$tcontents" && pass "gimbald-track: has $2" || fail "gimbald-track: lacks $2 ($1)"
+  }
+  texpect -rwxr-xr-x usr/bin/gimbal-track
+  texpect -rw-r--r-- usr/share/man/man1/gimbal-track.1.gz
+  texpect -rw-r--r-- usr/share/doc/gimbald-track/copyright
+  texpect -rw-r--r-- usr/share/doc/gimbald-track/changelog.gz
+  # Nothing of gimbald's own: the two packages share no file.
+  shared=$(comm -12 <(awk '$1 !~ /^d/ {print $2}' <<<"$contents" | sort) \
+                    <(awk '$1 !~ /^d/ {print $2}' <<<"$tcontents" | sort))
+  [ -z "$shared" ] && pass "gimbald and gimbald-track share no file" || fail "shared files: $shared"
+else
+  fail "no gimbald-track package at $track_deb (contract section 20: the tracker is packaged apart)"
+fi
+
 
 # --- run from the unpacked package (only where the package's architecture runs here)
 dpkg-deb -x "$deb" "$scratch"
@@ -101,6 +152,20 @@ out=$("${run[@]}" "$scratch/usr/bin/gimbalctl" --help)
 grep -q '^SYNOPSIS' <<<"$out" && pass "gimbalctl --help" || fail "gimbalctl --help"
 out=$("${run[@]}" "$scratch/usr/bin/gimbal-sim" --version)
 [ "$out" = "gimbal-sim $version" ] && pass "gimbal-sim --version: $out" || fail "gimbal-sim --version: $out"
+# gimbal-track from its own unpacked package.
+if [ -f "$track_deb" ]; then
+  tscratch=$(mktemp -d)
+  trap 'rm -rf "$control" "$scratch" "$tscratch"' EXIT
+  dpkg-deb -x "$track_deb" "$tscratch"
+  out=$("${run[@]}" "$tscratch/usr/bin/gimbal-track" --version 2>&1 || true)
+  [ "$out" = "gimbal-track $version" ] && pass "gimbal-track --version: $out" || fail "gimbal-track --version: $out"
+  out=$("${run[@]}" "$tscratch/usr/bin/gimbal-track" --help 2>&1 || true)
+  grep -q '^SYNOPSIS' <<<"$out" && pass "gimbal-track --help" || fail "gimbal-track --help"
+  page=$tscratch/usr/share/man/man1/gimbal-track.1.gz
+  warnings=$(LC_ALL=C.UTF-8 MANWIDTH=80 man --warnings -l "$page" 2>&1 >/dev/null || true)
+  [ -z "$warnings" ] && grep -q "^\.TH .*gimbal.* $version\"" <<<"$(zcat "$page")" \
+    && pass "gimbald-track: man page gimbal-track.1.gz" || fail "gimbald-track: man page: $warnings"
+fi
 # Man pages render without groff warnings and carry the version. (Here-strings,
 # not pipes into grep -q: with pipefail an early grep exit SIGPIPEs the writer.)
 for page in "$scratch"/usr/share/man/man*/*.gz; do
@@ -113,4 +178,4 @@ if [ $failures -gt 0 ]; then
   echo "check-package: $failures failure(s)" >&2
   exit 1
 fi
-echo "check-package: all checks passed for $(basename "$deb")"
+echo "check-package: all checks passed for $(basename "$deb") and $(basename "$track_deb")"
