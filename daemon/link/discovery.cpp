@@ -4,8 +4,8 @@
 #include <boost/asio/post.hpp>
 
 #include "link/seconds.hpp"
-#include "orion/enums.hpp"
-#include "orion/framing.hpp"
+#include "protocols/orion/codec/enums.hpp"
+#include "protocols/orion/codec/framing.hpp"
 
 namespace gimbald {
 

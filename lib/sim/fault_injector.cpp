@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "orion/framing.hpp"
+#include "protocols/orion/codec/framing.hpp"
 #include "viewpro/output.hpp"
 
 namespace gimbal::sim {

@@ -1,7 +1,7 @@
 #include "sim_video/sim_video_source.hpp"
 
+#include "protocols/orion/sim/sim_camera.hpp"
 #include "sim/frame_code.hpp"
-#include "sim/sim_camera.hpp"
 
 namespace gimbal::sim_video {
 

@@ -11,9 +11,9 @@
 #include <vector>
 
 #include "geo/footprint.hpp"
+#include "protocols/orion/sim/orion_sim.hpp"
 #include "sim/camera_view.hpp"
 #include "sim/i420_frame.hpp"
-#include "sim/orion_sim.hpp"
 #include "sim/scene_renderer.hpp"
 #include "sim_video/h264_encoder.hpp"
 

@@ -7,8 +7,8 @@
 #include <optional>
 #include <vector>
 
-#include "orion/packets_external.hpp"
-#include "orion/packets_telemetry.hpp"
+#include "protocols/orion/codec/packets_external.hpp"
+#include "protocols/orion/codec/packets_telemetry.hpp"
 #include "vehicle/vehicle_state.hpp"
 
 namespace gimbal::vehicle {

@@ -21,9 +21,9 @@
 #include "../unit/viewpro/vectors.hpp"
 #include "mavlink/framer.hpp"
 #include "mavlink/framing.hpp"
-#include "orion/framing.hpp"
-#include "orion/json.hpp"
-#include "orion/packets.hpp"
+#include "protocols/orion/codec/framing.hpp"
+#include "protocols/orion/codec/json.hpp"
+#include "protocols/orion/codec/packets.hpp"
 #include "schema.hpp"
 #include "viewpro/viewpro.hpp"
 

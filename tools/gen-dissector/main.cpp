@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "orion/packets.hpp"
+#include "protocols/orion/codec/packets.hpp"
 #include "schema.hpp"
 
 using namespace gimbal;

@@ -11,8 +11,8 @@
 #include <utility>
 #include <vector>
 
-#include "orion/fields.hpp"
-#include "orion/wire.hpp"
+#include "protocols/orion/codec/fields.hpp"
+#include "protocols/orion/codec/wire.hpp"
 
 namespace gimbal::dissector {
 

@@ -1,6 +1,6 @@
 #include "protocols/orion/orion_feed.hpp"
 
-#include "orion/framing.hpp"
+#include "protocols/orion/codec/framing.hpp"
 #include "protocols/orion/orion_config.hpp"
 #include "vehicle/feeds.hpp"
 

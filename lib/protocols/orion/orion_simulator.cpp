@@ -1,10 +1,10 @@
 #include "protocols/orion/orion_entry.hpp"
 
-#include "orion/framer.hpp"
-#include "orion/json.hpp"
-#include "orion/packets.hpp"
-#include "sim/orion_sim.hpp"
-#include "sim/sim_camera.hpp"
+#include "protocols/orion/codec/framer.hpp"
+#include "protocols/orion/codec/json.hpp"
+#include "protocols/orion/codec/packets.hpp"
+#include "protocols/orion/sim/orion_sim.hpp"
+#include "protocols/orion/sim/sim_camera.hpp"
 
 namespace gimbal::protocols {
 

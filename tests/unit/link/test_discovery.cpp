@@ -5,8 +5,8 @@
 #include "link/discovery.hpp"
 #include "link/tcp_link.hpp"
 #include "link_test_support.hpp"
-#include "orion/enums.hpp"
-#include "orion/framing.hpp"
+#include "protocols/orion/codec/enums.hpp"
+#include "protocols/orion/codec/framing.hpp"
 
 using namespace link_test;
 namespace asio = boost::asio;

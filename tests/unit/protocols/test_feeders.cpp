@@ -4,8 +4,8 @@
 
 #include "../vehicle/vehicle_fixtures.hpp"
 #include "mavlink/framer.hpp"
-#include "orion/framer.hpp"
-#include "orion/packets.hpp"
+#include "protocols/orion/codec/framer.hpp"
+#include "protocols/orion/codec/packets.hpp"
 #include "protocols/registry.hpp"
 #include "viewpro/input_framer.hpp"
 

@@ -1,7 +1,7 @@
 #include <catch2/catch.hpp>
 
-#include "orion/framer.hpp"
-#include "orion/framing.hpp"
+#include "protocols/orion/codec/framer.hpp"
+#include "protocols/orion/codec/framing.hpp"
 #include "sim/fault_injector.hpp"
 
 using namespace gimbal;

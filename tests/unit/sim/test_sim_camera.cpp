@@ -4,10 +4,10 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "orion/packets.hpp"
+#include "protocols/orion/codec/packets.hpp"
+#include "protocols/orion/sim/sim_camera.hpp"
 #include "scene_test_support.hpp"
 #include "sim/scene_renderer.hpp"
-#include "sim/sim_camera.hpp"
 #include "sim/viewpro_sim.hpp"
 #include "sim_harness.hpp"
 

@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "mavlink/mavlink.hpp"
-#include "orion/codec.hpp"
+#include "protocols/orion/codec/codec.hpp"
 #include "vehicle/feeds.hpp"
 #include "vehicle_fixtures.hpp"
 #include "viewpro/input.hpp"
