@@ -3,7 +3,7 @@
 #include <algorithm>
 
 #include "protocols/orion/codec/framing.hpp"
-#include "viewpro/output.hpp"
+#include "protocols/viewpro/codec/output.hpp"
 
 namespace gimbal::sim {
 

@@ -5,7 +5,7 @@
 #include <numbers>
 
 #include "mavlink/framing.hpp"
-#include "viewpro/input.hpp"
+#include "protocols/viewpro/codec/input.hpp"
 
 namespace gimbal::vehicle {
 

@@ -5,7 +5,7 @@
 #include <type_traits>
 #include <variant>
 
-#include "viewpro/time.hpp"
+#include "protocols/viewpro/codec/time.hpp"
 
 namespace gimbal::vehicle {
 

@@ -24,8 +24,8 @@
 #include "protocols/orion/codec/framing.hpp"
 #include "protocols/orion/codec/json.hpp"
 #include "protocols/orion/codec/packets.hpp"
+#include "protocols/viewpro/codec/viewpro.hpp"
 #include "schema.hpp"
-#include "viewpro/viewpro.hpp"
 
 using nlohmann::json;
 using Bytes = std::vector<std::uint8_t>;

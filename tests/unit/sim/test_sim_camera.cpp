@@ -6,9 +6,9 @@
 
 #include "protocols/orion/codec/packets.hpp"
 #include "protocols/orion/sim/sim_camera.hpp"
+#include "protocols/viewpro/sim/viewpro_sim.hpp"
 #include "scene_test_support.hpp"
 #include "sim/scene_renderer.hpp"
-#include "sim/viewpro_sim.hpp"
 #include "sim_harness.hpp"
 
 using namespace scene_test;

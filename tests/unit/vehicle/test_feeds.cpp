@@ -5,9 +5,9 @@
 
 #include "mavlink/mavlink.hpp"
 #include "protocols/orion/codec/codec.hpp"
+#include "protocols/viewpro/codec/input.hpp"
 #include "vehicle/feeds.hpp"
 #include "vehicle_fixtures.hpp"
-#include "viewpro/input.hpp"
 
 using namespace gimbal;
 using vehicle::VehicleOptions;

@@ -1,4 +1,4 @@
-#include "viewpro/time.hpp"
+#include "protocols/viewpro/codec/time.hpp"
 
 #include <cmath>
 #include <cstdio>

@@ -12,8 +12,8 @@
 #include <string_view>
 #include <vector>
 
-#include "viewpro/mode.hpp"
-#include "viewpro/time.hpp"
+#include "protocols/viewpro/codec/mode.hpp"
+#include "protocols/viewpro/codec/time.hpp"
 
 namespace gimbal::viewpro {
 

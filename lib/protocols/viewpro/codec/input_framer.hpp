@@ -5,8 +5,8 @@
 #pragma once
 
 #include "framing/scan_framer.hpp"
-#include "viewpro/framer_stats.hpp"
-#include "viewpro/input.hpp"
+#include "protocols/viewpro/codec/framer_stats.hpp"
+#include "protocols/viewpro/codec/input.hpp"
 
 namespace gimbal::viewpro {
 

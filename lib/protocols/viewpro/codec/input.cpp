@@ -1,9 +1,9 @@
-#include "viewpro/input.hpp"
+#include "protocols/viewpro/codec/input.hpp"
 
 #include <algorithm>
 
-#include "viewpro/checksum.hpp"
-#include "viewpro/le.hpp"
+#include "protocols/viewpro/codec/checksum.hpp"
+#include "protocols/viewpro/codec/le.hpp"
 
 namespace gimbal::viewpro {
 

@@ -1,4 +1,4 @@
-#include "viewpro/json.hpp"
+#include "protocols/viewpro/codec/json.hpp"
 
 namespace gimbal::viewpro {
 

@@ -1,8 +1,8 @@
-#include "viewpro/output_framer.hpp"
+#include "protocols/viewpro/codec/output_framer.hpp"
 
 #include <algorithm>
 
-#include "viewpro/checksum.hpp"
+#include "protocols/viewpro/codec/checksum.hpp"
 
 namespace gimbal::viewpro {
 

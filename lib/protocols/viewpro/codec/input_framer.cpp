@@ -1,8 +1,8 @@
-#include "viewpro/input_framer.hpp"
+#include "protocols/viewpro/codec/input_framer.hpp"
 
 #include <algorithm>
 
-#include "viewpro/checksum.hpp"
+#include "protocols/viewpro/codec/checksum.hpp"
 
 namespace gimbal::viewpro {
 

@@ -1,4 +1,4 @@
-#include "viewpro/mode.hpp"
+#include "protocols/viewpro/codec/mode.hpp"
 
 namespace gimbal::viewpro {
 

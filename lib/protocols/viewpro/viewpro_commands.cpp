@@ -1,4 +1,4 @@
-#include "command/viewpro_commands.hpp"
+#include "protocols/viewpro/viewpro_commands.hpp"
 
 #include <algorithm>
 #include <array>
@@ -7,9 +7,9 @@
 #include <string>
 
 #include "command/params.hpp"
-#include "viewpro/input.hpp"
-#include "viewpro/mode.hpp"
-#include "viewpro/time.hpp"
+#include "protocols/viewpro/codec/input.hpp"
+#include "protocols/viewpro/codec/mode.hpp"
+#include "protocols/viewpro/codec/time.hpp"
 
 namespace gimbal::command {
 namespace {

@@ -7,11 +7,11 @@
 //   json.hpp          JSON in the units of the interface contract
 #pragma once
 
-#include "viewpro/checksum.hpp"
-#include "viewpro/input.hpp"
-#include "viewpro/input_framer.hpp"
-#include "viewpro/json.hpp"
-#include "viewpro/mode.hpp"
-#include "viewpro/output.hpp"
-#include "viewpro/output_framer.hpp"
-#include "viewpro/time.hpp"
+#include "protocols/viewpro/codec/checksum.hpp"
+#include "protocols/viewpro/codec/input.hpp"
+#include "protocols/viewpro/codec/input_framer.hpp"
+#include "protocols/viewpro/codec/json.hpp"
+#include "protocols/viewpro/codec/mode.hpp"
+#include "protocols/viewpro/codec/output.hpp"
+#include "protocols/viewpro/codec/output_framer.hpp"
+#include "protocols/viewpro/codec/time.hpp"

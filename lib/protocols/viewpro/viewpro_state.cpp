@@ -1,9 +1,9 @@
-#include "state/viewpro_state.hpp"
+#include "protocols/viewpro/viewpro_state.hpp"
 
 #include <algorithm>
 
+#include "protocols/viewpro/codec/json.hpp"
 #include "state/precision.hpp"
-#include "viewpro/json.hpp"
 
 namespace gimbal::state {
 

@@ -3,9 +3,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "viewpro/input.hpp"
-#include "viewpro/mode.hpp"
-#include "viewpro/output.hpp"
+#include "protocols/viewpro/codec/input.hpp"
+#include "protocols/viewpro/codec/mode.hpp"
+#include "protocols/viewpro/codec/output.hpp"
 
 namespace gimbal::viewpro {
 

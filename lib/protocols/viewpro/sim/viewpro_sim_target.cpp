@@ -1,4 +1,4 @@
-#include "sim/viewpro_sim_target.hpp"
+#include "protocols/viewpro/sim/viewpro_sim_target.hpp"
 
 #include <cmath>
 

@@ -6,8 +6,8 @@
 #include <optional>
 #include <vector>
 
+#include "protocols/viewpro/codec/output.hpp"
 #include "state/event.hpp"
-#include "viewpro/output.hpp"
 
 namespace gimbal::state {
 

@@ -8,11 +8,11 @@
 #include <span>
 #include <vector>
 
+#include "protocols/viewpro/codec/input_framer.hpp"
+#include "protocols/viewpro/codec/output.hpp"
+#include "protocols/viewpro/sim/viewpro_sim.hpp"
+#include "protocols/viewpro/sim/viewpro_sim_target.hpp"
 #include "sim/device.hpp"
-#include "sim/viewpro_sim.hpp"
-#include "sim/viewpro_sim_target.hpp"
-#include "viewpro/input_framer.hpp"
-#include "viewpro/output.hpp"
 
 namespace gimbal::sim {
 

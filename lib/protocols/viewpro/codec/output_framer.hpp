@@ -3,8 +3,8 @@
 #pragma once
 
 #include "framing/scan_framer.hpp"
-#include "viewpro/framer_stats.hpp"
-#include "viewpro/output.hpp"
+#include "protocols/viewpro/codec/framer_stats.hpp"
+#include "protocols/viewpro/codec/output.hpp"
 
 namespace gimbal::viewpro {
 

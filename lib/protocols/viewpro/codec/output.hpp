@@ -10,8 +10,8 @@
 #include <span>
 #include <vector>
 
-#include "viewpro/mode.hpp"
-#include "viewpro/time.hpp"
+#include "protocols/viewpro/codec/mode.hpp"
+#include "protocols/viewpro/codec/time.hpp"
 
 namespace gimbal::viewpro {
 

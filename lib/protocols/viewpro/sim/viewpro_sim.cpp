@@ -1,11 +1,11 @@
-#include "sim/viewpro_sim.hpp"
+#include "protocols/viewpro/sim/viewpro_sim.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-#include "sim/viewpro_sim_model.hpp"
-#include "viewpro/input.hpp"
-#include "viewpro/mode.hpp"
+#include "protocols/viewpro/codec/input.hpp"
+#include "protocols/viewpro/codec/mode.hpp"
+#include "protocols/viewpro/sim/viewpro_sim_model.hpp"
 
 namespace gimbal::sim {
 
