@@ -1,9 +1,9 @@
-#include "protocols/viewpro/codec/time.hpp"
+#include "calendar/utc.hpp"
 
 #include <cmath>
 #include <cstdio>
 
-namespace gimbal::viewpro {
+namespace gimbal::calendar {
 
 namespace {
 
@@ -101,4 +101,4 @@ double to_unix_seconds(const DateTime& t) {
     return static_cast<double>(days * 86400 + t.hour * 3600LL + t.minute * 60LL + t.second);
 }
 
-}  // namespace gimbal::viewpro
+}  // namespace gimbal::calendar
