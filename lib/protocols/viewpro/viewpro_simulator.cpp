@@ -2,6 +2,7 @@
 
 #include "protocols/viewpro/codec/input_framer.hpp"
 #include "protocols/viewpro/codec/json.hpp"
+#include "protocols/viewpro/sim/viewpro_fault_frames.hpp"
 #include "protocols/viewpro/sim/viewpro_sim.hpp"
 
 namespace gimbal::protocols {

@@ -4,6 +4,7 @@
 
 #include "protocols/viewpro/codec/output.hpp"
 #include "protocols/viewpro/codec/output_framer.hpp"
+#include "protocols/viewpro/sim/viewpro_fault_frames.hpp"
 #include "sim/fault_injector.hpp"
 
 using namespace gimbal;

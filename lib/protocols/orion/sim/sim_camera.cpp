@@ -17,6 +17,11 @@ std::optional<geo::CameraPose> orion_camera_pose(const Device& device) {
     return camera_pose(*view);
 }
 
+CameraView camera_view(const OrionCameraView& view) {
+    return CameraView{view.model_time_s, camera_pose(view), view.mount_to_ned,
+                      view.geoid_undulation_m, view.infrared};
+}
+
 SceneOptions scene_options_for(const OrionCameraView& view, SceneOptions base) {
     base.monochrome = view.infrared;
     return base;

@@ -8,6 +8,7 @@
 
 #include "geo/footprint.hpp"
 #include "protocols/orion/sim/orion_sim.hpp"
+#include "sim/camera_view.hpp"
 #include "sim/device.hpp"
 #include "sim/scene_renderer.hpp"
 
@@ -17,6 +18,10 @@ geo::CameraPose camera_pose(const OrionCameraView& view);
 
 // nullopt when the device is not a simulated Orion.
 std::optional<geo::CameraPose> orion_camera_pose(const Device& device);
+
+// The view as every simulated camera gives it (its pose; monochrome when infrared): what the
+// simulator hook hands the rendered video and its KLV.
+CameraView camera_view(const OrionCameraView& view);
 
 // Scene options for the view's camera: `base` with monochrome set for an infrared camera.
 SceneOptions scene_options_for(const OrionCameraView& view, SceneOptions base = {});
