@@ -2,7 +2,7 @@
 
 #include "protocols/orion/codec/framing.hpp"
 #include "protocols/orion/orion_config.hpp"
-#include "vehicle/feeds.hpp"
+#include "protocols/orion/orion_feed_packets.hpp"
 
 namespace gimbal::protocols {
 

@@ -3,9 +3,9 @@
 #include <catch2/catch.hpp>
 
 #include "protocols/orion/codec/packets.hpp"
+#include "protocols/orion/orion_feed_packets.hpp"
 #include "protocols/orion/sim/laser.hpp"
 #include "sim_harness.hpp"
-#include "vehicle/feeds.hpp"
 
 using namespace gimbal;
 using sim_test::decoded;

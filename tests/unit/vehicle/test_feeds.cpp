@@ -5,7 +5,9 @@
 
 #include "mavlink/mavlink.hpp"
 #include "protocols/orion/codec/codec.hpp"
+#include "protocols/orion/orion_feed_packets.hpp"
 #include "protocols/viewpro/codec/input.hpp"
+#include "protocols/viewpro/viewpro_feed_packets.hpp"
 #include "vehicle/feeds.hpp"
 #include "vehicle_fixtures.hpp"
 
