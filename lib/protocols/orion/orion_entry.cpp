@@ -58,6 +58,7 @@ Entry make_entry() {
             std::make_unique<framing::FramerSplitter<orion::Framer, frame_size>>());
     };
     e.make_track_decoder = make_orion_track_decoder;
+    e.discovery = orion_discovery();
     e.simulator = orion_simulator();
     return e;
 }
