@@ -10,7 +10,7 @@ namespace gimbal::protocols {
 
 namespace {
 
-// The catalogue commands an Orion plans (command/orion_commands.cpp), with their packets.
+// The catalogue commands an Orion plans (orion_commands.cpp), with their packets.
 constexpr PlannedCommand commands[] = {
     {"geopoint", "GeopointCmd, id 213, 21 bytes"},
     {"path", "OrionPath, id 215, 5 + 9 x points bytes"},

@@ -1,6 +1,6 @@
-// The simulated Orion's camera pose for its video (sim/sim_camera.hpp): the pose gimbald
-// derives from the gimbal's own telemetry, and a geopoint on a landmark puts the landmark at
-// the picture's centre.
+// The simulated Orion's camera pose for its video (protocols/orion/sim/sim_camera.hpp): the pose
+// gimbald derives from the gimbal's own telemetry, and a geopoint on a landmark puts the landmark
+// at the picture's centre.
 #include <catch2/catch.hpp>
 #include <cmath>
 

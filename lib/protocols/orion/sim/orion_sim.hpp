@@ -66,7 +66,7 @@ struct OrionSimOptions {
 std::unique_ptr<Device> make_orion_sim(const OrionSimOptions& options = {});
 
 // What the simulated Orion's active camera looks at, at the model's current time (that of the
-// latest receive or advance): for rendering its video (sim/sim_camera.hpp).
+// latest receive or advance): for rendering its video (sim_camera.hpp).
 struct OrionCameraView {
     double model_time_s = 0;  // seconds since the model's start
     geo::Lla position;        // the gimbal

@@ -1,5 +1,5 @@
 // Little-endian field access and the contract's scaling rule for the Viewpro frames.
-// Internal to lib/viewpro.
+// Internal to the Viewpro codec.
 #pragma once
 
 #include <bit>
