@@ -44,11 +44,12 @@ std::string source_address(const gp::MavId& id) {
 
 mav::SigningKey load_signing_key(const std::string& path) {
     const auto read = gimbal::daemon::read_secret_file(path);
-    if (!read) throw std::runtime_error("mavlink.signing_key_file: " + read.error().message);
+    if (!read)
+        throw gimbal::daemon::ConfigError("mavlink.signing_key_file: " + read.error().message);
     const auto key = mav::parse_signing_key(*read);
     if (!key)
-        throw std::runtime_error("mavlink.signing_key_file: " + path +
-                                 " must hold 32 bytes, or 64 hex digits");
+        throw gimbal::daemon::ConfigError("mavlink.signing_key_file: " + path +
+                                          ": must hold 32 bytes, or 64 hex digits");
     return *key;
 }
 
@@ -66,7 +67,8 @@ MavlinkEndpoint::MavlinkEndpoint(boost::asio::io_context& io,
       cameras_(expose_cameras(manager_.gimbals(), sessions, videos)),
       timer_(io),
       epoch_(std::chrono::steady_clock::now()) {
-    if (!feed_.source()) throw std::runtime_error("mavlink.gimbal_manager needs vehicle.source");
+    if (!feed_.source())
+        throw gimbal::daemon::ConfigError("mavlink.gimbal_manager needs vehicle.source");
     std::vector<boost::asio::ip::udp::endpoint> targets;
     boost::asio::ip::udp::resolver resolver(io);
     for (const auto& t : config_.targets) {

@@ -131,7 +131,7 @@ class MavlinkEndpoint {
 };
 
 // A MAVLink signing key file: 32 raw bytes, or 64 hex digits (surrounding white space
-// ignored). Throws std::runtime_error naming the problem.
+// ignored). Throws gimbal::daemon::ConfigError naming the problem.
 gimbal::mavlink::SigningKey load_signing_key(const std::string& path);
 
 }  // namespace gimbald

@@ -5,6 +5,7 @@ import json
 import os
 import signal
 import socket
+import subprocess
 
 import gimbaltest as gt
 
@@ -102,6 +103,104 @@ class ExitCodes(gt.GimbaldTestCase):
         version = self.start_daemon({}, args=["--sim"])
         reply = self.client(version).request("version")
         self.assertIn(reply["version"], result.stdout)
+
+
+class ConfigurationFiles(gt.GimbaldTestCase):
+    """Contract section 14 (v4): configuration files are regular files of at most 1 MiB with
+    no NUL; every key file is checked by --check-config; any configuration problem found at
+    start exits 1 (the unit restarts on anything else: issue 25 saw a restart every 2 s)."""
+
+    def run_both(self, path, *extra):
+        """--check-config and a start, each with a deadline (a FIFO used to hang forever)."""
+        results = []
+        for args in ([gt.GIMBALD, "--check-config", "-c", path, *extra],
+                     [gt.GIMBALD, "-c", path, *extra]):
+            try:
+                results.append(gt.run(args, timeout=10.0, stdin=subprocess.DEVNULL))
+            except subprocess.TimeoutExpired:
+                self.fail("%s did not return within 10 s" % " ".join(args))
+        return results
+
+    def assert_refused(self, path, *needles, extra=()):
+        for result in self.run_both(path, *extra):
+            text = result.stdout + result.stderr
+            self.assertEqual(result.returncode, 1, text[-2000:])
+            for needle in needles:
+                self.assertIn(needle, text)
+            self.assertNotIn('"event":"start"', result.stdout)
+
+    def test_only_regular_files_of_at_most_1_mib_without_a_nul(self):
+        self.assert_refused("/dev/zero", "/dev/zero", "not a regular file (a character device)")
+        fifo = os.path.join(self.workdir, "config.fifo")
+        os.mkfifo(fifo)
+        self.assert_refused(fifo, "not a regular file (a FIFO)")
+        self.assert_refused(self.workdir, "not a regular file (a directory)")
+        nul = os.path.join(self.workdir, "nul.json")
+        with open(nul, "wb") as f:
+            f.write(b'{"gimbals": []}\n\0{"laser": {"allow_fire": true}}')
+        self.assert_refused(nul, "line 2, column 1: a NUL byte")
+        big = os.path.join(self.workdir, "big.json")
+        with open(big, "w") as f:  # a valid configuration, padded past 1 MiB
+            f.write('{"gimbals": []}' + " " * (1024 * 1024))
+        self.assert_refused(big, "larger than 1 MiB")
+        unclosed = os.path.join(self.workdir, "unclosed.json")
+        with open(unclosed, "w") as f:
+            f.write('{"gimbals": ' + "[" * 1000000)
+        self.assert_refused(unclosed, "nested deeper than 32 levels")
+        # At exactly the limit it is read.
+        edge = os.path.join(self.workdir, "edge.json")
+        with open(edge, "w") as f:
+            f.write('{"gimbals": []}' + " " * (1024 * 1024 - 15))
+        self.assertEqual(os.path.getsize(edge), 1024 * 1024)
+        result = gt.run([gt.GIMBALD, "--check-config", "-c", edge])
+        self.assertEqual(result.returncode, 0, result.stderr)
+
+    def manager(self, key_path, **more):
+        config = {"vehicle": {"source": {"type": "udp", "bind": "127.0.0.1",
+                                         "port": gt.free_port()}},
+                  "mavlink": {"gimbal_manager": True, "system_id": 1,
+                              "signing_key_file": key_path}}
+        config.update(more)
+        path = os.path.join(self.workdir, "manager.json")
+        with open(path, "w") as f:
+            json.dump(config, f)
+        return path
+
+    def write_key(self, name, data, mode):
+        path = os.path.join(self.workdir, name)
+        with open(path, "wb") as f:
+            f.write(data)
+        os.chmod(path, mode)
+        return path
+
+    def test_the_gimbal_managers_signing_key_is_checked(self):
+        good = self.write_key("good.key", os.urandom(32).hex().encode(), 0o600)
+        result = gt.run([gt.GIMBALD, "--sim", "--check-config", "-c", self.manager(good)])
+        self.assertEqual(result.returncode, 0, result.stderr)
+        cases = [
+            ("malformed", self.write_key("short.key", b"abcd\n", 0o600),
+             "must hold 32 bytes, or 64 hex digits"),
+            ("readable by others", self.write_key("open.key", os.urandom(32), 0o644),
+             "readable by group or others (mode 0644)"),
+            ("missing", os.path.join(self.workdir, "none.key"), "missing"),
+        ]
+        fifo = os.path.join(self.workdir, "key.fifo")
+        os.mkfifo(fifo, 0o600)
+        cases.append(("a FIFO", fifo, "not a regular file (a FIFO)"))
+        for what, key, reason in cases:
+            with self.subTest(what):
+                self.assert_refused(self.manager(key), "mavlink.signing_key_file", reason,
+                                    extra=("--sim",))
+
+    def test_a_key_that_goes_bad_after_the_check_is_exit_1_at_start(self):
+        # The daemon reads the key again when it starts: the same problem is exit 1, not 2.
+        key = self.write_key("late.key", os.urandom(32).hex().encode(), 0o600)
+        path = self.manager(key)
+        self.assertEqual(gt.run([gt.GIMBALD, "--sim", "--check-config", "-c", path]).returncode, 0)
+        os.chmod(key, 0o644)
+        result = gt.run([gt.GIMBALD, "--sim", "-c", path], stdin=subprocess.DEVNULL)
+        self.assertEqual(result.returncode, 1, result.stdout[-2000:] + result.stderr)
+        self.assertIn("mavlink.signing_key_file", result.stderr)
 
 
 class SignalsAndLogs(gt.GimbaldTestCase):
