@@ -199,21 +199,30 @@ nlohmann::json MavlinkEndpoint::camera_state_of(const std::string& gimbal) const
     return nlohmann::json::object();
 }
 
-bool MavlinkEndpoint::signature_ok(const mav::Message& m) {
+bool MavlinkEndpoint::authentic(const mav::Message& m) {
     if (!key_) return true;
+    // Checked once per message: accepting records the stream's timestamp, so a second look
+    // at the same frame would call it a replay.
     if (!m.signature || !m.signature->verified ||
         !streams_.accept(m.sysid, m.compid, m.signature->link_id, m.signature->timestamp,
-                         signing_now())) {
-        ++counters_.unsigned_ignored;
+                         signing_now()))
         return false;
-    }
     clock_.raise_to(m.signature->timestamp);
     signing_dirty_ = true;  // saved within a second (on_tick) and on stop()
     return true;
 }
 
+bool MavlinkEndpoint::obeyed(bool authentic) {
+    if (!authentic) ++counters_.unsigned_ignored;
+    return authentic;
+}
+
 void MavlinkEndpoint::on_message(const mav::Message& m) {
     if (stopped_) return;
+    // A frame that parsed (and, with signing, is signed and fresh): its sender takes a peer
+    // slot. Junk and unsigned frames under signing never evict a ground station (section 14).
+    const bool is_authentic = authentic(m);
+    if (is_authentic) feed_.source()->admit_peer();
     const auto sysid = system_id();
     if (!sysid) return;  // nothing is answered before our system id is known
     const gp::MavId from{m.sysid, m.compid};
@@ -232,7 +241,7 @@ void MavlinkEndpoint::on_message(const mav::Message& m) {
     // the gimbal managers' to answer.
     if (command && command->target_system == *sysid) {
         if (const auto* camera = cameras_.find(command->target_component)) {
-            if (!signature_ok(m)) return;
+            if (!obeyed(is_authentic)) return;
             on_camera_command(*command, *camera, from);
             return;
         }
@@ -240,7 +249,7 @@ void MavlinkEndpoint::on_message(const mav::Message& m) {
     if (command && !addressed(command->target_system, command->target_component)) command.reset();
     const gp::StateLookup lookup = [this](const std::string& g) { return state_of(g); };
     if (command) {
-        if (!signature_ok(m)) return;
+        if (!obeyed(is_authentic)) return;
         ++counters_.commands;
         // The ACK comes from the component addressed (for 0: the first gimbal's manager).
         const std::uint8_t answering =
@@ -268,7 +277,7 @@ void MavlinkEndpoint::on_message(const mav::Message& m) {
         if (addressed(d->target_system, d->target_component))
             setpoint_component = d->target_component;
     }
-    if (!setpoint_component || !signature_ok(m)) return;
+    if (!setpoint_component || !obeyed(is_authentic)) return;
     ++counters_.commands;
     const std::uint8_t answering =
         *setpoint_component != 0 ? *setpoint_component : first_component();
