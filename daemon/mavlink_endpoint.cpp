@@ -30,7 +30,11 @@ std::vector<gp::ExposedGimbal> exposed(const std::vector<GimbalSession*>& sessio
                                        std::uint8_t first_component) {
     std::vector<std::pair<std::string, std::string>> list;
     for (const auto* s : sessions) list.emplace_back(s->name(), std::string(s->protocol()));
-    return gp::expose(list, first_component);
+    auto gimbals = gp::expose(list, first_component);
+    // Every exposed gimbal is also a camera component (expose_cameras): the camera answers
+    // CAMERA_INFORMATION, its manager does not (contract v4, section 8).
+    for (auto& g : gimbals) g.camera_component = gp::camera_component(g.device_id);
+    return gimbals;
 }
 
 // The commands that only ask for reports: answered even with mavlink.commands false.

@@ -146,6 +146,42 @@ class PeerSlots(gt.GimbaldTestCase):
         self.assertTrue(second.wait(lambda m: m[3] == 285, 3.0), "a real second GCS got nothing")
 
 
+class OneCameraEach(gt.GimbaldTestCase):
+    """Contract v4 (section 8): a manager whose gimbal has a camera component does not answer
+    CAMERA_INFORMATION; MAVSDK's Camera plugin listed [154, 100] for one gimbal."""
+
+    def test_only_the_camera_component_answers_camera_information(self):
+        port = gt.free_port()
+        daemon = self.start_daemon(manager_config(port), args=["--sim"])
+        self.wait_connected(self.client(daemon))
+        gcs = mt.Peer(port)
+        self.addCleanup(gcs.close)
+        gcs.send(0, HEARTBEAT)
+        time.sleep(1.0)  # the simulated Orion's CAMERAS packet
+
+        def camera_information(component):
+            since = time.monotonic()
+            result = gcs.command(mt.MAV_CMD_REQUEST_MESSAGE, [259, 0], target_component=component)
+            gcs.pump(0.5)  # the messages follow the ACK
+            infos = [m for m in gcs.received if m[0] >= since and m[3] == 259]
+            return result, infos
+
+        for component in (154, 0):  # the gimbal's manager, and every component
+            with self.subTest(component=component):
+                result, infos = camera_information(component)
+                self.assertEqual(result, DENIED)
+                self.assertEqual(infos, [], "a gimbal manager answered CAMERA_INFORMATION")
+        refused = daemon.wait_log(lambda e: e.get("event") == "mavlink_refused" and
+                                  e.get("command") == mt.MAV_CMD_REQUEST_MESSAGE)
+        self.assertIn("camera component: 100 (sim)", refused["msg"])
+        # The camera itself answers, once, from its own component.
+        result, infos = camera_information(100)
+        self.assertEqual(result, ACCEPTED)
+        self.assertEqual([m[2] for m in infos], [100])
+        # The manager's own information is still its own.
+        self.assertEqual(gcs.command(mt.MAV_CMD_REQUEST_MESSAGE, [280, 0]), ACCEPTED)
+
+
 class SignedAuthCoversMavlink(gt.GimbaldTestCase):
     def signed_config(self, port, **mavlink):
         key = write_key(self.workdir, "ops.key", os.urandom(32).hex().encode())
