@@ -165,7 +165,7 @@ class MavlinkDeviceTest(gt.GimbaldTestCase):
         self.assertEqual(s["protocol"], "mavlink")
         d = s["device"]
         self.assertEqual(d["model"], "simulated MAVLink gimbal")
-        self.assertEqual(d["firmware"], "1.2.3.0")
+        self.assertEqual(d["firmware"], "2.4.1")
         self.assertIn("supports_yaw_in_earth_frame", d["cap_flags"])
         self.assertAlmostEqual(d["limits"]["pitch_min"], -120, places=3)
         self.assertIn(d["attitude"]["frame"], ("vehicle", "earth"))
