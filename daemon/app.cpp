@@ -393,8 +393,8 @@ void App::on_signal(const boost::system::error_code& ec, int signo) {
         signals_.async_wait([this](const boost::system::error_code& e, int s) { on_signal(e, s); });
         return;
     }
-    log::info("stop", signo == SIGTERM ? "SIGTERM: stopping" : "SIGINT: stopping",
-              {{"signal", signo == SIGTERM ? "SIGTERM" : "SIGINT"}});
+    stop_signal_ = signo == SIGTERM ? "SIGTERM" : "SIGINT";
+    log::info("stop", stop_signal_ + ": stopping", {{"signal", stop_signal_}});
     shutdown();
 }
 
@@ -482,7 +482,10 @@ int App::run() {
     arm_watchdog();
     poll_logs();
     io_.run();
-    log::info("stop", "gimbald stopped");
+    // Both `stop` lines name the signal, so either one answers "why did it stop".
+    log::info("stop", "gimbald stopped",
+              {{"signal",
+                stop_signal_.empty() ? nlohmann::json(nullptr) : nlohmann::json(stop_signal_)}});
     return 0;
 }
 

@@ -8,6 +8,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "command_server.hpp"
@@ -80,6 +81,7 @@ class App {
     std::unique_ptr<mqtt::Bridge> mqtt_;      // contract section 9; null unless `mqtt` is set
     std::unique_ptr<http::HttpServer> http_;  // contract section 11; null unless `http` is set
     bool stopping_ = false;
+    std::string stop_signal_;  // "SIGTERM" or "SIGINT", once one asked gimbald to stop
 };
 
 }  // namespace gimbald

@@ -212,7 +212,8 @@ class SignalsAndLogs(gt.GimbaldTestCase):
             events = [e["event"] for e in daemon.logs()]
             self.assertEqual(events[:2], ["config", "start"])
             self.assertEqual(events[-2:], ["stop", "stop"])
-            self.assertEqual(daemon.logs()[-2]["signal"], name)
+            # Both lines name the signal (issue 25: the second one did not).
+            self.assertEqual([e["signal"] for e in daemon.logs()[-2:]], [name, name])
 
     def test_log_lines_are_json_with_the_required_keys(self):
         sim = self.start_sim()

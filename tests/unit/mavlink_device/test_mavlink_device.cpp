@@ -219,14 +219,21 @@ TEST_CASE("the vehicle feed: AUTOPILOT_STATE_FOR_GIMBAL_DEVICE at every tick, on
                 found.push_back(*a);
         return found;
     };
-    p.steer(v, 1.0, 1.0, out);
+    CHECK(p.steer(v, 1.0, 1.0, out) == 0);
     CHECK(autopilot_states(decode(out)).empty());  // nothing known of the vehicle
     Aircraft a;
     a.roll = 10;
     a.yaw = -60;
     a.vn = 12;
     report(v, a, 1.0);
-    for (int tick = 0; tick < 4; ++tick) p.steer(v, 1.0 + tick * 0.05, 1.0 + tick * 0.05, out);
+    // Each tick's first frame is the feed's: STATE vehicle.feed.sent counts it.
+    for (int tick = 0; tick < 4; ++tick) {
+        std::vector<session::Bytes> one;
+        CHECK(p.steer(v, 1.0 + tick * 0.05, 1.0 + tick * 0.05, one) == 1);
+        REQUIRE_FALSE(one.empty());
+        CHECK(autopilot_states(decode({one.front()})).size() == 1);
+        out.insert(out.end(), one.begin(), one.end());
+    }
     const auto messages = decode(out);
     const auto states = autopilot_states(messages);
     REQUIRE(states.size() == 4);
