@@ -9,6 +9,8 @@ import subprocess
 
 import gimbaltest as gt
 
+SOURCE = os.environ.get("GIMBAL_SOURCE_DIR",
+                        os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
 TS = r"^\d{4}-\d\d-\d\dT\d\d:\d\d:\d\d\.\d{6}Z$"
 
 
@@ -154,6 +156,25 @@ class ConfigurationFiles(gt.GimbaldTestCase):
         self.assertEqual(os.path.getsize(edge), 1024 * 1024)
         result = gt.run([gt.GIMBALD, "--check-config", "-c", edge])
         self.assertEqual(result.returncode, 0, result.stderr)
+
+    def test_the_examples_pass_as_installed(self):
+        # Issue 25: the installed sim.json named build/release/sim-dem.tif (relative to the
+        # working directory) and gimbald.json /var/lib/gimbald/dem/*.tif. What `cmake
+        # --install` and the package install (packaging/examples.cmake) passes from anywhere.
+        build = os.path.dirname(os.path.dirname(os.path.abspath(gt.GIMBALD)))
+        examples = sorted(os.listdir(os.path.join(build, "examples")))
+        self.assertEqual([e for e in examples if e.endswith(".json")], ["gimbald.json", "sim.json"])
+        for name in ("gimbald.json", "sim.json"):
+            with self.subTest(name):
+                path = os.path.join(build, "examples", name)
+                result = gt.run([gt.GIMBALD, "--check-config", "-c", path], cwd=self.workdir)
+                self.assertEqual(result.returncode, 0, result.stderr)
+                with open(path) as f:
+                    installed = json.load(f)
+                with open(os.path.join(SOURCE, "config", name)) as f:
+                    source = json.load(f)
+                source.pop("terrain")
+                self.assertEqual(installed, source, "only the terrain section is left out")
 
     def manager(self, key_path, **more):
         config = {"vehicle": {"source": {"type": "udp", "bind": "127.0.0.1",

@@ -97,6 +97,17 @@ if out=$("${run[@]}" "$scratch/usr/sbin/gimbald" --check-config -c "$scratch/etc
 else
   fail "gimbald --check-config: $out"
 fi
+# The examples pass as installed, run from elsewhere than a checkout (issue 25: sim.json named
+# build/release/sim-dem.tif, relative to the working directory).
+examples=("$scratch"/usr/share/doc/gimbald/examples/*.json)
+[ ${#examples[@]} -ge 2 ] && pass "${#examples[@]} examples" || fail "examples: ${examples[*]}"
+for example in "${examples[@]}"; do
+  if out=$(cd / && "${run[@]}" "$scratch/usr/sbin/gimbald" --check-config -c "$example" 2>&1); then
+    pass "examples/$(basename "$example"): $out"
+  else
+    fail "examples/$(basename "$example") does not pass --check-config as installed: $out"
+  fi
+done
 out=$("${run[@]}" "$scratch/usr/bin/gimbalctl" --help)
 grep -q '^SYNOPSIS' <<<"$out" && pass "gimbalctl --help" || fail "gimbalctl --help"
 out=$("${run[@]}" "$scratch/usr/bin/gimbal-sim" --version)
