@@ -85,7 +85,8 @@ FILES
   /etc/gimbald/gimbald.json  default configuration, see gimbald.json(5)
 
 SEE ALSO
-  gimbalctl(1), gimbal-sim(1), gimbald.json(5), /usr/share/doc/gimbald/
+  gimbalctl(1), gimbal-sim(1), gimbal-replay(1), gimbal-export(1),
+  gimbald.json(5), /usr/share/doc/gimbald/
 )";
 
 constexpr std::size_t help_width = 80;
