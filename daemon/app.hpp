@@ -8,6 +8,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "command_server.hpp"
@@ -49,6 +50,7 @@ class App {
     void on_signal(const boost::system::error_code& ec, int signo);
     void shutdown();
     void arm_watchdog();
+    void poll_logs();  // once a second: the log roll-up's summaries of stopped bursts
     void start_http();
     void start_video();
     void update_status();
@@ -58,6 +60,7 @@ class App {
     boost::asio::io_context io_;
     boost::asio::signal_set signals_;
     boost::asio::steady_timer watchdog_timer_;
+    boost::asio::steady_timer log_timer_;  // the log roll-up's summaries (log::poll)
     // Contract section 15: one model shared by every gimbal; declared before them so it
     // outlives them.
     std::unique_ptr<gimbal::terrain::ElevationModel> terrain_;
@@ -78,6 +81,7 @@ class App {
     std::unique_ptr<mqtt::Bridge> mqtt_;      // contract section 9; null unless `mqtt` is set
     std::unique_ptr<http::HttpServer> http_;  // contract section 11; null unless `http` is set
     bool stopping_ = false;
+    std::string stop_signal_;  // "SIGTERM" or "SIGINT", once one asked gimbald to stop
 };
 
 }  // namespace gimbald
