@@ -349,7 +349,7 @@ class UdpAttacks(gt.GimbaldTestCase):
 
         self.under_attack(attack, "sync KLV middle fragments")
         v = self.video()
-        self.assertGreater(v["klv_refused"], 1000, v)
+        self.assertGreater(v["klv_refused"], 100, v)
         self.assertIsNone(v["klv"], v)
 
     def test_a_valid_46kb_set_keeps_state_small(self):

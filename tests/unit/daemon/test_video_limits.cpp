@@ -196,7 +196,7 @@ TEST_CASE("video udp input: a configured source that never sends gives nothing",
     CHECK(input.status().source.empty());
 }
 
-TEST_CASE("video ts worker: demuxing runs off the io thread; what waits is bounded and counted",
+TEST_CASE("video ts worker: demuxing runs off the io thread, what waits is bounded and counted",
           "[video][worker]") {
     asio::io_context io;
     const auto io_thread = std::this_thread::get_id();
