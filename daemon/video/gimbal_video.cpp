@@ -44,6 +44,7 @@ GimbalVideo::GimbalVideo(boost::asio::io_context& io, GimbalVideoOptions options
       options_(std::move(options)),
       log_fields_({{"gimbal", options_.gimbal}}),
       generate_timer_(io),
+      watch_timer_(io),
       generate_period_(std::chrono::duration_cast<SteadyClock::duration>(
           std::chrono::duration<double>(1.0 / options_.config.klv_rate_hz))),
       track_(options_.klv_stream_fresh_s),
@@ -51,6 +52,7 @@ GimbalVideo::GimbalVideo(boost::asio::io_context& io, GimbalVideoOptions options
                         "video datagrams with KLV sets with a bad checksum"),
       refused_log_(gimbal::log::Level::warn, "klv_refused",
                    "video datagrams with KLV sets refused"),
+      dropped_log_(gimbal::log::Level::warn, "video_dropped", "times video was dropped"),
       generate_error_log_(gimbal::log::Level::warn, "klv_generate_error",
                           "KLV sets not generated") {
     if (!options_.capabilities) throw std::invalid_argument("GimbalVideo needs capabilities");
@@ -104,6 +106,7 @@ void GimbalVideo::start() {
     if (running_) return;
     running_ = true;
     input_->start();
+    arm_watch();
     if (options_.config.klv != KlvMode::off) {
         next_generate_ = SteadyClock::now() + generate_period_;
         arm_generate();
@@ -115,6 +118,7 @@ void GimbalVideo::stop() {
     running_ = false;
     lifetime_.reset();
     generate_timer_.cancel();
+    watch_timer_.cancel();
     input_->stop();
 }
 
@@ -205,15 +209,53 @@ void GimbalVideo::arm_generate() {
     generate_timer_.async_wait(lifetime_.wrap([this](const boost::system::error_code& ec) {
         if (ec || !running_) return;
         generate();
-        bad_checksum_log_.poll();
-        refused_log_.poll();
-        generate_error_log_.poll();
         // A fixed rate without drift; after a stall, skip rather than burst.
         next_generate_ += generate_period_;
         const auto now = SteadyClock::now();
         if (next_generate_ < now) next_generate_ = now + generate_period_;
         arm_generate();
     }));
+}
+
+void GimbalVideo::arm_watch() {
+    watch_timer_.expires_after(std::chrono::seconds(1));
+    watch_timer_.async_wait(lifetime_.wrap([this](const boost::system::error_code& ec) {
+        if (ec || !running_) return;
+        watch_counters();
+        arm_watch();
+    }));
+}
+
+// What the input refused or dropped on its own (the demuxer's bounds, its queues) is counted
+// there; here it becomes log lines, rolled up like the rest.
+void GimbalVideo::watch_counters() {
+    const VideoInputStatus s = input_->status();
+    nlohmann::json fields = {{"gimbal", options_.gimbal},
+                             {"input", gv::redact_userinfo(options_.config.input)}};
+    const std::uint64_t refused = s.demux.oversized_klv + s.demux.metadata_dropped;
+    if (refused > reported_stream_refused_) {
+        nlohmann::json f = fields;
+        f["units"] = refused - reported_stream_refused_;
+        f["total"] = refused;
+        refused_log_.hit(
+            "KLV in the video stream refused before it was read (a KLV PES over 128 KiB, or a "
+            "synchronous metadata AU over 64 KiB or out of order): ignored",
+            f);
+    }
+    reported_stream_refused_ = refused;
+    const std::uint64_t dropped = s.dropped_units + s.dropped_datagrams;
+    if (dropped > reported_dropped_) {
+        nlohmann::json f = fields;
+        f["dropped_units"] = s.dropped_units;
+        f["dropped_datagrams"] = s.dropped_datagrams;
+        dropped_log_.hit(
+            "video dropped: an access unit over 8 MiB, or the input's queues were full", f);
+    }
+    reported_dropped_ = dropped;
+    bad_checksum_log_.poll();
+    refused_log_.poll();
+    dropped_log_.poll();
+    generate_error_log_.poll();
 }
 
 void GimbalVideo::generate() {

@@ -80,6 +80,8 @@ class GimbalVideo final : public VideoTap {
     void send_klv(std::span<const std::uint8_t> set);
     void arm_generate();
     void generate();
+    void arm_watch();
+    void watch_counters();
     bool generating() const;
 
     boost::asio::io_context& io_;
@@ -89,6 +91,7 @@ class GimbalVideo final : public VideoTap {
     std::vector<std::unique_ptr<VideoOutput>> outputs_;
     std::unique_ptr<gimbal::video::TsMuxer> record_mux_;  // RTSP input while recording
     boost::asio::steady_timer generate_timer_;
+    boost::asio::steady_timer watch_timer_;  // 1 Hz: counters into log lines, roll-ups
     std::chrono::steady_clock::duration generate_period_;
     std::chrono::steady_clock::time_point next_generate_{};
     Lifetime lifetime_;
@@ -103,6 +106,9 @@ class GimbalVideo final : public VideoTap {
     double vs_telemetry_at_s_ = -1e9;
     gimbal::log::RateLimitedLog bad_checksum_log_;
     gimbal::log::RateLimitedLog refused_log_;
+    gimbal::log::RateLimitedLog dropped_log_;
+    std::uint64_t reported_stream_refused_ = 0;  // input counters already logged
+    std::uint64_t reported_dropped_ = 0;
     gimbal::log::RateLimitedLog generate_error_log_;
     std::map<std::uint64_t, Viewer> viewers_;
     std::uint64_t next_viewer_ = 1;

@@ -1,5 +1,8 @@
 #include "video/ts_worker.hpp"
 
+#include <sys/resource.h>
+#include <unistd.h>
+
 #include <utility>
 
 #include "video/klv_track.hpp"
@@ -9,6 +12,10 @@ namespace gimbald::video {
 namespace gv = gimbal::video;
 namespace klv = gimbal::klv;
 using Clock = std::chrono::steady_clock;
+
+namespace {
+constexpr int worker_nice = 10;
+}  // namespace
 
 TsWorker::TsWorker(boost::asio::io_context& io, TsWorkerOptions options, OnBatch on_batch)
     : options_(std::move(options)),
@@ -36,6 +43,9 @@ TsWorker::TsWorker(boost::asio::io_context& io, TsWorkerOptions options, OnBatch
       worker_(io, WorkerOptions{options_.name, options_.max_datagrams, options_.max_datagram_bytes,
                                 options_.max_batches}) {
     worker_.start();
+    // Under a flood the io thread (the dead-man, the links, the command path) gets the CPU
+    // first: this thread runs at a lower priority. Linux keeps a nice value per thread.
+    worker_.submit([] { setpriority(PRIO_PROCESS, static_cast<id_t>(gettid()), worker_nice); });
 }
 
 TsWorker::~TsWorker() {

@@ -9,7 +9,8 @@
 // datagrams waiting for the worker (count and bytes; the oldest dropped), batches waiting on
 // the io thread (count), the access units' bytes waiting there together (past it a datagram's
 // units are dropped, its KLV kept), the good sets taken from one datagram, and every buffer
-// inside the demuxer. Everything dropped is counted (counters()).
+// inside the demuxer. Everything dropped is counted (counters()). The thread runs at a lower
+// CPU priority (nice 10) than the io thread, so a flood cannot take the io thread's CPU either.
 #pragma once
 
 #include <atomic>

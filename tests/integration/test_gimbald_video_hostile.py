@@ -328,6 +328,12 @@ class UdpAttacks(gt.GimbaldTestCase):
         self.assertGreater(v["klv_refused"], 0, v)
         self.assertIsNone(v["klv"], v)  # nothing of them was decoded or shown
         self.assertEqual(self.klv_out.count(), 0)
+        self.assert_logged_rolled_up("klv_refused")
+
+    def assert_logged_rolled_up(self, event):
+        lines = self.daemon.events(event)
+        self.assertTrue(lines, "no %s log line" % event)
+        self.assertLessEqual(len(lines), 5, lines)
 
     def test_sync_klv_middle_fragments_are_bounded(self):
         writer = vt.TsWriter(sync=True)
@@ -351,6 +357,7 @@ class UdpAttacks(gt.GimbaldTestCase):
         v = self.video()
         self.assertGreater(v["klv_refused"], 100, v)
         self.assertIsNone(v["klv"], v)
+        self.assert_logged_rolled_up("klv_refused")
 
     def test_a_valid_46kb_set_keeps_state_small(self):
         writer = vt.TsWriter()
