@@ -264,6 +264,7 @@ class UdpAttacks(gt.GimbaldTestCase):
         """Runs attack(stop) in a thread, fires the laser 0.5 s in and waits for the
         dead-man's cease-fire, pinging all along; asserts the cease-fire's delay, the pings and
         RSS, and returns the figures."""
+        link_before = self.c.request("state", keys=["link"])["state"]["link"]
         stop = threading.Event()
         rss = RssSampler(self.daemon.proc.pid)
         pinger = Pinger(self.daemon.port)
@@ -302,6 +303,10 @@ class UdpAttacks(gt.GimbaldTestCase):
         self.assertLess(figures["ping_max_ms"], 1000, figures)
         self.assertLess(rss.peak - rss.start, 64, figures)
         self.assertLess(end_mb - rss.start, 16, figures)
+        # The Orion's TCP link held all along (the review saw it dropped).
+        link = self.c.request("state", keys=["link"])["state"]["link"]
+        self.assertIs(link["connected"], True)
+        self.assertEqual(link["reconnects"], link_before["reconnects"])
         return figures
 
     def send_psi(self, writer):
