@@ -226,6 +226,10 @@ bool RtspInput::read_session(Shared& shared) {
         if (attempt.too_many) {
             attempt.error =
                 "rtsp: more than " + std::to_string(attempt.max_redirects) + " redirects (a loop?)";
+        } else if (!attempt.redirect.empty() && !gv::rtsp_authority(attempt.redirect)) {
+            // Only an RTSP camera is followed: never a file, an HTTP server or a relative path.
+            attempt.error = "rtsp: redirect to something that is not an rtsp:// URL: " +
+                            gv::redact_userinfo(attempt.redirect);
         } else if (!attempt.redirect.empty()) {
             const std::string to = gv::without_userinfo(attempt.redirect);
             if (has_userinfo(url_.rtsp_url) || has_userinfo(attempt.redirect))
@@ -256,6 +260,8 @@ void RtspInput::open_and_read(Shared& shared, Attempt& attempt) {
     const auto timeout_us = static_cast<std::int64_t>(options_.timeout_s * 1e6);
     av_dict_set_int(&opts, "timeout", timeout_us, 0);  // socket I/O timeout
     av_dict_set(&opts, "allowed_media_types", "video", 0);
+    // What libavformat may open for it: the RTSP connection and RTP over TCP or UDP.
+    av_dict_set(&opts, "protocol_whitelist", "tcp,udp,rtp", 0);
     av_dict_set(&opts, "fflags", "nobuffer", 0);
     av_dict_set_int(&opts, "max_delay", 200'000, 0);  // RTP reordering over UDP, microseconds
     av_dict_set_int(&opts, "reorder_queue_size", reorder_queue_packets, 0);
