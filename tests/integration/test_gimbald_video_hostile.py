@@ -25,14 +25,13 @@ Figures (cease-fire delay, ping p50/p99/max, RSS) are printed.
 """
 
 import array
+import base64
 import json
-import os
 import signal
 import socket
 import struct
 import threading
 import time
-import unittest
 
 import gimbaltest as gt
 import videotest as vt
@@ -454,7 +453,6 @@ class RtspCamera:
         self.mode, self.redirect_to = mode, redirect_to
         self.auth = None
         if user:
-            import base64
             self.auth = "Basic " + base64.b64encode(("%s:%s" % (user, password)).encode()).decode()
         self.sock = socket.socket(socket.AF_INET, socket.SOCK_STREAM)
         self.sock.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
@@ -557,14 +555,13 @@ class RtspCamera:
             self._flood(conn, b"a=x-junk:" + b"z" * 65000 + b"\r\n")
             return False
         if method == "DESCRIBE":
-            import base64
             sdp = ("v=0\r\no=- 0 0 IN IP4 127.0.0.1\r\ns=hostile\r\nc=IN IP4 127.0.0.1\r\n"
                    "t=0 0\r\nm=video 0 RTP/AVP 96\r\na=rtpmap:96 H264/90000\r\n"
                    "a=fmtp:96 packetization-mode=1;sprop-parameter-sets=%s,%s\r\n"
                    "a=control:track1\r\n" % (base64.b64encode(SPS).decode(),
                                               base64.b64encode(PPS).decode())).encode()
-            self._send(conn, "200 OK", cseq, "Content-Type: application/sdp\r\nContent-Base: %s/\r\n"
-                       % self.url(), sdp)
+            self._send(conn, "200 OK", cseq,
+                       "Content-Type: application/sdp\r\nContent-Base: %s/\r\n" % self.url(), sdp)
             return True
         if method == "SETUP":
             self._send(conn, "200 OK", cseq, "Transport: RTP/AVP/TCP;unicast;interleaved=0-1\r\n"
