@@ -21,6 +21,7 @@
 #include "record/recording_link.hpp"
 #include "secret_file.hpp"
 #include "signing_state.hpp"
+#include "video/url.hpp"
 
 namespace gimbald {
 
@@ -357,7 +358,8 @@ std::unique_ptr<Link> App::make_link(const cfg::GimbalConfig& g) {
 // simulated camera's video to that video's input, as a real gimbal would.
 void App::add_sim_video(SimLink& link, const cfg::GimbalConfig& g) {
     const auto camera = protocols::entry(g.protocol).simulator.camera;
-    const nlohmann::json fields = {{"gimbal", g.name}, {"input", g.video->input}};
+    const nlohmann::json fields = {{"gimbal", g.name},
+                                   {"input", gimbal::video::redact_userinfo(g.video->input)}};
     if (camera == nullptr) {
         log::warn("sim_video_off", "this protocol's simulated gimbal has no camera: no video",
                   fields);
