@@ -254,7 +254,7 @@ TEST_CASE("dem policy: absurd sizes are refused before anything is read", "[terr
     CHECK_THAT(refusal({shrink}), Catch::Contains(shrink) && Catch::Contains("16:1"));
 }
 
-TEST_CASE("dem policy: only regular files; a FIFO is never opened", "[terrain][dem_policy]") {
+TEST_CASE("dem policy: only regular files, and a FIFO is never opened", "[terrain][dem_policy]") {
     TempDir tmp;
     const auto fifo = tmp.file("N45W122.hgt");
     REQUIRE(mkfifo(fifo.c_str(), 0600) == 0);
