@@ -45,6 +45,7 @@ App::App(const cfg::Config& config, std::unique_ptr<gimbal::terrain::ElevationMo
     : config_(config),
       signals_(io_, SIGINT, SIGTERM, SIGHUP),
       watchdog_timer_(io_),
+      log_timer_(io_),
       terrain_(std::move(terrain)),
       terrain_loader_(terrain_ ? std::make_unique<TerrainLoader>(io_, *terrain_) : nullptr) {
     if (config_.record) start_recorder();
@@ -393,8 +394,8 @@ void App::on_signal(const boost::system::error_code& ec, int signo) {
         signals_.async_wait([this](const boost::system::error_code& e, int s) { on_signal(e, s); });
         return;
     }
-    log::info("stop", signo == SIGTERM ? "SIGTERM: stopping" : "SIGINT: stopping",
-              {{"signal", signo == SIGTERM ? "SIGTERM" : "SIGINT"}});
+    stop_signal_ = signo == SIGTERM ? "SIGTERM" : "SIGINT";
+    log::info("stop", stop_signal_ + ": stopping", {{"signal", stop_signal_}});
     shutdown();
 }
 
@@ -416,6 +417,8 @@ void App::shutdown() {
     if (recorder_) recorder_->stop();
     signals_.cancel();
     watchdog_timer_.cancel();
+    log_timer_.cancel();
+    log::poll(true);  // every line the roll-up still owes a count of
 }
 
 void App::update_status() {
@@ -427,6 +430,15 @@ void App::update_status() {
     }
     notify::status(std::to_string(up) + "/" + std::to_string(sessions_.size()) +
                    " gimbals connected: " + status);
+}
+
+void App::poll_logs() {
+    log_timer_.expires_after(std::chrono::seconds(1));
+    log_timer_.async_wait([this](const boost::system::error_code& ec) {
+        if (ec || stopping_) return;
+        log::poll();
+        poll_logs();
+    });
 }
 
 void App::arm_watchdog() {
@@ -469,8 +481,12 @@ int App::run() {
     notify::ready();
     update_status();
     arm_watchdog();
+    poll_logs();
     io_.run();
-    log::info("stop", "gimbald stopped");
+    // Both `stop` lines name the signal, so either one answers "why did it stop".
+    log::info("stop", "gimbald stopped",
+              {{"signal",
+                stop_signal_.empty() ? nlohmann::json(nullptr) : nlohmann::json(stop_signal_)}});
     return 0;
 }
 

@@ -8,6 +8,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "command_server.hpp"
@@ -50,6 +51,7 @@ class App {
     void on_signal(const boost::system::error_code& ec, int signo);
     void shutdown();
     void arm_watchdog();
+    void poll_logs();  // once a second: the log roll-up's summaries of stopped bursts
     void start_http();
     void start_video();
     void update_status();
@@ -59,6 +61,7 @@ class App {
     boost::asio::io_context io_;
     boost::asio::signal_set signals_;
     boost::asio::steady_timer watchdog_timer_;
+    boost::asio::steady_timer log_timer_;  // the log roll-up's summaries (log::poll)
     // Contract section 15: one model shared by every gimbal; declared before them so it
     // outlives them. Its blocks are read on the loader's thread (section 14 v4), which stops
     // before the model goes and after the sessions that look blocks up.
@@ -81,6 +84,7 @@ class App {
     std::unique_ptr<mqtt::Bridge> mqtt_;      // contract section 9; null unless `mqtt` is set
     std::unique_ptr<http::HttpServer> http_;  // contract section 11; null unless `http` is set
     bool stopping_ = false;
+    std::string stop_signal_;  // "SIGTERM" or "SIGINT", once one asked gimbald to stop
 };
 
 }  // namespace gimbald

@@ -341,6 +341,21 @@ std::string RequestPath::finish(Outcome& o, const RequestSource& from,
     return text;
 }
 
+namespace {
+
+// The laser a `laser` request fired: its `index`, or the catalogue's default when it has none
+// (the audit line keeps what the client sent; `laser_fire` says which laser fired).
+json laser_index_used(const json& request) {
+    if (const auto it = request.find("index"); it != request.end() && it->is_number_integer())
+        return *it;
+    const auto* spec = gimbal::command::find_command("laser");
+    const auto* param = spec ? gimbal::command::find_param(*spec, "index") : nullptr;
+    if (param && !param->default_text.empty()) return std::stoi(std::string(param->default_text));
+    return nullptr;
+}
+
+}  // namespace
+
 void RequestPath::audit(const Outcome& o, const RequestSource& from) const {
     json fields = {{"src", from.address},
                    {"transport", from.transport},
@@ -365,7 +380,7 @@ void RequestPath::audit(const Outcome& o, const RequestSource& from) const {
                      {"transport", from.transport},
                      {"key", fields["key"]},
                      {"gimbal", fields["gimbal"]},
-                     {"index", fields["index"]}};
+                     {"index", laser_index_used(o.env.request)}};
     boost::asio::post(
         io_, [fire, fired = std::move(fired), msg = o.error ? o.error->message : std::string("ok"),
               fields = std::move(fields)] {
