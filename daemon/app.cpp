@@ -47,7 +47,8 @@ App::App(const cfg::Config& config, std::unique_ptr<gimbal::terrain::ElevationMo
       signals_(io_, SIGINT, SIGTERM, SIGHUP),
       watchdog_timer_(io_),
       log_timer_(io_),
-      terrain_(std::move(terrain)) {
+      terrain_(std::move(terrain)),
+      terrain_loader_(terrain_ ? std::make_unique<TerrainLoader>(io_, *terrain_) : nullptr) {
     if (config_.record) start_recorder();
     // Each protocol reads its own keys (feed, options) from its gimbal's configuration object.
     const nlohmann::json gimbal_objects = cfg::to_json(config_)["gimbals"];

@@ -23,6 +23,7 @@
 #include "record/recorder.hpp"
 #include "request_path.hpp"
 #include "terrain/elevation_model.hpp"
+#include "terrain_loader.hpp"
 #include "vehicle_feed.hpp"
 #include "video/gimbal_video.hpp"
 #include "video/sim_video_sender.hpp"
@@ -62,8 +63,10 @@ class App {
     boost::asio::steady_timer watchdog_timer_;
     boost::asio::steady_timer log_timer_;  // the log roll-up's summaries (log::poll)
     // Contract section 15: one model shared by every gimbal; declared before them so it
-    // outlives them.
+    // outlives them. Its blocks are read on the loader's thread (section 14 v4), which stops
+    // before the model goes and after the sessions that look blocks up.
     std::unique_ptr<gimbal::terrain::ElevationModel> terrain_;
+    std::unique_ptr<TerrainLoader> terrain_loader_;
     // The EGM96 undulation for sessions that ask (open_geoid), after terrain_ it may use.
     std::function<std::optional<double>(double, double)> geoid_;
     // Declared before everything that records into it, so it outlives them.
