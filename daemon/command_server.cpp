@@ -190,15 +190,23 @@ void CommandServer::publish_states() {
             Subscription* s = subscriptions_.find(to);
             if (!s) continue;
             auto& cursor = s->cursors[session->name()];
-            const auto& message = batch.next(s->stream, cursor, horizon);
-            // Only a push too large needs its content as JSON (to name its largest keys).
-            const auto carried = [&message] { return message.json().at("state"); };
-            auto payload =
-                s->key_id && options_.sign
-                    ? std::make_shared<const std::string>(options_.sign(*s->key_id, message.json()))
-                    : message.text();
-            // A patch that did not go out breaks the chain: the next push is a full STATE.
-            if (!push(to, std::move(payload), session->name(), carried, notices)) cursor.restart();
+            // A patch over one Ethernet payload goes as several that fit, back to back.
+            const auto& parts = batch.split(batch.next(s->stream, cursor, horizon),
+                                            gimbal::state::patch_budget_bytes);
+            // Every part ready before the first goes, so the parts leave back to back.
+            std::vector<std::shared_ptr<const std::string>> payloads;
+            for (const auto& message : parts)
+                payloads.push_back(s->key_id && options_.sign
+                                       ? std::make_shared<const std::string>(
+                                             options_.sign(*s->key_id, message.json()))
+                                       : message.text());
+            for (std::size_t i = 0; i < parts.size(); ++i) {
+                // Only a push too large needs its content as JSON (to name its largest keys).
+                const auto carried = [&parts, i] { return *parts[i].body(); };
+                // A patch that did not go out breaks the chain: the next push is full.
+                if (!push(to, std::move(payloads[i]), session->name(), carried, notices))
+                    cursor.restart();
+            }
         }
     }
     subscriptions_.mark_sent(horizon);
