@@ -100,17 +100,18 @@ void CommandServer::send(const Endpoint& to, std::shared_ptr<const std::string> 
     socket_.async_send_to(boost::asio::buffer(bytes), to,
                           [this, to, kind, payload = std::move(payload)](
                               const boost::system::error_code& ec, std::size_t) {
-                              if (!ec || ec == boost::asio::error::operation_aborted || stopped_)
-                                  return;
-                              ++sent_.failed;
-                              send_failed_.hit(
-                                  "a " + std::string(kind == Kind::reply ? "reply" : "push") +
-                                      " could not be sent: " + ec.message(),
-                                  {{"src", to_string(to)},
-                                   {"what", kind == Kind::reply ? "reply" : "push"},
-                                   {"bytes", payload->size()},
-                                   {"error", ec.message()}});
+                              if (ec) send_failed(to, kind, payload->size(), ec);
                           });
+}
+
+void CommandServer::send_failed(const Endpoint& to, Kind kind, std::size_t bytes,
+                                const boost::system::error_code& ec) {
+    if (ec == boost::asio::error::operation_aborted || stopped_) return;
+    ++sent_.failed;
+    const std::string what = kind == Kind::reply ? "reply" : "push";
+    send_failed_.hit(
+        "a " + what + " could not be sent: " + ec.message(),
+        {{"src", to_string(to)}, {"what", what}, {"bytes", bytes}, {"error", ec.message()}});
 }
 
 bool CommandServer::push(const Endpoint& to, std::shared_ptr<const std::string> payload,

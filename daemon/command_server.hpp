@@ -68,6 +68,8 @@ class CommandServer {
     // A datagram shared by several subscribers is sent without a copy. A send that fails is
     // logged (rolled up) and counted.
     void send(const Endpoint& to, std::shared_ptr<const std::string> payload, Kind kind);
+    void send_failed(const Endpoint& to, Kind kind, std::size_t bytes,
+                     const boost::system::error_code& ec);
     // A push to `to`: sent as it is when it fits one datagram, else replaced by a too_large
     // event naming its size and largest keys (docs/json-api.md), logged and counted.
     // `carried` gives what the push carries (a STATE, a patch, an event), for the notice.
