@@ -106,7 +106,9 @@ App::App(const cfg::Config& config, std::unique_ptr<gimbal::terrain::ElevationMo
             return nlohmann::json{{"requests", c.requests},
                                   {"rejected", c.rejected},
                                   {"rate_limited", c.rate_limited},
-                                  {"dropped_source", server_->dropped_sources()}};
+                                  {"dropped_source", server_->dropped_sources()},
+                                  {"send_failed", server_->send_counters().failed},
+                                  {"push_too_large", server_->send_counters().pushes_too_large}};
         });
     events_.add([this](const std::string& gimbal, const gimbal::state::Event& e) {
         server_->publish_event(gimbal, e);
@@ -224,6 +226,8 @@ void App::start_http() {
     view.path = request_path_.get();
     view.udp_subscribers = [this] { return server_->subscribers(); };
     view.udp_dropped_sources = [this] { return server_->dropped_sources(); };
+    view.udp_send_failed = [this] { return server_->send_counters().failed; };
+    view.udp_pushes_too_large = [this] { return server_->send_counters().pushes_too_large; };
     view.vehicle_up = [this] {
         return config_.vehicle && vehicle_->vehicle_state().fresh(vehicle_->monotonic_s());
     };

@@ -24,6 +24,7 @@ import time
 
 import gimbaltest as gt
 import mavlinktest as mt
+import skipping
 
 JOURNALD = "/lib/systemd/systemd-journald"
 SIM = {"gimbals": [{"name": "s", "protocol": "orion", "link": {"type": "sim"}}]}
@@ -140,7 +141,7 @@ class Journal(gt.GimbaldTestCase):
         if os.geteuid() != 0 or not shutil.which("unshare") or not shutil.which("nsenter"):
             self.skipTest("a private journald needs root, unshare and nsenter")
         if not os.path.exists(JOURNALD) or not shutil.which("journalctl"):
-            self.skipTest("systemd-journald or journalctl not installed")
+            skipping.need(self, "systemd-journald or journalctl not installed")
         # A mount namespace of our own: its /run and /var/log are empty tmpfs.
         self.holder = subprocess.Popen(
             ["unshare", "-m", "--propagation", "private", "sh", "-c",

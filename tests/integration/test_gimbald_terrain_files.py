@@ -19,6 +19,7 @@ import time
 import unittest
 
 import gimbaltest as gt
+import skipping
 
 GDAL_TOOLS = ("gdal_create", "gdal_translate", "gdalinfo")
 
@@ -184,7 +185,7 @@ class SlowTerrain(gt.GimbaldTestCase):
         super().setUp()
         missing = [t for t in GDAL_TOOLS if not shutil.which(t)]
         if missing:
-            self.skipTest("GDAL's tools (gdal-bin) are not installed: %s" % missing)
+            skipping.need(self, "GDAL's tools (gdal-bin) are not installed: %s" % missing)
 
     def slow_dem(self):
         """The simulator's terrain as one DEFLATE tile (12.7 MB decoded for any window), in

@@ -16,6 +16,7 @@ import threading
 import time
 
 import gimbaltest as gt
+import skipping
 import st0601
 import videotest as vt
 from test_gimbald_terrain import terrain_section, write_dem
@@ -84,7 +85,7 @@ def wait_video(test, client, gimbal=None, source=None, timeout=25.0, telemetry=T
 def check_tools(test):
     for tool in ("ffmpeg", "ffprobe", "gst-launch-1.0"):
         if not vt.have(tool):
-            test.skipTest("%s is not installed" % tool)
+            skipping.need(test, "%s is not installed" % tool)
 
 
 class SimulatorVideo(gt.GimbaldTestCase):

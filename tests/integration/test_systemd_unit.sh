@@ -14,17 +14,17 @@ fail() {
     failures=$((failures + 1))
 }
 
+# shellcheck source=skip.sh
+. "$(dirname "$0")/skip.sh"
 if ! command -v systemd-analyze >/dev/null 2>&1; then
-    echo "SKIP: systemd-analyze is not installed"
-    exit 77
+    skip_test "systemd-analyze is not installed"
 fi
 
 # verify checks that ExecStart binaries exist: point a copy of the unit at the built binary
 # (or at a stand-in before gimbald is built) and at the source tree's configuration.
 binary=${GIMBALD:-}
 if [[ -n $binary && ! -x $binary ]]; then
-    echo "SKIP: $binary is not built"
-    exit 77
+    skip_test "$binary is not built"
 fi
 if [[ -z $binary ]]; then
     binary=$(type -P true)
