@@ -19,6 +19,7 @@
 #include "session/laser_guard.hpp"
 #include "session/protocol.hpp"
 #include "state/event.hpp"
+#include "state/link_state.hpp"
 
 namespace gimbald {
 
@@ -58,7 +59,14 @@ class GimbalSession {
     };
     Outcome execute(std::string_view cmd, const nlohmann::json& request);
 
-    // STATE (contract section 5).
+    // STATE `link`: the link's and the framer's counters now.
+    gimbal::state::LinkState link_state() const;
+    // No telemetry within telemetry.stale_after_s (STATE `stale`).
+    bool stale() const;
+    // Seconds since the gimbal's latest position telemetry; nullopt before the first.
+    std::optional<double> telemetry_age_s() const { return protocol_->telemetry_age_s(now_s()); }
+    // STATE (contract section 5) as JSON: for the edges (replies, pushes, MQTT, HTTP,
+    // recordings); consumers inside the daemon read the typed parts.
     nlohmann::json snapshot() const;
     // What the gimbal reported (the protocol's keys), `stale` and `link.connected` only: the
     // MAVLink streams read it ten times a second, where the whole STATE would cost ~5x more.

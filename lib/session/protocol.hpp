@@ -58,6 +58,9 @@ class Protocol {
     virtual std::vector<Bytes> on_connect() = 0;
 
     virtual bool stale(double now_s) const = 0;
+    // Seconds since the latest position telemetry (Orion GeolocateTelemetry, a Viewpro OUTx
+    // frame, a MAVLink device's attitude); nullopt before the first.
+    virtual std::optional<double> telemetry_age_s(double now_s) const = 0;
     // Position telemetry frames received so far.
     virtual std::uint64_t telemetry_count() const = 0;
     // The protocol's keys of STATE (section 5), without protocol/link/stale.

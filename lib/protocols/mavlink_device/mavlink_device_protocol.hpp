@@ -28,6 +28,9 @@ class MavlinkDeviceProtocol final : public session::Protocol {
                       std::vector<session::Bytes>& out) override;
     std::vector<session::Bytes> on_connect() override;
     bool stale(double now_s) const override { return state_.stale(now_s); }
+    std::optional<double> telemetry_age_s(double now_s) const override {
+        return state_.telemetry_age_s(now_s);
+    }
     std::uint64_t telemetry_count() const override { return state_.telemetry_count(); }
     nlohmann::json snapshot(double now_s) const override { return state_.snapshot(now_s); }
     session::FrameCounters counters() const override;

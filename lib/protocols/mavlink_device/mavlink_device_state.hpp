@@ -4,6 +4,7 @@
 // ground). Pure: every call takes now_s (monotonic seconds).
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <nlohmann/json.hpp>
@@ -50,6 +51,11 @@ class MavlinkDeviceState {
     void tick(double now_s, std::vector<state::Event>& events);
 
     bool stale(double now_s) const;
+    // Seconds since the latest attitude report; nullopt before the first.
+    std::optional<double> telemetry_age_s(double now_s) const {
+        if (!attitude_) return std::nullopt;
+        return std::max(0.0, now_s - attitude_->received_s);
+    }
     std::uint64_t telemetry_count() const { return attitudes_; }
     nlohmann::json snapshot(double now_s) const;
 

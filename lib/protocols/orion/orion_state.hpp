@@ -2,6 +2,7 @@
 // Pure: every call takes `now_s` (monotonic seconds); the daemon passes its steady clock.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -32,6 +33,11 @@ class OrionState {
     void tick(double now_s, std::vector<Event>& events);
 
     bool stale(double now_s) const;
+    // Seconds since the latest GeolocateTelemetry; nullopt before the first.
+    std::optional<double> telemetry_age_s(double now_s) const {
+        if (!telemetry_s_) return std::nullopt;
+        return std::max(0.0, now_s - *telemetry_s_);
+    }
     // GeolocateTelemetry packets applied so far (streams that follow new telemetry).
     std::uint64_t telemetry_count() const { return telemetry_count_; }
     // The Orion keys of STATE: one per packet kind, null until first received, each with age_s.

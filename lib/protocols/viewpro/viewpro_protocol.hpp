@@ -29,6 +29,9 @@ class ViewproProtocol final : public session::Protocol {
     void tick(double now_s, std::vector<state::Event>& events) override;
     std::vector<Bytes> on_connect() override;
     bool stale(double now_s) const override { return state_.stale(now_s); }
+    std::optional<double> telemetry_age_s(double now_s) const override {
+        return state_.telemetry_age_s(now_s);
+    }
     std::uint64_t telemetry_count() const override { return state_.telemetry_count(); }
     nlohmann::json snapshot(double now_s) const override { return state_.snapshot(now_s); }
     FrameCounters counters() const override;

@@ -2,6 +2,7 @@
 // Pure: every call takes now_s (monotonic seconds).
 #pragma once
 
+#include <algorithm>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <vector>
@@ -20,6 +21,11 @@ class ViewproState {
     // Appends a `lost` event when output goes stale (once per loss).
     void tick(double now_s, std::vector<Event>& events);
     bool stale(double now_s) const;
+    // Seconds since the latest OUTx frame; nullopt before the first.
+    std::optional<double> telemetry_age_s(double now_s) const {
+        if (!output_) return std::nullopt;
+        return std::max(0.0, now_s - received_s_);
+    }
     // OUTx frames applied so far (streams that follow new telemetry).
     std::uint64_t telemetry_count() const { return telemetry_count_; }
     // {"output": {...latest OUTx, "format", "age_s"} or null}
