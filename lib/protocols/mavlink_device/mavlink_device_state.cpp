@@ -9,7 +9,6 @@
 #include "geo/wgs84.hpp"
 #include "protocols/mavlink_device/mavlink_device_flags.hpp"
 #include "session/capabilities.hpp"
-#include "state/ground_json.hpp"
 #include "state/precision.hpp"
 
 namespace gimbal::protocols {
@@ -108,7 +107,7 @@ void MavlinkDeviceState::on_attitude(const mavlink::GimbalDeviceAttitudeStatus& 
     attitude_ = a;
     ++attitudes_;
     lost_reported_ = false;
-    telemetry_ = telemetry_json();
+    telemetry_ = derive_telemetry();
 }
 
 void MavlinkDeviceState::on_information(const mavlink::GimbalDeviceInformation& m, double) {
@@ -152,40 +151,31 @@ std::optional<geo::Quat> MavlinkDeviceState::line_of_sight() const {
         geo::EulerDeg{attitude_->roll_deg, attitude_->pitch_deg, session::wrap180(yaw)}));
 }
 
-json MavlinkDeviceState::telemetry_json() const {
-    json t = json::object();
-    const auto pan = pan_deg();
-    t["pan"] = pan ? json(angle_deg(*pan)) : json(nullptr);
-    t["tilt"] = angle_deg(attitude_->pitch_deg);
-    t["hfov"] = angle_deg(options_.hfov_deg);
-    t["vfov"] = angle_deg(options_.vfov_deg);
+state::Telemetry MavlinkDeviceState::derive_telemetry() const {
+    state::Telemetry t;
+    if (const auto pan = pan_deg()) t.pan = angle_deg(*pan);
+    t.tilt = angle_deg(attitude_->pitch_deg);
+    t.hfov = angle_deg(options_.hfov_deg);
+    t.vfov = angle_deg(options_.vfov_deg);
     const auto los = line_of_sight();
-    if (!vehicle_ || !los) {
-        for (const char* key : {"lat", "lon", "alt", "alt_msl", "geoid_undulation", "roll", "pitch",
-                                "yaw", "target", "footprint", "footprint_surface", "ground"})
-            t[key] = nullptr;
-        return t;
-    }
+    if (!vehicle_ || !los) return t;
     const VehicleFix& v = *vehicle_;
     const geo::Lla camera_at = *camera();
-    t["lat"] = latlon_deg(camera_at.lat_deg);
-    t["lon"] = latlon_deg(camera_at.lon_deg);
-    t["alt"] = metres(camera_at.alt_m);
-    t["alt_msl"] = metres(v.alt_msl_m);
-    t["geoid_undulation"] = metres(geoid_undulation_m_);
-    t["roll"] = angle_deg(v.roll_deg);
-    t["pitch"] = angle_deg(v.pitch_deg);
-    t["yaw"] = angle_deg(v.yaw_deg);
+    t.lat = latlon_deg(camera_at.lat_deg);
+    t.lon = latlon_deg(camera_at.lon_deg);
+    t.alt = metres(camera_at.alt_m);
+    t.alt_msl = metres(v.alt_msl_m);
+    t.geoid_undulation = metres(geoid_undulation_m_);
+    t.roll = angle_deg(v.roll_deg);
+    t.pitch = angle_deg(v.pitch_deg);
+    t.yaw = angle_deg(v.yaw_deg);
     const geo::CameraPose camera{camera_at, *los, options_.hfov_deg, options_.vfov_deg};
     const geo::Ground ground{options_.terrain, options_.ground_alt_m};
     // The device reports no target of its own: where its line of sight meets the ground.
     if (const auto centre = geo::locate_ground(camera, {0, 0}, ground))
-        t["target"] = {{"lat", latlon_deg(centre->point.lat_deg)},
-                       {"lon", latlon_deg(centre->point.lon_deg)},
-                       {"alt", metres(centre->point.alt_m)}};
-    else
-        t["target"] = nullptr;
-    state::add_ground_keys(t, camera, ground);
+        t.target = state::GeoPoint{latlon_deg(centre->point.lat_deg),
+                                   latlon_deg(centre->point.lon_deg), metres(centre->point.alt_m)};
+    t.view = state::ground_view(camera, ground);
     return t;
 }
 
@@ -241,7 +231,9 @@ void MavlinkDeviceState::tick(double now_s, std::vector<state::Event>& events) {
 }
 
 json MavlinkDeviceState::snapshot(double now_s) const {
-    return {{"device", device_json(now_s)}, {"telemetry", telemetry_}, {"stare", stare_}};
+    return {{"device", device_json(now_s)},
+            {"telemetry", telemetry_ ? state::write(*telemetry_) : json(nullptr)},
+            {"stare", stare_}};
 }
 
 }  // namespace gimbal::protocols

@@ -18,6 +18,7 @@
 #include "protocols/mavlink_device/mavlink_device_options.hpp"
 #include "protocols/mavlink_device/mavlink_device_wire.hpp"
 #include "state/event.hpp"
+#include "state/telemetry.hpp"
 
 namespace gimbal::protocols {
 
@@ -60,6 +61,8 @@ class MavlinkDeviceState {
     nlohmann::json snapshot(double now_s) const;
 
     const std::optional<DeviceAttitude>& attitude() const { return attitude_; }
+    // STATE `telemetry`: the shared keys, from the latest attitude and the vehicle's fix then.
+    const std::optional<state::Telemetry>& telemetry() const { return telemetry_; }
     bool has_information() const { return information_.has_value(); }
     // GIMBAL_DEVICE_CAP_FLAGS_SUPPORTS_YAW_IN_EARTH_FRAME, from the information.
     bool earth_frame_supported() const;
@@ -77,7 +80,7 @@ class MavlinkDeviceState {
   private:
     void on_attitude(const mavlink::GimbalDeviceAttitudeStatus& m, double now_s);
     void on_information(const mavlink::GimbalDeviceInformation& m, double now_s);
-    nlohmann::json telemetry_json() const;
+    state::Telemetry derive_telemetry() const;
     nlohmann::json device_json(double now_s) const;
 
     MavlinkDeviceOptions options_;
@@ -88,7 +91,7 @@ class MavlinkDeviceState {
     std::optional<mavlink::GimbalDeviceInformation> information_;
     std::optional<std::uint8_t> device_system_;
     std::uint8_t device_component_ = 154;
-    nlohmann::json telemetry_ = nullptr;
+    std::optional<state::Telemetry> telemetry_;  // from the latest attitude
     std::uint64_t attitudes_ = 0;
     bool lost_reported_ = false;
 };

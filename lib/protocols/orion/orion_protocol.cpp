@@ -61,7 +61,7 @@ std::optional<command::Error> OrionProtocol::plan(std::string_view cmd,
     command::OrionContext ctx;
     ctx.allow_fire = options_.allow_fire;
     ctx.allow_safety_bypass = options_.allow_safety_bypass;
-    if (const auto& t = state_.telemetry()) ctx.geoid_undulation_m = t->geoid_undulation;
+    if (const auto& t = state_.telemetry()) ctx.geoid_undulation_m = t->packet.geoid_undulation;
     ctx.last_stare_time_ms = state_.last_stare_time_ms();
     return command::plan_orion(cmd, request, ctx, plan);
 }

@@ -8,7 +8,6 @@
 #include "geo/image.hpp"
 #include "geo/wgs84.hpp"
 #include "protocols/orion/codec/json.hpp"
-#include "state/ground_json.hpp"
 #include "state/precision.hpp"
 
 namespace gimbal::state {
@@ -115,32 +114,46 @@ std::string gps_to_utc_iso(std::uint16_t week, std::uint32_t itow_ms, std::uint8
     return buf;
 }
 
-nlohmann::json telemetry_json(const o::GeolocateTelemetry& t, geo::Surface* terrain) {
-    nlohmann::json j = o::to_json(t, o::Digits::shortest);
-    j["utc"] = t.gps_week != 0 || t.gps_itow_ms != 0
-                   ? nlohmann::json(gps_to_utc_iso(t.gps_week, t.gps_itow_ms, t.leap_seconds))
-                   : nlohmann::json(nullptr);
-    j["alt_msl"] = metres(t.alt - t.geoid_undulation);
+OrionTelemetry orion_telemetry(const o::GeolocateTelemetry& t, geo::Surface* terrain) {
+    OrionTelemetry out{t, o::to_json(t, o::Digits::shortest), std::nullopt, {}};
+    if (t.gps_week != 0 || t.gps_itow_ms != 0)
+        out.utc = gps_to_utc_iso(t.gps_week, t.gps_itow_ms, t.leap_seconds);
+    // The reported keys as STATE shows them: the codec's digits.
+    const auto shown = [&t](const auto& member) -> std::optional<double> {
+        const nlohmann::json v = o::field_json(t, member, o::Digits::shortest);
+        return v.is_number() ? std::optional(v.get<double>()) : std::nullopt;
+    };
+    Telemetry& s = out.shared;
+    s.lat = shown(t.lat);
+    s.lon = shown(t.lon);
+    s.alt = shown(t.alt);
+    s.geoid_undulation = shown(t.geoid_undulation);
+    s.pan = shown(t.pan);
+    s.tilt = shown(t.tilt);
+    s.hfov = shown(t.hfov);
+    s.vfov = shown(t.vfov);
+    s.alt_msl = metres(t.alt - t.geoid_undulation);
     const geo::Quat mount{t.quat[0], t.quat[1], t.quat[2], t.quat[3]};
     const auto att = geo::quat_to_euler(mount);
-    j["roll"] = angle_deg(att.roll_deg);
-    j["pitch"] = angle_deg(att.pitch_deg);
-    j["yaw"] = angle_deg(att.yaw_deg);
+    s.roll = angle_deg(att.roll_deg);
+    s.pitch = angle_deg(att.pitch_deg);
+    s.yaw = angle_deg(att.yaw_deg);
     const geo::Lla gimbal{t.lat * o::rad2deg, t.lon * o::rad2deg, t.alt};
     const auto target = geo::target_from_los(gimbal, {t.los_ecef[0], t.los_ecef[1], t.los_ecef[2]});
     if (target)
-        j["target"] = {{"lat", latlon_deg(target->lat_deg)},
-                       {"lon", latlon_deg(target->lon_deg)},
-                       {"alt", metres(target->alt_m)}};
-    else
-        j["target"] = nullptr;
+        s.target = GeoPoint{latlon_deg(target->lat_deg), latlon_deg(target->lon_deg),
+                            metres(target->alt_m)};
     // Contract sections 11 and 15. The Orion reports no image rotation.
     const geo::CameraPose camera =
         geo::camera_pose(gimbal, mount, t.pan * o::rad2deg, t.tilt * o::rad2deg,
                          t.hfov * o::rad2deg, t.vfov * o::rad2deg);
-    add_ground_keys(j, camera,
-                    geo::Ground{terrain, target ? std::optional(target->alt_m) : std::nullopt});
-    return j;
+    s.view = ground_view(
+        camera, geo::Ground{terrain, target ? std::optional(target->alt_m) : std::nullopt});
+    return out;
+}
+
+nlohmann::json telemetry_json(const o::GeolocateTelemetry& t, geo::Surface* terrain) {
+    return write(orion_telemetry(t, terrain));
 }
 
 void OrionState::store(const std::string& key, nlohmann::json value, double now_s) {
@@ -158,16 +171,16 @@ void OrionState::store_keyed(const std::string& key, const std::string& sub, nlo
 
 void OrionState::on_telemetry(const o::GeolocateTelemetry& t, double now_s,
                               std::vector<Event>& events) {
-    if (telemetry_ && telemetry_->mode != t.mode) {
-        events.push_back(Event{"mode",
-                               {{"from", o::JsonWriter::scalar(telemetry_->mode, o::Unit::none)},
-                                {"to", o::JsonWriter::scalar(t.mode, o::Unit::none)}}});
+    if (telemetry_ && telemetry_->packet.mode != t.mode) {
+        events.push_back(
+            Event{"mode",
+                  {{"from", o::JsonWriter::scalar(telemetry_->packet.mode, o::Unit::none)},
+                   {"to", o::JsonWriter::scalar(t.mode, o::Unit::none)}}});
     }
-    telemetry_ = t;
+    telemetry_ = orion_telemetry(t, terrain_);
     telemetry_s_ = now_s;
     ++telemetry_count_;
     lost_reported_ = false;
-    store("telemetry", telemetry_json(t, terrain_), now_s);
 }
 
 bool OrionState::apply(const o::Frame& frame, double now_s, std::vector<Event>& events) {
@@ -243,7 +256,15 @@ nlohmann::json OrionState::snapshot(double now_s) const {
     };
     for (const auto key : state_keys) {
         const std::string k(key);
-        if (keyed(key)) {
+        if (key == "telemetry") {
+            if (!telemetry_) {
+                out[k] = nullptr;
+                continue;
+            }
+            nlohmann::json t = write(*telemetry_);
+            t["age_s"] = seconds(std::max(0.0, now_s - *telemetry_s_));
+            out[k] = std::move(t);
+        } else if (keyed(key)) {
             auto it = keyed_.find(k);
             if (it == keyed_.end()) {
                 out[k] = nullptr;

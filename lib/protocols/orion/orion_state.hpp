@@ -14,8 +14,30 @@
 #include "protocols/orion/codec/framing.hpp"
 #include "protocols/orion/codec/packets.hpp"
 #include "state/event.hpp"
+#include "state/telemetry.hpp"
 
 namespace gimbal::state {
+
+// STATE `telemetry` of an Orion: the latest GeolocateTelemetry, its fields as the codec writes
+// them (contract digits: written once, when it arrives), its UTC, and the shared telemetry
+// derived from it (state/telemetry.hpp), whose reported keys are the packet's own.
+struct OrionTelemetry {
+    orion::GeolocateTelemetry packet;
+    nlohmann::json packet_json;
+    std::optional<std::string> utc;  // nullopt: the gimbal has no GPS time yet
+    Telemetry shared;
+};
+
+// The packet's telemetry; footprint and ground on `terrain` where it answers, else on the
+// ellipsoid raised to the target's altitude.
+OrionTelemetry orion_telemetry(const orion::GeolocateTelemetry& t, geo::Surface* terrain);
+
+template <class V>
+void fields(V& v, const OrionTelemetry& t) {
+    v.members(t.packet_json);
+    v.string("utc", t.utc);
+    derived_fields(v, t.shared);
+}
 
 class OrionState {
   public:
@@ -43,7 +65,7 @@ class OrionState {
     // The Orion keys of STATE: one per packet kind, null until first received, each with age_s.
     nlohmann::json snapshot(double now_s) const;
 
-    const std::optional<orion::GeolocateTelemetry>& telemetry() const { return telemetry_; }
+    const std::optional<OrionTelemetry>& telemetry() const { return telemetry_; }
     std::optional<std::uint32_t> last_stare_time_ms() const { return last_stare_time_ms_; }
     std::uint64_t decode_errors() const { return decode_errors_; }
     const std::string& last_decode_error() const { return last_decode_error_; }
@@ -62,7 +84,7 @@ class OrionState {
     geo::Surface* terrain_;
     std::map<std::string, Entry> entries_;
     std::map<std::string, std::map<std::string, Entry>> keyed_;  // versions, software, boards
-    std::optional<orion::GeolocateTelemetry> telemetry_;
+    std::optional<OrionTelemetry> telemetry_;
     std::optional<double> telemetry_s_;
     std::uint64_t telemetry_count_ = 0;
     bool lost_reported_ = false;

@@ -422,6 +422,41 @@ nlohmann::json to_json(const P& packet, Digits digits = Digits::exact) {
 
 // Reads a packet from a JSON object. Absent keys keep the packet's defaults; unknown keys,
 // wrong types and values outside the wire field's range are errors.
+// The JSON of one field, found by its address (field_json below).
+class FieldPicker : public JsonWriter {
+  public:
+    FieldPicker(nlohmann::json& scratch, const void* target, Digits digits)
+        : JsonWriter(scratch, digits), scratch_(scratch), target_(target) {}
+    template <class M, class E>
+    void field(std::string_view key, const M& m, E enc, Scale s = {}, Unit unit = Unit::none) {
+        if (static_cast<const void*>(&m) != target_) return;
+        JsonWriter::field(key, m, enc, s, unit);
+        found = std::move(scratch_[std::string(key)]);
+    }
+    template <class M>
+    void bits(std::string_view key, const M& m, int n) {
+        if (static_cast<const void*>(&m) != target_) return;
+        JsonWriter::bits(key, m, n);
+        found = std::move(scratch_[std::string(key)]);
+    }
+    nlohmann::json found = nullptr;
+
+  private:
+    nlohmann::json& scratch_;
+    const void* target_;
+};
+
+// One field of a packet as to_json() writes it: `member` (a member of `packet`, found by its
+// address, so no key is spelled twice) as JSON - a number with the digits `digits` gives it,
+// an array for an array field; null when `member` is not one of the packet's fields.
+template <class P, class T>
+nlohmann::json field_json(const P& packet, const T& member, Digits digits = Digits::exact) {
+    nlohmann::json scratch = nlohmann::json::object();
+    FieldPicker picker(scratch, &member, digits);
+    const_cast<P&>(packet).fields(picker);  // fields() only reads through a JsonWriter
+    return std::move(picker.found);
+}
+
 template <class P>
 bool from_json(const nlohmann::json& obj, P& packet, JsonError& error) {
     if (!obj.is_object()) {
