@@ -319,14 +319,10 @@ nlohmann::json GimbalSession::snapshot() const {
     nlohmann::json state = {{"protocol", std::string(protocol_->name())},
                             {"link", gimbal::state::write(link_state())},
                             {"stale", protocol_->stale(now)}};
-    nlohmann::json keys = protocol_->snapshot(now);  // named: items() of a temporary dangles
-    for (auto& [key, value] : keys.items()) state[key] = std::move(value);
     // Contract section 14: lasers[i].firing is the daemon's own record (as the metric
     // gimbald_laser_firing): true from a fire command until its cease-fire was written.
-    if (auto it = state.find("lasers"); it != state.end() && it->is_array())
-        for (std::size_t i = 0; i < it->size(); ++i)
-            if ((*it)[i].is_object())
-                (*it)[i]["firing"] = lasers_.firing(static_cast<std::uint8_t>(i));
+    gimbal::state::JsonWriter w(state);
+    protocol_->write_state(w, {now, &lasers_});
     state["vehicle"] = vehicle_snapshot_ ? vehicle_snapshot_() : nlohmann::json(nullptr);
     for (const auto& [key, fill] : state_keys_) state[key] = fill();
     return state;

@@ -22,21 +22,19 @@ namespace {
 
 constexpr double rad_to_deg = 180.0 / 3.14159265358979323846;
 
-json degrees_or_null(float rad) {
-    return std::isfinite(rad) ? json(angle_deg(rad * rad_to_deg)) : json(nullptr);
-}
-
-// One axis's reported limits, min and max. A limit outside -360..360 degrees, or a pair whose
-// min exceeds its max, is unknown (null) and is not relayed (contract section 14, v4): a
-// device's +-5.7e39 would reach every ground station as GIMBAL_MANAGER_INFORMATION.
-std::pair<json, json> limit_pair(float min_rad, float max_rad) {
-    const auto sane = [](float rad) {
-        return std::isfinite(rad) && std::abs(rad * rad_to_deg) <= 360.0;
+// One axis's reported limits, min and max, degrees. A limit outside -360..360 degrees, or a
+// pair whose min exceeds its max, is unknown (nullopt: null) and is not relayed (contract
+// section 14, v4): a device's +-5.7e39 would reach every ground station as
+// GIMBAL_MANAGER_INFORMATION.
+std::pair<std::optional<double>, std::optional<double>> limit_pair(float min_rad, float max_rad) {
+    const auto sane = [](float rad) -> std::optional<double> {
+        if (!std::isfinite(rad) || std::abs(rad * rad_to_deg) > 360.0) return std::nullopt;
+        return rad * rad_to_deg;
     };
-    json min = sane(min_rad) ? degrees_or_null(min_rad) : json(nullptr);
-    json max = sane(max_rad) ? degrees_or_null(max_rad) : json(nullptr);
-    if (!min.is_null() && !max.is_null() && min_rad > max_rad) min = max = nullptr;
-    return {std::move(min), std::move(max)};
+    auto min = sane(min_rad);
+    auto max = sane(max_rad);
+    if (min && max && min_rad > max_rad) min = max = std::nullopt;
+    return {min, max};
 }
 
 // A fixed-size, possibly unterminated char[32] of the wire.
@@ -179,43 +177,40 @@ state::Telemetry MavlinkDeviceState::derive_telemetry() const {
     return t;
 }
 
-json MavlinkDeviceState::device_json(double now_s) const {
-    json d = json::object();
+void MavlinkDeviceState::write_device(state::JsonWriter& d, double now_s) const {
     if (information_) {
         const auto& i = *information_;
-        d["vendor"] = text_of(i.vendor_name);
-        d["model"] = text_of(i.model_name);
-        d["firmware"] = version_text(i.firmware_version);
-        d["cap_flags"] = cap_flag_names(i.cap_flags);
-        json limits = json::object();
-        for (const auto& [axis, min, max] : {std::tuple{"roll", i.roll_min, i.roll_max},
-                                             std::tuple{"pitch", i.pitch_min, i.pitch_max},
-                                             std::tuple{"yaw", i.yaw_min, i.yaw_max}}) {
-            auto [lo, hi] = limit_pair(min, max);
-            limits[std::string(axis) + "_min"] = std::move(lo);
-            limits[std::string(axis) + "_max"] = std::move(hi);
-        }
-        d["limits"] = std::move(limits);
+        d.string("vendor", text_of(i.vendor_name));
+        d.string("model", text_of(i.model_name));
+        d.string("firmware", version_text(i.firmware_version));
+        d.array("cap_flags", cap_flag_names(i.cap_flags));
+        d.object("limits", [&](state::JsonWriter& l) {
+            for (const auto& [axis, min, max] : {std::tuple{"roll", i.roll_min, i.roll_max},
+                                                 std::tuple{"pitch", i.pitch_min, i.pitch_max},
+                                                 std::tuple{"yaw", i.yaw_min, i.yaw_max}}) {
+                const auto [lo, hi] = limit_pair(min, max);
+                l.angle(std::string(axis) + "_min", lo);
+                l.angle(std::string(axis) + "_max", hi);
+            }
+        });
     } else {
-        for (const char* key : {"vendor", "model", "firmware", "cap_flags", "limits"})
-            d[key] = nullptr;
+        for (const char* key : {"vendor", "model", "firmware", "cap_flags", "limits"}) d.null(key);
     }
     if (attitude_) {
         const auto& a = *attitude_;
-        d["attitude"] = {{"roll", angle_deg(a.roll_deg)},
-                         {"pitch", angle_deg(a.pitch_deg)},
-                         {"yaw", angle_deg(a.yaw_deg)},
-                         {"frame", a.earth_frame ? "earth" : "vehicle"}};
-        d["angular_velocity"] = {angle_deg(a.angular_velocity_dps[0]),
-                                 angle_deg(a.angular_velocity_dps[1]),
-                                 angle_deg(a.angular_velocity_dps[2])};
-        d["failure_flags"] = failure_flag_names(a.failure_flags);
-        d["age_s"] = state::seconds(std::max(0.0, now_s - a.received_s));
+        d.object("attitude", [&](state::JsonWriter& at) {
+            at.angle("roll", a.roll_deg);
+            at.angle("pitch", a.pitch_deg);
+            at.angle("yaw", a.yaw_deg);
+            at.string("frame", a.earth_frame ? "earth" : "vehicle");
+        });
+        d.array("angular_velocity", a.angular_velocity_dps, state::angle_json);
+        d.array("failure_flags", failure_flag_names(a.failure_flags));
+        d.seconds("age_s", std::max(0.0, now_s - a.received_s));
     } else {
         for (const char* key : {"attitude", "angular_velocity", "failure_flags", "age_s"})
-            d[key] = nullptr;
+            d.null(key);
     }
-    return d;
 }
 
 bool MavlinkDeviceState::stale(double now_s) const {
@@ -230,10 +225,17 @@ void MavlinkDeviceState::tick(double now_s, std::vector<state::Event>& events) {
     }
 }
 
+void MavlinkDeviceState::write(state::JsonWriter& w, double now_s) const {
+    w.object("device", [&](state::JsonWriter& d) { write_device(d, now_s); });
+    w.object("telemetry", telemetry_);
+    w.json("stare", stare_);
+}
+
 json MavlinkDeviceState::snapshot(double now_s) const {
-    return {{"device", device_json(now_s)},
-            {"telemetry", telemetry_ ? state::write(*telemetry_) : json(nullptr)},
-            {"stare", stare_}};
+    json out = json::object();
+    state::JsonWriter w(out);
+    write(w, now_s);
+    return out;
 }
 
 }  // namespace gimbal::protocols

@@ -58,7 +58,9 @@ class MavlinkDeviceState {
         return std::max(0.0, now_s - attitude_->received_s);
     }
     std::uint64_t telemetry_count() const { return attitudes_; }
-    nlohmann::json snapshot(double now_s) const;
+    // STATE `device`, `telemetry` and `stare`.
+    void write(state::JsonWriter& w, double now_s) const;
+    nlohmann::json snapshot(double now_s) const;  // write() as a JSON object
 
     const std::optional<DeviceAttitude>& attitude() const { return attitude_; }
     // STATE `telemetry`: the shared keys, from the latest attitude and the vehicle's fix then.
@@ -81,7 +83,7 @@ class MavlinkDeviceState {
     void on_attitude(const mavlink::GimbalDeviceAttitudeStatus& m, double now_s);
     void on_information(const mavlink::GimbalDeviceInformation& m, double now_s);
     state::Telemetry derive_telemetry() const;
-    nlohmann::json device_json(double now_s) const;
+    void write_device(state::JsonWriter& d, double now_s) const;
 
     MavlinkDeviceOptions options_;
     std::optional<VehicleFix> vehicle_;

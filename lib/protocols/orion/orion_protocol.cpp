@@ -42,6 +42,13 @@ std::vector<Bytes> OrionProtocol::on_connect() {
     return out;
 }
 
+void OrionProtocol::write_state(state::JsonWriter& w, const session::StateContext& c) const {
+    if (c.lasers)
+        state_.write(w, c.now_s, [&](std::uint8_t i) { return c.lasers->firing(i); });
+    else
+        state_.write(w, c.now_s);
+}
+
 FrameCounters OrionProtocol::counters() const {
     const auto& s = framer_.stats();
     return FrameCounters{s.packets, s.bad_checksums, s.dropped_bytes, state_.decode_errors()};

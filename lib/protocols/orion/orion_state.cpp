@@ -15,65 +15,84 @@ namespace {
 
 namespace o = gimbal::orion;
 
-// Where each packet kind lives in STATE. Version packets and per-board packets are keyed
-// by board; everything else keeps its latest copy.
-struct Slot {
-    std::string_view packet;
-    std::string_view key;
-    std::string_view sub;  // fixed sub-key (versions), or empty
-};
-
-constexpr std::array<Slot, 21> slots{{
-    {"ins_quality", "ins", ""},
-    {"gps_data", "gps", ""},
-    {"laser_states", "lasers", ""},
-    {"diagnostics", "diagnostics", ""},
-    {"performance", "performance", ""},
-    {"software_diagnostics", "software", ""},
-    {"network_diagnostics", "network_diagnostics", ""},
-    {"vibration", "vibration", ""},
-    {"retract_status", "retract", ""},
-    {"stare_start", "stare", ""},
-    {"cameras", "cameras", ""},
-    {"limits", "limits", ""},
-    {"network_settings", "network_settings", ""},
-    {"network_video", "network_video", ""},
-    {"uart_config", "uart_config", ""},
-    {"ins_options", "ins_options", ""},
-    {"reset_source", "reset_source", ""},
-    {"board", "boards", ""},
-    {"clevis_version", "versions", "clevis"},
-    {"crown_version", "versions", "crown"},
-    {"payload_version", "versions", "payload"},
-}};
-constexpr std::array<Slot, 3> more_versions{{
-    {"tracker_version", "versions", "tracker"},
-    {"retract_version", "versions", "retract"},
-    {"lensctl_version", "versions", "lensctl"},
-}};
-
-// Every key STATE shows for an Orion gimbal, in a stable order.
-constexpr std::array<std::string_view, 20> state_keys{"telemetry",     "ins",
-                                                      "gps",           "lasers",
-                                                      "diagnostics",   "performance",
-                                                      "software",      "network_diagnostics",
-                                                      "vibration",     "retract",
-                                                      "stare",         "cameras",
-                                                      "limits",        "network_settings",
-                                                      "network_video", "uart_config",
-                                                      "ins_options",   "versions",
-                                                      "reset_source",  "boards"};
-
-const Slot* find_slot(std::string_view packet) {
-    for (const auto& s : slots)
-        if (s.packet == packet) return &s;
-    for (const auto& s : more_versions)
-        if (s.packet == packet) return &s;
-    return nullptr;
+// Where a packet kind lives in STATE (nullptr: it is not shown, only its events).
+template <class P>
+std::optional<Received<P>>* latest(OrionPackets& p) {
+    if constexpr (std::is_same_v<P, o::InsQuality>)
+        return &p.ins;
+    else if constexpr (std::is_same_v<P, o::GpsData>)
+        return &p.gps;
+    else if constexpr (std::is_same_v<P, o::LaserStates>)
+        return &p.lasers;
+    else if constexpr (std::is_same_v<P, o::Diagnostics>)
+        return &p.diagnostics;
+    else if constexpr (std::is_same_v<P, o::Performance>)
+        return &p.performance;
+    else if constexpr (std::is_same_v<P, o::NetworkDiagnostics>)
+        return &p.network_diagnostics;
+    else if constexpr (std::is_same_v<P, o::Vibration>)
+        return &p.vibration;
+    else if constexpr (std::is_same_v<P, o::RetractStatus>)
+        return &p.retract;
+    else if constexpr (std::is_same_v<P, o::StareStart>)
+        return &p.stare;
+    else if constexpr (std::is_same_v<P, o::Cameras>)
+        return &p.cameras;
+    else if constexpr (std::is_same_v<P, o::Limits>)
+        return &p.limits;
+    else if constexpr (std::is_same_v<P, o::NetworkSettings>)
+        return &p.network_settings;
+    else if constexpr (std::is_same_v<P, o::NetworkVideo>)
+        return &p.network_video;
+    else if constexpr (std::is_same_v<P, o::UartConfig>)
+        return &p.uart_config;
+    else if constexpr (std::is_same_v<P, o::InsOptions>)
+        return &p.ins_options;
+    else if constexpr (std::is_same_v<P, o::ResetSource>)
+        return &p.reset_source;
+    else if constexpr (std::is_same_v<P, o::ClevisVersion>)
+        return &p.clevis_version;
+    else if constexpr (std::is_same_v<P, o::CrownVersion>)
+        return &p.crown_version;
+    else if constexpr (std::is_same_v<P, o::PayloadVersion>)
+        return &p.payload_version;
+    else if constexpr (std::is_same_v<P, o::TrackerVersion>)
+        return &p.tracker_version;
+    else if constexpr (std::is_same_v<P, o::RetractVersion>)
+        return &p.retract_version;
+    else if constexpr (std::is_same_v<P, o::LensCtlVersion>)
+        return &p.lensctl_version;
+    else
+        return nullptr;
 }
 
-bool keyed(std::string_view key) {
-    return key == "versions" || key == "software" || key == "boards";
+// Per-board packets are keyed by the board that sent them.
+std::string board_key(o::Board board) {
+    const auto name = o::enum_name(board);
+    return name.empty() ? "unknown" : std::string(name);
+}
+
+double age(double now_s, double received_s) {
+    return seconds(std::max(0.0, now_s - received_s));
+}
+
+// A packet's JSON with its age.
+template <class P>
+nlohmann::json aged(const Received<P>& r, double now_s) {
+    nlohmann::json v = r.json;
+    v["age_s"] = age(now_s, r.received_s);
+    return v;
+}
+template <class P>
+nlohmann::json aged(const std::optional<Received<P>>& r, double now_s) {
+    return r ? aged(*r, now_s) : nlohmann::json(nullptr);
+}
+template <class P>
+nlohmann::json aged(const std::map<std::string, Received<P>>& by_board, double now_s) {
+    if (by_board.empty()) return nullptr;
+    nlohmann::json out = nlohmann::json::object();
+    for (const auto& [board, r] : by_board) out[board] = aged(r, now_s);
+    return out;
 }
 
 // Days since 1970-01-01 -> civil date (Howard Hinnant's algorithm).
@@ -156,17 +175,21 @@ nlohmann::json telemetry_json(const o::GeolocateTelemetry& t, geo::Surface* terr
     return write(orion_telemetry(t, terrain));
 }
 
-void OrionState::store(const std::string& key, nlohmann::json value, double now_s) {
-    auto& e = entries_[key];
-    e.value = std::move(value);
-    e.received_s = now_s;
-}
-
-void OrionState::store_keyed(const std::string& key, const std::string& sub, nlohmann::json value,
-                             double now_s) {
-    auto& e = keyed_[key][sub];
-    e.value = std::move(value);
-    e.received_s = now_s;
+template <class P>
+void OrionState::store(const P& packet, nlohmann::json json, double now_s) {
+    if constexpr (std::is_same_v<P, o::SoftwareDiagnostics>) {
+        packets_.software[board_key(packet.source_board)] = {packet, std::move(json), now_s};
+    } else if constexpr (std::is_same_v<P, o::BoardInfo>) {
+        packets_.boards[board_key(packet.board)] = {packet, std::move(json), now_s};
+    } else if constexpr (std::is_same_v<P, o::LaserStates>) {
+        // STATE `lasers` is the array of lasers, each as the codec writes it.
+        nlohmann::json states = nlohmann::json::array();
+        for (const auto& laser : packet.states)
+            states.push_back(o::to_json(laser, o::Digits::shortest));
+        packets_.lasers = Received<P>{packet, std::move(states), now_s};
+    } else if (auto* slot = latest<P>(packets_)) {
+        *slot = Received<P>{packet, std::move(json), now_s};
+    }
 }
 
 void OrionState::on_telemetry(const o::GeolocateTelemetry& t, double now_s,
@@ -208,87 +231,79 @@ bool OrionState::apply(const o::Frame& frame, double now_s, std::vector<Event>& 
                                         {"priority", j.value("priority", nlohmann::json())},
                                         {"text", j.value("description", std::string())}}});
             }
-            const Slot* slot = find_slot(P::name);
-            if (!slot) return;  // commands echoed back, debug strings: events only
-            const std::string key(slot->key);
-            if (!slot->sub.empty()) {
-                store_keyed(key, std::string(slot->sub), std::move(j), now_s);
-            } else if (keyed(key)) {
-                // Per-board packets: keyed by the board that sent them.
-                std::string board = "unknown";
-                for (const char* field : {"source_board", "board", "source"})
-                    if (j.contains(field) && j[field].is_string()) {
-                        board = j[field].get<std::string>();
-                        break;
-                    }
-                store_keyed(key, board, std::move(j), now_s);
-            } else if (key == "lasers") {
-                store(key, j.value("states", nlohmann::json::array()), now_s);
-            } else {
-                store(key, std::move(j), now_s);
-            }
+            store(d.value, std::move(j), now_s);  // commands echoed back, debug: events only
         }
     });
     return decoded;
 }
 
 bool OrionState::stale(double now_s) const {
-    return !telemetry_s_ || now_s - *telemetry_s_ > stale_after_s_;
+    return !telemetry_ || now_s - telemetry_s_ > stale_after_s_;
 }
 
 void OrionState::tick(double now_s, std::vector<Event>& events) {
-    if (telemetry_s_ && !lost_reported_ && stale(now_s)) {
+    if (telemetry_ && !lost_reported_ && stale(now_s)) {
         lost_reported_ = true;
-        events.push_back(Event{"lost", {{"age_s", seconds(now_s - *telemetry_s_)}}});
+        events.push_back(Event{"lost", {{"age_s", seconds(now_s - telemetry_s_)}}});
     }
+}
+
+void OrionState::write(JsonWriter& w, double now_s,
+                       const std::function<bool(std::uint8_t)>& firing) const {
+    const OrionPackets& p = packets_;
+    if (telemetry_)
+        w.object("telemetry", [&](JsonWriter& t) {
+            fields(t, *telemetry_);
+            t.seconds("age_s", std::max(0.0, now_s - telemetry_s_));
+        });
+    else
+        w.null("telemetry");
+    w.json("ins", aged(p.ins, now_s));
+    w.json("gps", aged(p.gps, now_s));
+    if (p.lasers) {
+        // An array: each laser carries the packet's age, and the daemon's record of firing.
+        nlohmann::json lasers = p.lasers->json;
+        for (std::size_t i = 0; i < lasers.size(); ++i) {
+            lasers[i]["age_s"] = age(now_s, p.lasers->received_s);
+            if (firing) lasers[i]["firing"] = firing(static_cast<std::uint8_t>(i));
+        }
+        w.json("lasers", std::move(lasers));
+    } else {
+        w.null("lasers");
+    }
+    w.json("diagnostics", aged(p.diagnostics, now_s));
+    w.json("performance", aged(p.performance, now_s));
+    w.json("software", aged(p.software, now_s));
+    w.json("network_diagnostics", aged(p.network_diagnostics, now_s));
+    w.json("vibration", aged(p.vibration, now_s));
+    w.json("retract", aged(p.retract, now_s));
+    w.json("stare", aged(p.stare, now_s));
+    w.json("cameras", aged(p.cameras, now_s));
+    w.json("limits", aged(p.limits, now_s));
+    w.json("network_settings", aged(p.network_settings, now_s));
+    w.json("network_video", aged(p.network_video, now_s));
+    w.json("uart_config", aged(p.uart_config, now_s));
+    w.json("ins_options", aged(p.ins_options, now_s));
+    w.json("reset_source", aged(p.reset_source, now_s));
+    w.json("boards", aged(p.boards, now_s));
+    // The version packets, by board; null until one arrives.
+    nlohmann::json versions = nlohmann::json::object();
+    const auto version = [&](const char* board, const auto& r) {
+        if (r) versions[board] = aged(*r, now_s);
+    };
+    version("clevis", p.clevis_version);
+    version("crown", p.crown_version);
+    version("payload", p.payload_version);
+    version("tracker", p.tracker_version);
+    version("retract", p.retract_version);
+    version("lensctl", p.lensctl_version);
+    w.json("versions", versions.empty() ? nlohmann::json(nullptr) : std::move(versions));
 }
 
 nlohmann::json OrionState::snapshot(double now_s) const {
     nlohmann::json out = nlohmann::json::object();
-    auto with_age = [now_s](const Entry& e) {
-        nlohmann::json v = e.value;
-        const double age = seconds(std::max(0.0, now_s - e.received_s));
-        if (v.is_object())
-            v["age_s"] = age;
-        else
-            v = {{"items", v}, {"age_s", age}};
-        return v;
-    };
-    for (const auto key : state_keys) {
-        const std::string k(key);
-        if (key == "telemetry") {
-            if (!telemetry_) {
-                out[k] = nullptr;
-                continue;
-            }
-            nlohmann::json t = write(*telemetry_);
-            t["age_s"] = seconds(std::max(0.0, now_s - *telemetry_s_));
-            out[k] = std::move(t);
-        } else if (keyed(key)) {
-            auto it = keyed_.find(k);
-            if (it == keyed_.end()) {
-                out[k] = nullptr;
-                continue;
-            }
-            nlohmann::json obj = nlohmann::json::object();
-            for (const auto& [sub, e] : it->second) obj[sub] = with_age(e);
-            out[k] = std::move(obj);
-        } else if (key == "lasers") {
-            auto it = entries_.find(k);
-            if (it == entries_.end()) {
-                out[k] = nullptr;
-                continue;
-            }
-            // An array: each laser carries the packet's age.
-            nlohmann::json arr = it->second.value;
-            for (auto& laser : arr)
-                laser["age_s"] = seconds(std::max(0.0, now_s - it->second.received_s));
-            out[k] = std::move(arr);
-        } else {
-            auto it = entries_.find(k);
-            out[k] = it == entries_.end() ? nlohmann::json(nullptr) : with_age(it->second);
-        }
-    }
+    JsonWriter w(out);
+    write(w, now_s);
     return out;
 }
 

@@ -33,7 +33,9 @@ class ViewproProtocol final : public session::Protocol {
         return state_.telemetry_age_s(now_s);
     }
     std::uint64_t telemetry_count() const override { return state_.telemetry_count(); }
-    nlohmann::json snapshot(double now_s) const override { return state_.snapshot(now_s); }
+    void write_state(state::JsonWriter& w, const session::StateContext& c) const override {
+        state_.write(w, c.now_s);
+    }
     FrameCounters counters() const override;
     bool supports(std::string_view cmd) const override;
     const session::Capabilities& capabilities() const override;

@@ -9,6 +9,7 @@
 
 #include "protocols/viewpro/codec/output.hpp"
 #include "state/event.hpp"
+#include "state/writer.hpp"
 
 namespace gimbal::state {
 
@@ -28,8 +29,12 @@ class ViewproState {
     }
     // OUTx frames applied so far (streams that follow new telemetry).
     std::uint64_t telemetry_count() const { return telemetry_count_; }
-    // {"output": {...latest OUTx, "format", "age_s"} or null}
-    nlohmann::json snapshot(double now_s) const;
+    // STATE `output`: the latest OUTx as the codec writes it, with "format" and "age_s"; null
+    // before the first.
+    void write(JsonWriter& w, double now_s) const;
+    nlohmann::json snapshot(double now_s) const;  // write() as a JSON object
+    // The latest OUTx frame, decoded (contract units); nullopt before the first.
+    const std::optional<viewpro::Output>& output() const { return output_; }
     std::uint64_t decode_errors() const { return decode_errors_; }
 
   private:
