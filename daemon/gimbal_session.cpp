@@ -324,17 +324,14 @@ nlohmann::json GimbalSession::snapshot() const {
     gimbal::state::JsonWriter w(state);
     protocol_->write_state(w, {now, &lasers_});
     state["vehicle"] = vehicle_snapshot_ ? vehicle_snapshot_() : nlohmann::json(nullptr);
+    w.object("video", video_ ? video_() : std::nullopt);
     for (const auto& [key, fill] : state_keys_) state[key] = fill();
     return state;
 }
 
-nlohmann::json GimbalSession::gimbal_state() const {
-    const double now = now_s();
-    nlohmann::json state = protocol_->snapshot(now);
-    state["protocol"] = std::string(protocol_->name());
-    state["stale"] = protocol_->stale(now);
-    state["link"] = {{"connected", link_->connected()}};
-    return state;
+gimbal::session::GimbalView GimbalSession::view() const {
+    return {&protocol_->capabilities(), protocol_->telemetry(), link_->connected(), stale(),
+            video_};
 }
 
 bool GimbalSession::send_feed(std::vector<std::uint8_t> bytes) {

@@ -110,9 +110,8 @@ GimbalSession::Outcome GroundCommands::locate(GimbalSession& session, const json
     if (!p.ok()) return failed(p.error());
     if (!position) return failed(position.error());
 
-    const json state = session.snapshot();
     const auto& capabilities = session.capabilities();
-    const auto view = capabilities.image(state);
+    const auto view = capabilities.image();
     if (!view) return failed(view.error());
     const auto at = session::image_point(*position, *view);
     if (!at) return failed(at.error());
@@ -128,7 +127,7 @@ GimbalSession::Outcome GroundCommands::locate(GimbalSession& session, const json
         out.results = std::move(located);
         return out;
     }
-    auto pointing = session::point_request(capabilities, state, *view, *ground, stare);
+    auto pointing = session::point_request(capabilities, *view, *ground, stare);
     if (!pointing) return failed(pointing.error());
     const std::string cmd = pointing->value("cmd", std::string());
     if (!session.supports(cmd))
@@ -148,7 +147,7 @@ GimbalSession::Outcome GroundCommands::project(GimbalSession& session, const jso
     const auto alt = p.number("alt", -2000.0, 100000.0, true);
     p.reject_unknown();
     if (!p.ok()) return failed(p.error());
-    const auto view = session.capabilities().image(session.snapshot());
+    const auto view = session.capabilities().image();
     if (!view) return failed(view.error());
     const auto before = misses();
     GimbalSession::Outcome out;

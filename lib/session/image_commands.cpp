@@ -104,15 +104,15 @@ json project_reply(const ImageView& view, const geo::Lla& point, geo::Surface* t
     return out;
 }
 
-Request point_request(const Capabilities& capabilities, const json& state, const ImageView& view,
+Request point_request(const Capabilities& capabilities, const ImageView& view,
                       const geo::GroundPoint& target, bool stare) {
     if (!capabilities.features().geopoint)
         return unsupported("this gimbal cannot point at a location (no geopoint capability)");
     if (!view.geoid_undulation_m)
         return unavailable("the gimbal reports no geoid undulation for the point's altitude");
     Request request = capabilities.geopoint(
-        state, GeoTarget{target.point.lat_deg, target.point.lon_deg,
-                         geo::msl_from_ellipsoid(target.point.alt_m, *view.geoid_undulation_m)});
+        GeoTarget{target.point.lat_deg, target.point.lon_deg,
+                  geo::msl_from_ellipsoid(target.point.alt_m, *view.geoid_undulation_m)});
     if (!request || !stare) return request;
     // Stare where the command the capability chose takes it (the catalogue says).
     const auto* cmd = request->contains("cmd") && (*request)["cmd"].is_string()

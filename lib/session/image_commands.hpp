@@ -42,7 +42,7 @@ nlohmann::json project_reply(const ImageView& view, const geo::Lla& point, geo::
 // capability, staring when `stare` and the gimbal's geopoint takes `stare`. unsupported when
 // the gimbal cannot point at a location (or stare); unavailable when it reports no geoid
 // undulation to give the altitude above mean sea level with.
-Request point_request(const Capabilities& capabilities, const nlohmann::json& state,
-                      const ImageView& view, const geo::GroundPoint& target, bool stare);
+Request point_request(const Capabilities& capabilities, const ImageView& view,
+                      const geo::GroundPoint& target, bool stare);
 
 }  // namespace gimbal::session

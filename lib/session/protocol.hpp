@@ -15,6 +15,7 @@
 #include "session/capabilities.hpp"
 #include "session/laser_guard.hpp"
 #include "state/event.hpp"
+#include "state/telemetry.hpp"
 #include "state/writer.hpp"
 #include "vehicle/vehicle_state.hpp"
 
@@ -86,8 +87,11 @@ class Protocol {
     virtual FrameCounters counters() const = 0;
 
     virtual bool supports(std::string_view cmd) const = 0;
-    // What the gimbal can do, from its STATE (session/capabilities.hpp).
+    // What the gimbal can do, bound to its typed state (session/capabilities.hpp).
     virtual const Capabilities& capabilities() const = 0;
+    // STATE telemetry's shared part (state/telemetry.hpp); nullptr before the first report, or
+    // for a protocol whose gimbal reports no position telemetry.
+    virtual const state::Telemetry* telemetry() const { return nullptr; }
     // Plans a command; on error returns it and plans nothing.
     virtual std::optional<command::Error> plan(std::string_view cmd, const nlohmann::json& request,
                                                const Now& now, command::Plan& plan) = 0;

@@ -159,10 +159,6 @@ bool MavlinkDeviceProtocol::supports(std::string_view cmd) const {
     return is_device_command(cmd);
 }
 
-const session::Capabilities& MavlinkDeviceProtocol::capabilities() const {
-    return mavlink_device_capabilities();
-}
-
 std::optional<command::Error> MavlinkDeviceProtocol::plan(std::string_view cmd,
                                                           const nlohmann::json& request,
                                                           const session::Now& now,

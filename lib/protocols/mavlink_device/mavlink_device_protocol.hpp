@@ -8,6 +8,7 @@
 #pragma once
 
 #include "mavlink/framer.hpp"
+#include "protocols/mavlink_device/mavlink_device_capabilities.hpp"
 #include "protocols/mavlink_device/mavlink_device_options.hpp"
 #include "protocols/mavlink_device/mavlink_device_state.hpp"
 #include "protocols/mavlink_device/mavlink_device_steering.hpp"
@@ -37,7 +38,10 @@ class MavlinkDeviceProtocol final : public session::Protocol {
     }
     session::FrameCounters counters() const override;
     bool supports(std::string_view cmd) const override;
-    const session::Capabilities& capabilities() const override;
+    const session::Capabilities& capabilities() const override { return capabilities_; }
+    const state::Telemetry* telemetry() const override {
+        return state_.telemetry() ? &*state_.telemetry() : nullptr;
+    }
     std::optional<command::Error> plan(std::string_view cmd, const nlohmann::json& request,
                                        const session::Now& now, command::Plan& plan) override;
 
@@ -67,6 +71,7 @@ class MavlinkDeviceProtocol final : public session::Protocol {
     SignatureCheck signatures_;  // before framer_: it configures it
     mavlink::Framer framer_;
     MavlinkDeviceState state_;
+    MavlinkDeviceCapabilities capabilities_{state_.data()};
     MavlinkDeviceSteering steering_;
     MavlinkSender sender_;
     std::optional<double> last_heartbeat_s_;

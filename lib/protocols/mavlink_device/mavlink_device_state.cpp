@@ -22,11 +22,13 @@ namespace {
 
 constexpr double rad_to_deg = 180.0 / 3.14159265358979323846;
 
-// One axis's reported limits, min and max, degrees. A limit outside -360..360 degrees, or a
-// pair whose min exceeds its max, is unknown (nullopt: null) and is not relayed (contract
-// section 14, v4): a device's +-5.7e39 would reach every ground station as
-// GIMBAL_MANAGER_INFORMATION.
-std::pair<std::optional<double>, std::optional<double>> limit_pair(float min_rad, float max_rad) {
+}  // namespace
+
+// A limit outside -360..360 degrees, or a pair whose min exceeds its max, is unknown (null)
+// and is not relayed (contract section 14, v4): a device's +-5.7e39 would reach every ground
+// station as GIMBAL_MANAGER_INFORMATION.
+std::pair<std::optional<double>, std::optional<double>> device_limits(float min_rad,
+                                                                      float max_rad) {
     const auto sane = [](float rad) -> std::optional<double> {
         if (!std::isfinite(rad) || std::abs(rad * rad_to_deg) > 360.0) return std::nullopt;
         return rad * rad_to_deg;
@@ -38,7 +40,7 @@ std::pair<std::optional<double>, std::optional<double>> limit_pair(float min_rad
 }
 
 // A fixed-size, possibly unterminated char[32] of the wire.
-std::string text_of(const std::array<std::uint8_t, 32>& chars) {
+std::string device_text(const std::array<std::uint8_t, 32>& chars) {
     std::string s;
     for (const auto c : chars) {
         if (c == 0) break;
@@ -49,12 +51,14 @@ std::string text_of(const std::array<std::uint8_t, 32>& chars) {
 
 // common.xml: (Dev & 0xff) << 24 + (Patch & 0xff) << 16 + (Minor & 0xff) << 8 + (Major & 0xff),
 // shown as "Major.Minor.Patch", with ".Dev" only for a development build (Dev not 0).
-std::string version_text(std::uint32_t v) {
+std::string firmware_text(std::uint32_t v) {
     std::string text = std::to_string(v & 0xFF) + "." + std::to_string((v >> 8) & 0xFF) + "." +
                        std::to_string((v >> 16) & 0xFF);
     if ((v >> 24) != 0) text += "." + std::to_string(v >> 24);
     return text;
 }
+
+namespace {
 
 double radians_per_second(float v) {
     return std::isfinite(v) ? v * rad_to_deg : 0.0;
@@ -87,7 +91,7 @@ bool MavlinkDeviceState::apply(const mavlink::Message& message, double now_s) {
 
 void MavlinkDeviceState::on_attitude(const mavlink::GimbalDeviceAttitudeStatus& m, double now_s) {
     const auto e = euler_of(m.q);
-    DeviceAttitude a = attitude_.value_or(DeviceAttitude{});
+    DeviceAttitude a = data_.attitude.value_or(DeviceAttitude{});
     // A NaN quaternion keeps the last angles (the device says it has none now) but counts as
     // a report: its failure flags and rates are current.
     if (e) {
@@ -102,14 +106,14 @@ void MavlinkDeviceState::on_attitude(const mavlink::GimbalDeviceAttitudeStatus& 
     a.failure_flags = m.failure_flags;
     a.time_boot_ms = m.time_boot_ms;
     a.received_s = now_s;
-    attitude_ = a;
+    data_.attitude = a;
     ++attitudes_;
     lost_reported_ = false;
-    telemetry_ = derive_telemetry();
+    data_.telemetry = derive_telemetry();
 }
 
 void MavlinkDeviceState::on_information(const mavlink::GimbalDeviceInformation& m, double) {
-    information_ = m;
+    data_.information = m;
 }
 
 void MavlinkDeviceState::set_vehicle(const std::optional<VehicleFix>& fix) {
@@ -128,31 +132,31 @@ std::optional<geo::Lla> MavlinkDeviceState::camera() const {
 
 bool MavlinkDeviceState::earth_frame_supported() const {
     constexpr std::uint16_t supports_yaw_in_earth_frame = 4096;
-    return information_ && (information_->cap_flags & supports_yaw_in_earth_frame) != 0;
+    return data_.information && (data_.information->cap_flags & supports_yaw_in_earth_frame) != 0;
 }
 
 std::optional<double> MavlinkDeviceState::pan_deg() const {
-    if (!attitude_) return std::nullopt;
-    if (!attitude_->earth_frame) return session::wrap180(attitude_->yaw_deg);
+    if (!data_.attitude) return std::nullopt;
+    if (!data_.attitude->earth_frame) return session::wrap180(data_.attitude->yaw_deg);
     if (!vehicle_) return std::nullopt;
-    return session::wrap180(attitude_->yaw_deg - vehicle_->yaw_deg);
+    return session::wrap180(data_.attitude->yaw_deg - vehicle_->yaw_deg);
 }
 
 std::optional<geo::Quat> MavlinkDeviceState::line_of_sight() const {
-    if (!attitude_) return std::nullopt;
-    double yaw = attitude_->yaw_deg;
-    if (!attitude_->earth_frame) {
+    if (!data_.attitude) return std::nullopt;
+    double yaw = data_.attitude->yaw_deg;
+    if (!data_.attitude->earth_frame) {
         if (!vehicle_) return std::nullopt;
         yaw += vehicle_->yaw_deg;
     }
     return geo::normalized(geo::euler_to_quat(
-        geo::EulerDeg{attitude_->roll_deg, attitude_->pitch_deg, session::wrap180(yaw)}));
+        geo::EulerDeg{data_.attitude->roll_deg, data_.attitude->pitch_deg, session::wrap180(yaw)}));
 }
 
 state::Telemetry MavlinkDeviceState::derive_telemetry() const {
     state::Telemetry t;
     if (const auto pan = pan_deg()) t.pan = angle_deg(*pan);
-    t.tilt = angle_deg(attitude_->pitch_deg);
+    t.tilt = angle_deg(data_.attitude->pitch_deg);
     t.hfov = angle_deg(options_.hfov_deg);
     t.vfov = angle_deg(options_.vfov_deg);
     const auto los = line_of_sight();
@@ -178,17 +182,17 @@ state::Telemetry MavlinkDeviceState::derive_telemetry() const {
 }
 
 void MavlinkDeviceState::write_device(state::JsonWriter& d, double now_s) const {
-    if (information_) {
-        const auto& i = *information_;
-        d.string("vendor", text_of(i.vendor_name));
-        d.string("model", text_of(i.model_name));
-        d.string("firmware", version_text(i.firmware_version));
+    if (data_.information) {
+        const auto& i = *data_.information;
+        d.string("vendor", device_text(i.vendor_name));
+        d.string("model", device_text(i.model_name));
+        d.string("firmware", firmware_text(i.firmware_version));
         d.array("cap_flags", cap_flag_names(i.cap_flags));
         d.object("limits", [&](state::JsonWriter& l) {
             for (const auto& [axis, min, max] : {std::tuple{"roll", i.roll_min, i.roll_max},
                                                  std::tuple{"pitch", i.pitch_min, i.pitch_max},
                                                  std::tuple{"yaw", i.yaw_min, i.yaw_max}}) {
-                const auto [lo, hi] = limit_pair(min, max);
+                const auto [lo, hi] = device_limits(min, max);
                 l.angle(std::string(axis) + "_min", lo);
                 l.angle(std::string(axis) + "_max", hi);
             }
@@ -196,8 +200,8 @@ void MavlinkDeviceState::write_device(state::JsonWriter& d, double now_s) const 
     } else {
         for (const char* key : {"vendor", "model", "firmware", "cap_flags", "limits"}) d.null(key);
     }
-    if (attitude_) {
-        const auto& a = *attitude_;
+    if (data_.attitude) {
+        const auto& a = *data_.attitude;
         d.object("attitude", [&](state::JsonWriter& at) {
             at.angle("roll", a.roll_deg);
             at.angle("pitch", a.pitch_deg);
@@ -214,20 +218,20 @@ void MavlinkDeviceState::write_device(state::JsonWriter& d, double now_s) const 
 }
 
 bool MavlinkDeviceState::stale(double now_s) const {
-    return !attitude_ || now_s - attitude_->received_s > options_.stale_after_s;
+    return !data_.attitude || now_s - data_.attitude->received_s > options_.stale_after_s;
 }
 
 void MavlinkDeviceState::tick(double now_s, std::vector<state::Event>& events) {
-    if (attitude_ && !lost_reported_ && stale(now_s)) {
+    if (data_.attitude && !lost_reported_ && stale(now_s)) {
         lost_reported_ = true;
         events.push_back(
-            state::Event{"lost", {{"age_s", state::seconds(now_s - attitude_->received_s)}}});
+            state::Event{"lost", {{"age_s", state::seconds(now_s - data_.attitude->received_s)}}});
     }
 }
 
 void MavlinkDeviceState::write(state::JsonWriter& w, double now_s) const {
     w.object("device", [&](state::JsonWriter& d) { write_device(d, now_s); });
-    w.object("telemetry", telemetry_);
+    w.object("telemetry", data_.telemetry);
     w.json("stare", stare_);
 }
 

@@ -32,6 +32,22 @@ struct DeviceAttitude {
     double received_s = 0;
 };
 
+// What the device reported, typed: what its capabilities read (mavlink_device_capabilities.hpp).
+struct MavlinkDeviceData {
+    std::optional<DeviceAttitude> attitude;
+    std::optional<mavlink::GimbalDeviceInformation> information;
+    // STATE `telemetry`: the shared keys, from the latest attitude and the vehicle's fix then.
+    std::optional<state::Telemetry> telemetry;
+};
+
+// The information's texts as STATE shows them: a char[32] of the wire (printable ASCII, '?'
+// for anything else), and the firmware version "Major.Minor.Patch[.Dev]".
+std::string device_text(const std::array<std::uint8_t, 32>& chars);
+std::string firmware_text(std::uint32_t version);
+// One axis's reported limits (min, max) in degrees, as STATE shows them before rounding: a
+// limit outside -360..360 degrees, or a pair whose min exceeds its max, is unknown.
+std::pair<std::optional<double>, std::optional<double>> device_limits(float min_rad, float max_rad);
+
 class MavlinkDeviceState {
   public:
     explicit MavlinkDeviceState(const MavlinkDeviceOptions& options) : options_(options) {}
@@ -54,22 +70,23 @@ class MavlinkDeviceState {
     bool stale(double now_s) const;
     // Seconds since the latest attitude report; nullopt before the first.
     std::optional<double> telemetry_age_s(double now_s) const {
-        if (!attitude_) return std::nullopt;
-        return std::max(0.0, now_s - attitude_->received_s);
+        if (!data_.attitude) return std::nullopt;
+        return std::max(0.0, now_s - data_.attitude->received_s);
     }
     std::uint64_t telemetry_count() const { return attitudes_; }
     // STATE `device`, `telemetry` and `stare`.
     void write(state::JsonWriter& w, double now_s) const;
     nlohmann::json snapshot(double now_s) const;  // write() as a JSON object
 
-    const std::optional<DeviceAttitude>& attitude() const { return attitude_; }
+    const std::optional<DeviceAttitude>& attitude() const { return data_.attitude; }
     // STATE `telemetry`: the shared keys, from the latest attitude and the vehicle's fix then.
-    const std::optional<state::Telemetry>& telemetry() const { return telemetry_; }
-    bool has_information() const { return information_.has_value(); }
+    const std::optional<state::Telemetry>& telemetry() const { return data_.telemetry; }
+    const MavlinkDeviceData& data() const { return data_; }
+    bool has_information() const { return data_.information.has_value(); }
     // GIMBAL_DEVICE_CAP_FLAGS_SUPPORTS_YAW_IN_EARTH_FRAME, from the information.
     bool earth_frame_supported() const;
     // GIMBAL_DEVICE_CAP_FLAGS, from the information (0 before it).
-    std::uint32_t cap_flags() const { return information_ ? information_->cap_flags : 0; }
+    std::uint32_t cap_flags() const { return data_.information ? data_.information->cap_flags : 0; }
     // The device's MAVLink address (from its messages), once heard.
     std::optional<std::uint8_t> device_system() const { return device_system_; }
     std::uint8_t device_component() const { return device_component_; }
@@ -89,11 +106,9 @@ class MavlinkDeviceState {
     std::optional<VehicleFix> vehicle_;
     double geoid_undulation_m_ = 0;
     nlohmann::json stare_ = nullptr;
-    std::optional<DeviceAttitude> attitude_;
-    std::optional<mavlink::GimbalDeviceInformation> information_;
+    MavlinkDeviceData data_;
     std::optional<std::uint8_t> device_system_;
     std::uint8_t device_component_ = 154;
-    std::optional<state::Telemetry> telemetry_;  // from the latest attitude
     std::uint64_t attitudes_ = 0;
     bool lost_reported_ = false;
 };

@@ -58,10 +58,6 @@ bool OrionProtocol::supports(std::string_view cmd) const {
     return command::is_orion_command(cmd);
 }
 
-const session::Capabilities& OrionProtocol::capabilities() const {
-    return orion_capabilities();
-}
-
 std::optional<command::Error> OrionProtocol::plan(std::string_view cmd,
                                                   const nlohmann::json& request, const Now&,
                                                   command::Plan& plan) {

@@ -40,7 +40,10 @@ class OrionProtocol final : public session::Protocol {
     void write_state(state::JsonWriter& w, const session::StateContext& c) const override;
     FrameCounters counters() const override;
     bool supports(std::string_view cmd) const override;
-    const session::Capabilities& capabilities() const override;
+    const session::Capabilities& capabilities() const override { return capabilities_; }
+    const state::Telemetry* telemetry() const override {
+        return state_.telemetry() ? &state_.telemetry()->shared : nullptr;
+    }
     std::optional<command::Error> plan(std::string_view cmd, const nlohmann::json& request,
                                        const Now& now, command::Plan& plan) override;
 
@@ -50,6 +53,7 @@ class OrionProtocol final : public session::Protocol {
     OrionOptions options_;
     orion::Framer framer_;
     state::OrionState state_;
+    OrionCapabilities capabilities_{state_.data()};
 };
 
 }  // namespace gimbal::protocols

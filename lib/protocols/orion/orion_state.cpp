@@ -178,29 +178,29 @@ nlohmann::json telemetry_json(const o::GeolocateTelemetry& t, geo::Surface* terr
 template <class P>
 void OrionState::store(const P& packet, nlohmann::json json, double now_s) {
     if constexpr (std::is_same_v<P, o::SoftwareDiagnostics>) {
-        packets_.software[board_key(packet.source_board)] = {packet, std::move(json), now_s};
+        data_.packets.software[board_key(packet.source_board)] = {packet, std::move(json), now_s};
     } else if constexpr (std::is_same_v<P, o::BoardInfo>) {
-        packets_.boards[board_key(packet.board)] = {packet, std::move(json), now_s};
+        data_.packets.boards[board_key(packet.board)] = {packet, std::move(json), now_s};
     } else if constexpr (std::is_same_v<P, o::LaserStates>) {
         // STATE `lasers` is the array of lasers, each as the codec writes it.
         nlohmann::json states = nlohmann::json::array();
         for (const auto& laser : packet.states)
             states.push_back(o::to_json(laser, o::Digits::shortest));
-        packets_.lasers = Received<P>{packet, std::move(states), now_s};
-    } else if (auto* slot = latest<P>(packets_)) {
+        data_.packets.lasers = Received<P>{packet, std::move(states), now_s};
+    } else if (auto* slot = latest<P>(data_.packets)) {
         *slot = Received<P>{packet, std::move(json), now_s};
     }
 }
 
 void OrionState::on_telemetry(const o::GeolocateTelemetry& t, double now_s,
                               std::vector<Event>& events) {
-    if (telemetry_ && telemetry_->packet.mode != t.mode) {
+    if (data_.telemetry && data_.telemetry->packet.mode != t.mode) {
         events.push_back(
             Event{"mode",
-                  {{"from", o::JsonWriter::scalar(telemetry_->packet.mode, o::Unit::none)},
+                  {{"from", o::JsonWriter::scalar(data_.telemetry->packet.mode, o::Unit::none)},
                    {"to", o::JsonWriter::scalar(t.mode, o::Unit::none)}}});
     }
-    telemetry_ = orion_telemetry(t, terrain_);
+    data_.telemetry = orion_telemetry(t, terrain_);
     telemetry_s_ = now_s;
     ++telemetry_count_;
     lost_reported_ = false;
@@ -238,11 +238,11 @@ bool OrionState::apply(const o::Frame& frame, double now_s, std::vector<Event>& 
 }
 
 bool OrionState::stale(double now_s) const {
-    return !telemetry_ || now_s - telemetry_s_ > stale_after_s_;
+    return !data_.telemetry || now_s - telemetry_s_ > stale_after_s_;
 }
 
 void OrionState::tick(double now_s, std::vector<Event>& events) {
-    if (telemetry_ && !lost_reported_ && stale(now_s)) {
+    if (data_.telemetry && !lost_reported_ && stale(now_s)) {
         lost_reported_ = true;
         events.push_back(Event{"lost", {{"age_s", seconds(now_s - telemetry_s_)}}});
     }
@@ -250,10 +250,10 @@ void OrionState::tick(double now_s, std::vector<Event>& events) {
 
 void OrionState::write(JsonWriter& w, double now_s,
                        const std::function<bool(std::uint8_t)>& firing) const {
-    const OrionPackets& p = packets_;
-    if (telemetry_)
+    const OrionPackets& p = data_.packets;
+    if (data_.telemetry)
         w.object("telemetry", [&](JsonWriter& t) {
-            fields(t, *telemetry_);
+            fields(t, *data_.telemetry);
             t.seconds("age_s", std::max(0.0, now_s - telemetry_s_));
         });
     else

@@ -83,6 +83,12 @@ struct OrionPackets {
     std::optional<Received<orion::LensCtlVersion>> lensctl_version;
 };
 
+// What an Orion has reported, typed: what its capabilities read (orion_capabilities.hpp).
+struct OrionData {
+    OrionPackets packets;
+    std::optional<OrionTelemetry> telemetry;
+};
+
 // A number of a packet as STATE shows it (the codec's digits), found by the member's address;
 // nullopt when it is not finite. `index` picks an element of an array field.
 template <class P, class T>
@@ -115,7 +121,7 @@ class OrionState {
     bool stale(double now_s) const;
     // Seconds since the latest GeolocateTelemetry; nullopt before the first.
     std::optional<double> telemetry_age_s(double now_s) const {
-        if (!telemetry_) return std::nullopt;
+        if (!data_.telemetry) return std::nullopt;
         return std::max(0.0, now_s - telemetry_s_);
     }
     // GeolocateTelemetry packets applied so far (streams that follow new telemetry).
@@ -128,8 +134,9 @@ class OrionState {
     // write() as a JSON object, without `firing`.
     nlohmann::json snapshot(double now_s) const;
 
-    const std::optional<OrionTelemetry>& telemetry() const { return telemetry_; }
-    const OrionPackets& packets() const { return packets_; }
+    const std::optional<OrionTelemetry>& telemetry() const { return data_.telemetry; }
+    const OrionPackets& packets() const { return data_.packets; }
+    const OrionData& data() const { return data_; }
     std::optional<std::uint32_t> last_stare_time_ms() const { return last_stare_time_ms_; }
     std::uint64_t decode_errors() const { return decode_errors_; }
     const std::string& last_decode_error() const { return last_decode_error_; }
@@ -141,8 +148,7 @@ class OrionState {
 
     double stale_after_s_;
     geo::Surface* terrain_;
-    OrionPackets packets_;
-    std::optional<OrionTelemetry> telemetry_;
+    OrionData data_;
     double telemetry_s_ = 0;
     std::uint64_t telemetry_count_ = 0;
     bool lost_reported_ = false;

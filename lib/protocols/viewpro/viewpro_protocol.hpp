@@ -38,7 +38,7 @@ class ViewproProtocol final : public session::Protocol {
     }
     FrameCounters counters() const override;
     bool supports(std::string_view cmd) const override;
-    const session::Capabilities& capabilities() const override;
+    const session::Capabilities& capabilities() const override { return capabilities_; }
     std::optional<command::Error> plan(std::string_view cmd, const nlohmann::json& request,
                                        const Now& now, command::Plan& plan) override;
 
@@ -46,6 +46,7 @@ class ViewproProtocol final : public session::Protocol {
     ViewproOptions options_;
     viewpro::OutputFramer framer_;
     state::ViewproState state_;
+    ViewproCapabilities capabilities_{state_.output()};
 };
 
 }  // namespace gimbal::protocols
