@@ -21,6 +21,7 @@
 #include "record/recording_link.hpp"
 #include "secret_file.hpp"
 #include "signing_state.hpp"
+#include "video/url.hpp"
 
 namespace gimbald {
 
@@ -45,7 +46,9 @@ App::App(const cfg::Config& config, std::unique_ptr<gimbal::terrain::ElevationMo
     : config_(config),
       signals_(io_, SIGINT, SIGTERM, SIGHUP),
       watchdog_timer_(io_),
-      terrain_(std::move(terrain)) {
+      log_timer_(io_),
+      terrain_(std::move(terrain)),
+      terrain_loader_(terrain_ ? std::make_unique<TerrainLoader>(io_, *terrain_) : nullptr) {
     if (config_.record) start_recorder();
     // Each protocol reads its own keys (feed, options) from its gimbal's configuration object.
     const nlohmann::json gimbal_objects = cfg::to_json(config_)["gimbals"];
@@ -103,7 +106,9 @@ App::App(const cfg::Config& config, std::unique_ptr<gimbal::terrain::ElevationMo
             return nlohmann::json{{"requests", c.requests},
                                   {"rejected", c.rejected},
                                   {"rate_limited", c.rate_limited},
-                                  {"dropped_source", server_->dropped_sources()}};
+                                  {"dropped_source", server_->dropped_sources()},
+                                  {"send_failed", server_->send_counters().failed},
+                                  {"push_too_large", server_->send_counters().pushes_too_large}};
         });
     events_.add([this](const std::string& gimbal, const gimbal::state::Event& e) {
         server_->publish_event(gimbal, e);
@@ -221,6 +226,8 @@ void App::start_http() {
     view.path = request_path_.get();
     view.udp_subscribers = [this] { return server_->subscribers(); };
     view.udp_dropped_sources = [this] { return server_->dropped_sources(); };
+    view.udp_send_failed = [this] { return server_->send_counters().failed; };
+    view.udp_pushes_too_large = [this] { return server_->send_counters().pushes_too_large; };
     view.vehicle_up = [this] {
         return config_.vehicle && vehicle_->vehicle_state().fresh(vehicle_->monotonic_s());
     };
@@ -356,7 +363,8 @@ std::unique_ptr<Link> App::make_link(const cfg::GimbalConfig& g) {
 // simulated camera's video to that video's input, as a real gimbal would.
 void App::add_sim_video(SimLink& link, const cfg::GimbalConfig& g) {
     const auto camera = protocols::entry(g.protocol).simulator.camera;
-    const nlohmann::json fields = {{"gimbal", g.name}, {"input", g.video->input}};
+    const nlohmann::json fields = {{"gimbal", g.name},
+                                   {"input", gimbal::video::redact_userinfo(g.video->input)}};
     if (camera == nullptr) {
         log::warn("sim_video_off", "this protocol's simulated gimbal has no camera: no video",
                   fields);
@@ -392,8 +400,8 @@ void App::on_signal(const boost::system::error_code& ec, int signo) {
         signals_.async_wait([this](const boost::system::error_code& e, int s) { on_signal(e, s); });
         return;
     }
-    log::info("stop", signo == SIGTERM ? "SIGTERM: stopping" : "SIGINT: stopping",
-              {{"signal", signo == SIGTERM ? "SIGTERM" : "SIGINT"}});
+    stop_signal_ = signo == SIGTERM ? "SIGTERM" : "SIGINT";
+    log::info("stop", stop_signal_ + ": stopping", {{"signal", stop_signal_}});
     shutdown();
 }
 
@@ -415,6 +423,8 @@ void App::shutdown() {
     if (recorder_) recorder_->stop();
     signals_.cancel();
     watchdog_timer_.cancel();
+    log_timer_.cancel();
+    log::poll(true);  // every line the roll-up still owes a count of
 }
 
 void App::update_status() {
@@ -426,6 +436,15 @@ void App::update_status() {
     }
     notify::status(std::to_string(up) + "/" + std::to_string(sessions_.size()) +
                    " gimbals connected: " + status);
+}
+
+void App::poll_logs() {
+    log_timer_.expires_after(std::chrono::seconds(1));
+    log_timer_.async_wait([this](const boost::system::error_code& ec) {
+        if (ec || stopping_) return;
+        log::poll();
+        poll_logs();
+    });
 }
 
 void App::arm_watchdog() {
@@ -468,8 +487,12 @@ int App::run() {
     notify::ready();
     update_status();
     arm_watchdog();
+    poll_logs();
     io_.run();
-    log::info("stop", "gimbald stopped");
+    // Both `stop` lines name the signal, so either one answers "why did it stop".
+    log::info("stop", "gimbald stopped",
+              {{"signal",
+                stop_signal_.empty() ? nlohmann::json(nullptr) : nlohmann::json(stop_signal_)}});
     return 0;
 }
 

@@ -152,11 +152,15 @@ void GimbalSession::schedule_tick() {
     });
 }
 
-void GimbalSession::steer(const gimbal::vehicle::VehicleState& vehicle, double vehicle_now_s) {
+std::uint64_t GimbalSession::steer(const gimbal::vehicle::VehicleState& vehicle,
+                                   double vehicle_now_s) {
     std::vector<gimbal::session::Bytes> out;
-    protocol_->steer(vehicle, vehicle_now_s, now_s(), out);
-    if (!link_->connected()) return;
-    for (auto& bytes : out) link_->send(std::move(bytes));
+    const std::size_t feed = protocol_->steer(vehicle, vehicle_now_s, now_s(), out);
+    if (!link_->connected()) return 0;
+    std::uint64_t fed = 0;
+    for (std::size_t i = 0; i < out.size(); ++i)
+        if (link_->send(std::move(out[i])) && i < feed) ++fed;
+    return fed;
 }
 
 GimbalSession::Outcome GimbalSession::execute(std::string_view cmd, const nlohmann::json& request) {

@@ -68,7 +68,8 @@ class GimbalSession {
     bool send_feed(std::vector<std::uint8_t> bytes);
     // The vehicle feed's tick: what the protocol sends from the vehicle's state itself
     // (session::Protocol::steer), written like the feed when the link is up.
-    void steer(const gimbal::vehicle::VehicleState& vehicle, double vehicle_now_s);
+    // Returns how many of the vehicle feed's own frames were sent (STATE vehicle.feed.sent).
+    std::uint64_t steer(const gimbal::vehicle::VehicleState& vehicle, double vehicle_now_s);
     // Fills STATE's top-level `vehicle` key.
     void set_vehicle_snapshot(std::function<nlohmann::json()> vehicle_snapshot) {
         vehicle_snapshot_ = std::move(vehicle_snapshot);

@@ -44,6 +44,11 @@ int main(int argc, char** argv) {
     try {
         gimbald::App app(config, std::move(terrain.model));
         return app.run();
+    } catch (const cfg::ConfigError& e) {
+        // Found only now (a key file changed since --check-config): still exit 1.
+        std::cerr << "gimbald: " << cfg::config_source(options) << ": " << e.what() << "\n";
+        log::error("config_error", e.what());
+        return cfg::exit_config_error;
     } catch (const boost::system::system_error& e) {
         log::error("runtime_failure", e.what(), {{"code", e.code().value()}});
         return cfg::exit_runtime_failure;

@@ -30,7 +30,11 @@ std::vector<gp::ExposedGimbal> exposed(const std::vector<GimbalSession*>& sessio
                                        std::uint8_t first_component) {
     std::vector<std::pair<std::string, std::string>> list;
     for (const auto* s : sessions) list.emplace_back(s->name(), std::string(s->protocol()));
-    return gp::expose(list, first_component);
+    auto gimbals = gp::expose(list, first_component);
+    // Every exposed gimbal is also a camera component (expose_cameras): the camera answers
+    // CAMERA_INFORMATION, its manager does not (contract v4, section 8).
+    for (auto& g : gimbals) g.camera_component = gp::camera_component(g.device_id);
+    return gimbals;
 }
 
 // The commands that only ask for reports: answered even with mavlink.commands false.
@@ -44,11 +48,12 @@ std::string source_address(const gp::MavId& id) {
 
 mav::SigningKey load_signing_key(const std::string& path) {
     const auto read = gimbal::daemon::read_secret_file(path);
-    if (!read) throw std::runtime_error("mavlink.signing_key_file: " + read.error().message);
+    if (!read)
+        throw gimbal::daemon::ConfigError("mavlink.signing_key_file: " + read.error().message);
     const auto key = mav::parse_signing_key(*read);
     if (!key)
-        throw std::runtime_error("mavlink.signing_key_file: " + path +
-                                 " must hold 32 bytes, or 64 hex digits");
+        throw gimbal::daemon::ConfigError("mavlink.signing_key_file: " + path +
+                                          ": must hold 32 bytes, or 64 hex digits");
     return *key;
 }
 
@@ -66,7 +71,8 @@ MavlinkEndpoint::MavlinkEndpoint(boost::asio::io_context& io,
       cameras_(expose_cameras(manager_.gimbals(), sessions, videos)),
       timer_(io),
       epoch_(std::chrono::steady_clock::now()) {
-    if (!feed_.source()) throw std::runtime_error("mavlink.gimbal_manager needs vehicle.source");
+    if (!feed_.source())
+        throw gimbal::daemon::ConfigError("mavlink.gimbal_manager needs vehicle.source");
     std::vector<boost::asio::ip::udp::endpoint> targets;
     boost::asio::ip::udp::resolver resolver(io);
     for (const auto& t : config_.targets) {
@@ -197,21 +203,30 @@ nlohmann::json MavlinkEndpoint::camera_state_of(const std::string& gimbal) const
     return nlohmann::json::object();
 }
 
-bool MavlinkEndpoint::signature_ok(const mav::Message& m) {
+bool MavlinkEndpoint::authentic(const mav::Message& m) {
     if (!key_) return true;
+    // Checked once per message: accepting records the stream's timestamp, so a second look
+    // at the same frame would call it a replay.
     if (!m.signature || !m.signature->verified ||
         !streams_.accept(m.sysid, m.compid, m.signature->link_id, m.signature->timestamp,
-                         signing_now())) {
-        ++counters_.unsigned_ignored;
+                         signing_now()))
         return false;
-    }
     clock_.raise_to(m.signature->timestamp);
     signing_dirty_ = true;  // saved within a second (on_tick) and on stop()
     return true;
 }
 
+bool MavlinkEndpoint::obeyed(bool authentic) {
+    if (!authentic) ++counters_.unsigned_ignored;
+    return authentic;
+}
+
 void MavlinkEndpoint::on_message(const mav::Message& m) {
     if (stopped_) return;
+    // A frame that parsed (and, with signing, is signed and fresh): its sender takes a peer
+    // slot. Junk and unsigned frames under signing never evict a ground station (section 14).
+    const bool is_authentic = authentic(m);
+    if (is_authentic) feed_.source()->admit_peer();
     const auto sysid = system_id();
     if (!sysid) return;  // nothing is answered before our system id is known
     const gp::MavId from{m.sysid, m.compid};
@@ -230,7 +245,7 @@ void MavlinkEndpoint::on_message(const mav::Message& m) {
     // the gimbal managers' to answer.
     if (command && command->target_system == *sysid) {
         if (const auto* camera = cameras_.find(command->target_component)) {
-            if (!signature_ok(m)) return;
+            if (!obeyed(is_authentic)) return;
             on_camera_command(*command, *camera, from);
             return;
         }
@@ -238,7 +253,7 @@ void MavlinkEndpoint::on_message(const mav::Message& m) {
     if (command && !addressed(command->target_system, command->target_component)) command.reset();
     const gp::StateLookup lookup = [this](const std::string& g) { return state_of(g); };
     if (command) {
-        if (!signature_ok(m)) return;
+        if (!obeyed(is_authentic)) return;
         ++counters_.commands;
         // The ACK comes from the component addressed (for 0: the first gimbal's manager).
         const std::uint8_t answering =
@@ -266,7 +281,7 @@ void MavlinkEndpoint::on_message(const mav::Message& m) {
         if (addressed(d->target_system, d->target_component))
             setpoint_component = d->target_component;
     }
-    if (!setpoint_component || !signature_ok(m)) return;
+    if (!setpoint_component || !obeyed(is_authentic)) return;
     ++counters_.commands;
     const std::uint8_t answering =
         *setpoint_component != 0 ? *setpoint_component : first_component();

@@ -306,21 +306,34 @@ void RequestPath::run(Outcome& o, const RequestSource& from) {
     }
 }
 
-std::string RequestPath::finish(Outcome& o, const RequestSource& from,
-                                std::string_view request_bytes) {
+std::string RequestPath::render(Outcome& o) {
     json reply = o.error ? cmdns::error_reply(o.env.id, o.cmd, *o.error)
                          : cmdns::ok_reply(o.env.id, *o.cmd, o.gimbal, std::move(o.results));
-    if (o.error && o.error->code != code::rate_limited) ++counters_.rejected;
-    std::string text;
-    if (o.key) {
-        // The reply to a signed request is signed with the same key and carries its nonce.
-        reply["nonce"] = o.nonce;
-        reply["ts"] = options_.unix_ms();
-        text = gimbal::auth::sign(o.key->id, o.key->secret,
-                                  reply.dump(-1, ' ', false, json::error_handler_t::replace));
-    } else {
-        text = reply.dump(-1, ' ', false, json::error_handler_t::replace);
+    if (!o.key) return reply.dump(-1, ' ', false, json::error_handler_t::replace);
+    // The reply to a signed request is signed with the same key and carries its nonce.
+    reply["nonce"] = o.nonce;
+    reply["ts"] = options_.unix_ms();
+    return gimbal::auth::sign(o.key->id, o.key->secret,
+                              reply.dump(-1, ' ', false, json::error_handler_t::replace));
+}
+
+std::string RequestPath::finish(Outcome& o, const RequestSource& from,
+                                std::string_view request_bytes) {
+    std::string text = render(o);
+    if (from.max_reply_bytes && text.size() > *from.max_reply_bytes) {
+        // Never silence (contract section 14, v4): the client learns why and what to ask for.
+        std::string message = "the reply is " + std::to_string(text.size()) +
+                              " bytes, over the limit of one datagram (" +
+                              std::to_string(*from.max_reply_bytes) + " bytes)";
+        if (o.cmd == "state")
+            message += "; ask for fewer STATE keys with 'keys', e.g. [\"telemetry\"]";
+        else if (!o.error && o.cmd && reaches_gimbal(*o.cmd))
+            message += "; the command itself was carried out";
+        o.error = Error{code::too_large, std::move(message)};
+        o.results = json::object();
+        text = render(o);
     }
+    if (o.error && o.error->code != code::rate_limited) ++counters_.rejected;
     if (o.cmd && reaches_gimbal(*o.cmd)) audit(o, from);
 
     const CompletedRequest done{
@@ -340,6 +353,21 @@ std::string RequestPath::finish(Outcome& o, const RequestSource& from,
                             fields = std::move(fields)] { log::info("command", msg, fields); });
     return text;
 }
+
+namespace {
+
+// The laser a `laser` request fired: its `index`, or the catalogue's default when it has none
+// (the audit line keeps what the client sent; `laser_fire` says which laser fired).
+json laser_index_used(const json& request) {
+    if (const auto it = request.find("index"); it != request.end() && it->is_number_integer())
+        return *it;
+    const auto* spec = gimbal::command::find_command("laser");
+    const auto* param = spec ? gimbal::command::find_param(*spec, "index") : nullptr;
+    if (param && !param->default_text.empty()) return std::stoi(std::string(param->default_text));
+    return nullptr;
+}
+
+}  // namespace
 
 void RequestPath::audit(const Outcome& o, const RequestSource& from) const {
     json fields = {{"src", from.address},
@@ -365,7 +393,7 @@ void RequestPath::audit(const Outcome& o, const RequestSource& from) const {
                      {"transport", from.transport},
                      {"key", fields["key"]},
                      {"gimbal", fields["gimbal"]},
-                     {"index", fields["index"]}};
+                     {"index", laser_index_used(o.env.request)}};
     boost::asio::post(
         io_, [fire, fired = std::move(fired), msg = o.error ? o.error->message : std::string("ok"),
               fields = std::move(fields)] {

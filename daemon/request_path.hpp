@@ -29,6 +29,9 @@ struct RequestSource {
     // "http:127.0.0.1:5555", "mavlink:255/190".
     std::string address;
     std::optional<boost::asio::ip::udp::endpoint> udp;  // UDP only: subscriptions need it
+    // The largest reply the transport can carry (UDP: one datagram). A reply that would be
+    // larger becomes a too_large error reply naming its size (contract section 14, v4).
+    std::optional<std::size_t> max_reply_bytes = std::nullopt;
 };
 
 // Handed to observers after every request (metrics).
@@ -115,6 +118,8 @@ class RequestPath {
     nlohmann::json dispatch(Outcome& o, const RequestSource& from);
     nlohmann::json subscription(Outcome& o, const RequestSource& from);
     std::string finish(Outcome& o, const RequestSource& from, std::string_view request_bytes);
+    // The reply's text: signed with the request's key when it was signed.
+    std::string render(Outcome& o);
     // Size and nesting limits, parse, and for a signed request its MAC (no state changes).
     void read(Outcome& o, std::string_view bytes);
     // A signed request's ts and nonce (the nonce is spent here), then its payload.

@@ -133,6 +133,17 @@ std::string render_metrics(const DaemonView& daemon, const CommandMetrics& comma
     e.family("gimbald_websocket_dropped_total", Type::counter,
              "WebSocket clients dropped because their send queue was full.");
     e.sample({}, static_cast<double>(http.websocket_dropped_total));
+    e.family("gimbald_send_failures_total", Type::counter,
+             "Replies and pushes that could not be sent: the UDP command socket's (reply or "
+             "push) and WebSocket messages.");
+    const auto count = [](const std::function<std::uint64_t()>& f) {
+        return static_cast<double>(f ? f() : 0);
+    };
+    e.sample({{"transport", "udp"}}, count(daemon.udp_send_failed));
+    e.sample({{"transport", "websocket"}}, static_cast<double>(http.websocket_send_failed_total));
+    e.family("gimbald_pushes_too_large_total", Type::counter,
+             "UDP subscription pushes over one datagram, replaced by a too_large event.");
+    e.sample({}, count(daemon.udp_pushes_too_large));
     e.family("gimbald_video_viewers", Type::gauge, "Open video WebSockets (/api/video/{gimbal}).");
     e.sample({}, static_cast<double>(http.video_viewers));
     e.family("gimbald_video_viewers_dropped_total", Type::counter,

@@ -46,7 +46,9 @@ StreamHub::StreamHub(boost::asio::io_context& io, RequestPath& path, HttpStats& 
       stats_(stats),
       queue_max_(queue_max),
       idle_timeout_s_(idle_timeout_s),
-      timer_(io) {}
+      timer_(io),
+      send_failed_(log::Level::info, "websocket_send_failed",
+                   "WebSocket messages that could not be sent") {}
 
 void StreamHub::track(WsClient& client) {
     clients_.push_back(&client);
@@ -82,6 +84,13 @@ void StreamHub::dropped(WsClient& client, std::size_t queued) {
     log::warn("websocket_dropped",
               "WebSocket client dropped: it does not read and its send queue is full",
               {{"src", client.address()}, {"queued", queued}, {"queue_max", queue_max_}});
+}
+
+void StreamHub::send_failed(WsClient& client, std::size_t bytes,
+                            const boost::system::error_code& ec) {
+    ++stats_.websocket_send_failed_total;
+    send_failed_.hit("a WebSocket message could not be sent: " + ec.message(),
+                     {{"src", client.address()}, {"bytes", bytes}, {"error", ec.message()}});
 }
 
 void StreamHub::stop() {
@@ -121,6 +130,7 @@ void StreamHub::schedule() {
 }
 
 void StreamHub::tick() {
+    send_failed_.poll();  // a burst that stopped still gets its summary
     const double now = steady_seconds();
     const double horizon = now + batch_s;
     const auto clients = clients_;  // a send may drop a client

@@ -61,6 +61,15 @@ Mapped refused_by_all(const std::vector<const ExposedGimbal*>& targets, Action a
     return r.ok() ? answer(MavResult::unsupported, "no gimbal takes this") : refusal(r.error());
 }
 
+// "CAMERA_INFORMATION comes from the camera component: 100 (main)".
+std::string camera_elsewhere(const std::vector<const ExposedGimbal*>& targets) {
+    std::string components;
+    for (const auto* g : targets)
+        components += (components.empty() ? "" : ", ") + std::to_string(g->camera_component) +
+                      " (" + g->name + ")";
+    return "CAMERA_INFORMATION comes from the camera component: " + components;
+}
+
 }  // namespace
 
 const session::Capabilities* ExposedGimbal::capabilities() const {
@@ -419,7 +428,7 @@ Mapped GimbalManager::request_message(const CommandView& cmd, const StateLookup&
                 reply(device_information(*g, s, time_boot_ms));
                 break;
             case mav::CameraInformation::id:
-                reply(camera_information(*g, s, time_boot_ms));
+                if (g->camera_component == 0) reply(camera_information(*g, s, time_boot_ms));
                 break;
             case mav::GimbalManagerStatus::id:
                 reply(manager_status(*g, controls_.at(g->device_id), time_boot_ms));
@@ -434,6 +443,10 @@ Mapped GimbalManager::request_message(const CommandView& cmd, const StateLookup&
                 return answer(MavResult::unsupported, "message not provided");
         }
     }
+    // A gimbal with a camera component of its own is a camera only there (contract v4).
+    // common.xml: DENIED is a supported command with a value this component does not support.
+    if (msgid == mav::CameraInformation::id && out.replies.empty())
+        return answer(MavResult::denied, camera_elsewhere(targets));
     return out;
 }
 

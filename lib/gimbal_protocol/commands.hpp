@@ -28,6 +28,9 @@ struct ExposedGimbal {
     std::string protocol;  // a protocol registry entry's name (protocols/registry.hpp)
     std::uint8_t device_id = 0;
     std::uint8_t component_id = 154;
+    // Its MAVLink camera component (100..105, camera.hpp), 0 for none. A ground station must
+    // list each camera once (contract v4): the manager then leaves CAMERA_INFORMATION to it.
+    std::uint8_t camera_component = 0;
 
     // What the gimbal can do: the mapping asks these, never the protocol's name. nullptr for
     // a name the registry does not know (every action is then unsupported).

@@ -37,7 +37,8 @@ bool healthy(const nlohmann::json& state) {
     return connected && !stale;
 }
 
-// Pan and tilt limits in radians, NaN where the gimbal reports none.
+// Pan and tilt limits in radians, NaN where the gimbal reports none - or reports a pair no
+// gimbal has (outside -360..360 degrees, or min above max): unknown, not relayed (section 14).
 struct Limits {
     float pan_min = mav::nan_f, pan_max = mav::nan_f, tilt_min = mav::nan_f, tilt_max = mav::nan_f;
 };
@@ -46,9 +47,14 @@ Limits limits_of(const ExposedGimbal& g, const nlohmann::json& state) {
     if (!caps) return {};
     const session::Limits l = caps->limits(state);
     const auto rad = [](std::optional<double> deg) {
-        return deg ? static_cast<float>(*deg * deg_to_rad) : mav::nan_f;
+        return deg && std::isfinite(*deg) && std::abs(*deg) <= 360.0
+                   ? static_cast<float>(*deg * deg_to_rad)
+                   : mav::nan_f;
     };
-    return {rad(l.pan_min_deg), rad(l.pan_max_deg), rad(l.tilt_min_deg), rad(l.tilt_max_deg)};
+    Limits out{rad(l.pan_min_deg), rad(l.pan_max_deg), rad(l.tilt_min_deg), rad(l.tilt_max_deg)};
+    if (out.pan_min > out.pan_max) out.pan_min = out.pan_max = mav::nan_f;
+    if (out.tilt_min > out.tilt_max) out.tilt_min = out.tilt_max = mav::nan_f;
+    return out;
 }
 
 // GIMBAL_MANAGER_CAP_FLAGS from what the gimbal can do.
@@ -154,14 +160,14 @@ mav::GimbalManagerInformation manager_information(const ExposedGimbal& g,
     m.pitch_max = l.tilt_max;
     m.yaw_min = l.pan_min;
     m.yaw_max = l.pan_max;
-    if (std::isnan(l.pan_min)) {
-        // No limits reported: the whole circle in yaw, straight down to straight up in pitch.
-        const float pi = std::numbers::pi_v<float>;
-        m.pitch_min = std::isnan(l.tilt_min) ? -pi / 2 : l.tilt_min;
-        m.pitch_max = std::isnan(l.tilt_max) ? pi / 2 : l.tilt_max;
+    // Limits not known: the whole circle in yaw, straight down to straight up in pitch.
+    const float pi = std::numbers::pi_v<float>;
+    if (std::isnan(l.pan_min) || std::isnan(l.pan_max)) {
         m.yaw_min = -pi;
         m.yaw_max = pi;
     }
+    if (std::isnan(l.tilt_min)) m.pitch_min = -pi / 2;
+    if (std::isnan(l.tilt_max)) m.pitch_max = pi / 2;
     return m;
 }
 

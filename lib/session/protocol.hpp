@@ -47,9 +47,13 @@ class Protocol {
     virtual void tick(double now_s, std::vector<state::Event>& events) = 0;
     // The vehicle feed's 50 ms tick (protocols/vehicle_feeder.hpp) with the vehicle's state
     // (on its own clock, vehicle_now_s), for a protocol that aims its gimbal from it itself (a
-    // MAVLink gimbal device): appends what to send. now_s is the session's clock.
-    virtual void steer(const vehicle::VehicleState& /*vehicle*/, double /*vehicle_now_s*/,
-                       double /*now_s*/, std::vector<Bytes>& /*out*/) {}
+    // MAVLink gimbal device): appends what to send. now_s is the session's clock. Returns how
+    // many of the frames appended, the first ones, are the vehicle feed's (STATE
+    // vehicle.feed.sent counts them).
+    virtual std::size_t steer(const vehicle::VehicleState& /*vehicle*/, double /*vehicle_now_s*/,
+                              double /*now_s*/, std::vector<Bytes>& /*out*/) {
+        return 0;
+    }
     // A new connection: forget partial frames; returns what to send first (requests).
     virtual std::vector<Bytes> on_connect() = 0;
 

@@ -48,8 +48,10 @@ std::optional<std::string> Geoid::find_egm96() {
 Geoid::Opened Geoid::open(const std::string& path) {
     gdal_init();
     QuietErrors quiet;
-    Dataset ds(
-        GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr));
+    // The grid's own formats only (proj-data ships .gtx; PROJ's CDN .tif), never a VRT.
+    const char* const grid_drivers[] = {"GTX", "GTiff", nullptr};
+    Dataset ds(GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, grid_drivers, nullptr,
+                          nullptr));
     if (!ds) return {std::nullopt, path + ": cannot read the geoid grid: " + quiet.message()};
     double gt[6];
     if (GDALGetGeoTransform(ds.get(), gt) != CE_None || gt[2] != 0 || gt[4] != 0 ||

@@ -38,6 +38,15 @@ struct UrlResult {
 
 UrlResult parse_video_url(std::string_view text);
 
+// RTSP redirects and credentials (contract section 14 v4): the "host:port" an rtsp:// URL
+// names (host lower-cased, an IPv6 address in brackets, port 554 when none is given), so two
+// URLs can be compared; nullopt when it is not an rtsp:// URL with a host.
+std::optional<std::string> rtsp_authority(std::string_view url);
+// The URL without its "user[:pass]@" part.
+std::string without_userinfo(std::string_view url);
+// The URL with its password shown as "***" (logs, STATE): "rtsp://admin:***@10.0.0.9/live".
+std::string redact_userinfo(std::string_view url);
+
 std::string_view to_string(UrlScheme scheme);
 
 }  // namespace gimbal::video

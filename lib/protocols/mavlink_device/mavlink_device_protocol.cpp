@@ -124,13 +124,16 @@ void MavlinkDeviceProtocol::check_stare(double now_s, std::vector<state::Event>&
     events.push_back(state::Event{"stare_start", std::move(*fields)});
 }
 
-void MavlinkDeviceProtocol::steer(const vehicle::VehicleState& vehicle, double vehicle_now_s,
-                                  double now_s, std::vector<session::Bytes>& out) {
+std::size_t MavlinkDeviceProtocol::steer(const vehicle::VehicleState& vehicle, double vehicle_now_s,
+                                         double now_s, std::vector<session::Bytes>& out) {
     const auto fix = vehicle_fix(vehicle, vehicle_now_s);
     state_.set_vehicle(fix);
+    const std::size_t before = out.size();
     feed_vehicle(fix, vehicle_now_s, out);
+    const std::size_t fed = out.size() - before;  // AUTOPILOT_STATE_FOR_GIMBAL_DEVICE
     housekeeping(now_s, out);
     if (const auto m = set_attitude(now_s)) out.push_back(frame(*m));
+    return fed;
 }
 
 void MavlinkDeviceProtocol::feed_vehicle(const std::optional<VehicleFix>& fix, double vehicle_now_s,

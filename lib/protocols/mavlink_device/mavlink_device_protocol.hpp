@@ -24,8 +24,8 @@ class MavlinkDeviceProtocol final : public session::Protocol {
     void receive(std::span<const std::uint8_t> bytes, double now_s,
                  std::vector<state::Event>& events, std::vector<session::Bytes>& replies) override;
     void tick(double now_s, std::vector<state::Event>& events) override;
-    void steer(const vehicle::VehicleState& vehicle, double vehicle_now_s, double now_s,
-               std::vector<session::Bytes>& out) override;
+    std::size_t steer(const vehicle::VehicleState& vehicle, double vehicle_now_s, double now_s,
+                      std::vector<session::Bytes>& out) override;
     std::vector<session::Bytes> on_connect() override;
     bool stale(double now_s) const override { return state_.stale(now_s); }
     std::uint64_t telemetry_count() const override { return state_.telemetry_count(); }

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
+#include <utility>
 
 #include "geo/ground.hpp"
 #include "geo/wgs84.hpp"
@@ -25,6 +27,19 @@ json degrees_or_null(float rad) {
     return std::isfinite(rad) ? json(angle_deg(rad * rad_to_deg)) : json(nullptr);
 }
 
+// One axis's reported limits, min and max. A limit outside -360..360 degrees, or a pair whose
+// min exceeds its max, is unknown (null) and is not relayed (contract section 14, v4): a
+// device's +-5.7e39 would reach every ground station as GIMBAL_MANAGER_INFORMATION.
+std::pair<json, json> limit_pair(float min_rad, float max_rad) {
+    const auto sane = [](float rad) {
+        return std::isfinite(rad) && std::abs(rad * rad_to_deg) <= 360.0;
+    };
+    json min = sane(min_rad) ? degrees_or_null(min_rad) : json(nullptr);
+    json max = sane(max_rad) ? degrees_or_null(max_rad) : json(nullptr);
+    if (!min.is_null() && !max.is_null() && min_rad > max_rad) min = max = nullptr;
+    return {std::move(min), std::move(max)};
+}
+
 // A fixed-size, possibly unterminated char[32] of the wire.
 std::string text_of(const std::array<std::uint8_t, 32>& chars) {
     std::string s;
@@ -35,10 +50,13 @@ std::string text_of(const std::array<std::uint8_t, 32>& chars) {
     return s;
 }
 
-// common.xml: (Dev & 0xff) << 24 + (Patch & 0xff) << 16 + (Minor & 0xff) << 8 + (Major & 0xff).
+// common.xml: (Dev & 0xff) << 24 + (Patch & 0xff) << 16 + (Minor & 0xff) << 8 + (Major & 0xff),
+// shown as "Major.Minor.Patch", with ".Dev" only for a development build (Dev not 0).
 std::string version_text(std::uint32_t v) {
-    return std::to_string(v & 0xFF) + "." + std::to_string((v >> 8) & 0xFF) + "." +
-           std::to_string((v >> 16) & 0xFF) + "." + std::to_string(v >> 24);
+    std::string text = std::to_string(v & 0xFF) + "." + std::to_string((v >> 8) & 0xFF) + "." +
+                       std::to_string((v >> 16) & 0xFF);
+    if ((v >> 24) != 0) text += "." + std::to_string(v >> 24);
+    return text;
 }
 
 double radians_per_second(float v) {
@@ -179,12 +197,15 @@ json MavlinkDeviceState::device_json(double now_s) const {
         d["model"] = text_of(i.model_name);
         d["firmware"] = version_text(i.firmware_version);
         d["cap_flags"] = cap_flag_names(i.cap_flags);
-        d["limits"] = {{"roll_min", degrees_or_null(i.roll_min)},
-                       {"roll_max", degrees_or_null(i.roll_max)},
-                       {"pitch_min", degrees_or_null(i.pitch_min)},
-                       {"pitch_max", degrees_or_null(i.pitch_max)},
-                       {"yaw_min", degrees_or_null(i.yaw_min)},
-                       {"yaw_max", degrees_or_null(i.yaw_max)}};
+        json limits = json::object();
+        for (const auto& [axis, min, max] : {std::tuple{"roll", i.roll_min, i.roll_max},
+                                             std::tuple{"pitch", i.pitch_min, i.pitch_max},
+                                             std::tuple{"yaw", i.yaw_min, i.yaw_max}}) {
+            auto [lo, hi] = limit_pair(min, max);
+            limits[std::string(axis) + "_min"] = std::move(lo);
+            limits[std::string(axis) + "_max"] = std::move(hi);
+        }
+        d["limits"] = std::move(limits);
     } else {
         for (const char* key : {"vendor", "model", "firmware", "cap_flags", "limits"})
             d[key] = nullptr;

@@ -484,6 +484,32 @@ TEST_CASE("REQUEST_MESSAGE: information messages per gimbal") {
     CHECK(request(280, 8).result == MavResult::denied);
 }
 
+TEST_CASE("a manager whose gimbal has a camera component leaves CAMERA_INFORMATION to it") {
+    // Contract v4 (section 8): MAVSDK's Camera plugin listed every camera twice, [154, 100].
+    auto gimbals = two_gimbals();
+    gimbals[0].camera_component = 100;  // main has a camera component, nose has none
+    GimbalManager m(gimbals);
+    const auto request = [&](std::uint8_t component, float device) {
+        auto c = long_cmd(cmd::request_message, {259, device, 0, 0, 0, 0, 0});
+        c.target_component = component;
+        return m.command(c, gcs, vehicle(), states(), 0);
+    };
+    Mapped r = request(154, 0);
+    CHECK(r.result == MavResult::denied);  // the command is known; this message is not ours
+    CHECK(r.replies.empty());
+    CHECK(r.reason.find("camera component: 100 (main)") != std::string::npos);
+    // The broadcast: only the gimbal without a camera component answers, from its manager.
+    r = request(0, 0);
+    CHECK(r.result == MavResult::accepted);
+    REQUIRE(r.replies.size() == 1);
+    CHECK(r.replies[0].component_id == 171);
+    CHECK(std::holds_alternative<mav::CameraInformation>(r.replies[0].payload));
+    CHECK(request(0, 1).result == MavResult::denied);
+    // Every other message is still the manager's.
+    auto info = long_cmd(cmd::request_message, {280, 0, 0, 0, 0, 0, 0});
+    CHECK(m.command(info, gcs, vehicle(), states(), 0).replies.size() == 2);
+}
+
 TEST_CASE("unknown commands: UNSUPPORTED; nothing maps to the laser") {
     GimbalManager m(two_gimbals());
     for (const std::uint16_t c : {std::uint16_t{400}, std::uint16_t{203}, std::uint16_t{2000},

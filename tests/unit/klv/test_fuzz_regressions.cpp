@@ -26,7 +26,11 @@ TEST_CASE("fuzz_klv seeds and regressions replay cleanly") {
             for (const SetSpan s : found.sets) {
                 const DecodeResult r = decode(std::span(bytes).subspan(s.offset, s.size));
                 CHECK_NOTHROW(r.json.dump());
-                if (r.status == DecodeStatus::malformed) continue;
+                if (!r.ok()) {
+                    CHECK(r.items.empty());  // refused: nothing decoded
+                    CHECK(r.json.empty());
+                    continue;
+                }
                 CHECK(r.consumed == s.size);
                 LocalSet relay;
                 for (const RawItem& item : r.items)

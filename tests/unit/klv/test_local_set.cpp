@@ -93,15 +93,24 @@ TEST_CASE("ST 0902.5 dynamic-only example: checksum 0xC850 and every value") {
     CHECK(to_hex(e.bytes) == to_hex(st0902_dynamic_only));
 }
 
-TEST_CASE("ST 0902.5 dynamic-and-constant example: values readable, printed checksum wrong") {
+TEST_CASE("ST 0902.5 dynamic-and-constant example: printed checksum wrong, values readable") {
     // The standard prints 0xAA43 for this packet; the running sum of its bytes is 0x3E1E (and
-    // its CRC-16-CCITT is not 0xAA43 either), so a decoder counts it as a bad checksum. The
-    // dynamic-only example above, whose sum matches, shows the algorithm is the right one.
-    const DecodeResult r = decode(st0902_dynamic_and_constant);
-    CHECK(r.status == DecodeStatus::bad_checksum);
-    CHECK(r.checksum_stored == 0xAA43);
-    CHECK(r.checksum_computed == 0x3E1E);
-    CHECK(r.consumed == st0902_dynamic_and_constant.size());
+    // its CRC-16-CCITT is not 0xAA43 either), so a decoder counts it as a bad checksum - and
+    // decodes nothing of it. The dynamic-only example above, whose sum matches, shows the
+    // algorithm is the right one.
+    const DecodeResult bad = decode(st0902_dynamic_and_constant);
+    CHECK(bad.status == DecodeStatus::bad_checksum);
+    CHECK(bad.checksum_stored == 0xAA43);
+    CHECK(bad.checksum_computed == 0x3E1E);
+    CHECK(bad.consumed == st0902_dynamic_and_constant.size());
+    CHECK(bad.items.empty());
+    CHECK(bad.json.empty());
+    // With the sum written in, its values read as the standard lists them.
+    Bytes fixed = st0902_dynamic_and_constant;
+    fixed[fixed.size() - 2] = 0x3E;
+    fixed[fixed.size() - 1] = 0x1E;
+    const DecodeResult r = decode(fixed);
+    REQUIRE(r.ok());
     CHECK(r.json["mission_id"] == "Mission 12");
     CHECK(r.json["platform_designation"] == "Predator");
     CHECK(r.json["image_source_sensor"] == "EO Nose");
@@ -349,9 +358,16 @@ TEST_CASE("Malformed input: truncated at every byte, wrong key, over-long length
 }
 
 TEST_CASE("Malformed input: items past the set, no checksum last") {
-    // An item whose length runs past the set's value.
-    Bytes past = from_hex("060E2B34020B01010E01030101000000 06 0D 09 5595B66D 0102");
+    // An item whose length runs past the set's value (which ends with a checksum that
+    // matches: items are read only once the checksum is right).
+    Bytes past = from_hex("060E2B34020B01010E01030101000000 0A 0D 09 5595B66D 0102");
+    const std::uint16_t sum = checksum16(past);
+    past.push_back(static_cast<std::uint8_t>(sum >> 8));
+    past.push_back(static_cast<std::uint8_t>(sum & 0xFF));
     CHECK(decode(past).reason == "tag 13 runs past the set");
+    // Without a checksum that fits, the same bytes are refused before any item is read.
+    Bytes no_sum = from_hex("060E2B34020B01010E01030101000000 06 0D 09 5595B66D 0102");
+    CHECK(decode(no_sum).reason == "no checksum (tag 1, 2 bytes) as the last item");
     // A set whose last item is not the checksum.
     LocalSet set = with_time(13, 60.0);
     Bytes bytes = encode(set).bytes;
@@ -369,18 +385,20 @@ TEST_CASE("Malformed input: items past the set, no checksum last") {
     CHECK(r.consumed == st0902_dynamic_only.size());
 }
 
-TEST_CASE("Bad checksum: counted, values still shown") {
+TEST_CASE("Bad checksum: counted, nothing decoded") {
     for (std::size_t at = 0; at < st0902_dynamic_only.size(); ++at) {
         if (at == 16) continue;  // the set's length: malformed, not a bad checksum
         Bytes bad = st0902_dynamic_only;
         bad[at] ^= 0x01;
         const DecodeResult r = decode(bad);
         INFO("byte " << at);
-        if (at < 16) {
+        const std::size_t trailer = st0902_dynamic_only.size() - 4;  // the checksum's 01 02
+        if (at < 16 || at == trailer || at == trailer + 1) {
             CHECK(r.status == DecodeStatus::malformed);
-        } else if (r.status != DecodeStatus::malformed) {  // a flipped tag or length may be
+        } else {  // any flipped bit changes the sum: refused before an item is read
             CHECK(r.status == DecodeStatus::bad_checksum);
             CHECK(r.consumed == st0902_dynamic_only.size());
+            CHECK(r.items.empty());
         }
     }
     Bytes bad = st0902_dynamic_only;
@@ -388,7 +406,8 @@ TEST_CASE("Bad checksum: counted, values still shown") {
     const DecodeResult r = decode(bad);
     CHECK(r.status == DecodeStatus::bad_checksum);
     CHECK(r.reason == "checksum 0xC8AF, computed 0xC850");
-    CHECK(r.json["uas_datalink_ls_version_number"] == 6);
+    CHECK(r.json.empty());
+    CHECK(r.items.empty());
 }
 
 TEST_CASE("Unknown tags and items of the wrong length are kept as hex") {

@@ -9,6 +9,7 @@
 
 #include "device_fixtures.hpp"
 #include "geo/wgs84.hpp"
+#include "gimbal_protocol/status.hpp"
 #include "mavlink/framer.hpp"
 #include "protocols/mavlink_device/mavlink_device_protocol.hpp"
 #include "protocols/mavlink_device/mavlink_device_sim.hpp"
@@ -135,12 +136,15 @@ TEST_CASE("STATE device: information and attitude, yaw frames per common.xml") {
         CHECK(d["age_s"].get<double>() == Approx(0.2));
         CHECK(d["vendor"] == "Gremsy");
         CHECK(d["model"] == "T7");
-        CHECK(d["firmware"] == "7.4.2.0");
+        CHECK(d["firmware"] == "7.4.2");  // Dev 0: a release
         CHECK(d["cap_flags"] ==
               json{"has_pitch_axis", "has_yaw_axis", "supports_yaw_in_earth_frame"});
         CHECK(d["limits"]["pitch_min"].get<double>() == Approx(-2.0 / deg).margin(1e-3));
         CHECK(d["limits"]["yaw_min"].is_null());
     }
+    info.firmware_version |= 9u << 24;  // a development build
+    receive(p, device_frame(info), 1.8);
+    CHECK(p.snapshot(1.8)["device"]["firmware"] == "7.4.2.9");
     CHECK(p.telemetry_count() == 5);
     CHECK_FALSE(p.stale(2.0));
     CHECK(p.stale(2.6));  // stale_after_s 1.0
@@ -215,14 +219,21 @@ TEST_CASE("the vehicle feed: AUTOPILOT_STATE_FOR_GIMBAL_DEVICE at every tick, on
                 found.push_back(*a);
         return found;
     };
-    p.steer(v, 1.0, 1.0, out);
+    CHECK(p.steer(v, 1.0, 1.0, out) == 0);
     CHECK(autopilot_states(decode(out)).empty());  // nothing known of the vehicle
     Aircraft a;
     a.roll = 10;
     a.yaw = -60;
     a.vn = 12;
     report(v, a, 1.0);
-    for (int tick = 0; tick < 4; ++tick) p.steer(v, 1.0 + tick * 0.05, 1.0 + tick * 0.05, out);
+    // Each tick's first frame is the feed's: STATE vehicle.feed.sent counts it.
+    for (int tick = 0; tick < 4; ++tick) {
+        std::vector<session::Bytes> one;
+        CHECK(p.steer(v, 1.0 + tick * 0.05, 1.0 + tick * 0.05, one) == 1);
+        REQUIRE_FALSE(one.empty());
+        CHECK(autopilot_states(decode({one.front()})).size() == 1);
+        out.insert(out.end(), one.begin(), one.end());
+    }
     const auto messages = decode(out);
     const auto states = autopilot_states(messages);
     REQUIRE(states.size() == 4);
@@ -247,6 +258,48 @@ TEST_CASE("the vehicle feed: AUTOPILOT_STATE_FOR_GIMBAL_DEVICE at every tick, on
     CHECK(std::isnan(lost[0].q[0]));
 }
 
+TEST_CASE("limits no gimbal has are unknown, and not relayed to ground stations") {
+    // Contract section 14 (v4): a device reported +-5.7e39 degrees and inverted pitch limits,
+    // and GIMBAL_MANAGER_INFORMATION passed them on.
+    MavlinkDeviceProtocol p(MavlinkDeviceOptions{});
+    mavlink::GimbalDeviceInformation info;
+    info.roll_min = -1e38f;  // rad: -5.7e39 degrees
+    info.roll_max = 1e38f;
+    info.pitch_min = 0.5f;  // inverted
+    info.pitch_max = -0.5f;
+    info.yaw_min = static_cast<float>(-400 * deg);  // beyond a whole turn either way
+    info.yaw_max = static_cast<float>(100 * deg);
+    receive(p, device_frame(info), 1.0);
+    receive(p, device_frame(status(0, -30, 20, 32)), 1.0);
+    const auto state = p.snapshot(1.0);
+    const auto& limits = state["device"]["limits"];
+    INFO(limits.dump());
+    for (const char* key : {"roll_min", "roll_max", "pitch_min", "pitch_max", "yaw_min"})
+        CHECK(limits[key].is_null());
+    CHECK(limits["yaw_max"].get<double>() == Approx(100).margin(1e-3));  // sane on its own
+    const auto l = p.capabilities().limits(state);
+    CHECK_FALSE(l.tilt_min_deg);
+    CHECK_FALSE(l.pan_min_deg);
+    // What the gimbal manager relays: the defaults for unknown limits, never the absurd ones.
+    const gimbal_protocol::ExposedGimbal g{"g", "mavlink", 1, 154};
+    const auto m = gimbal_protocol::manager_information(g, state, 0);
+    CHECK(m.pitch_min == Approx(-std::numbers::pi / 2));
+    CHECK(m.pitch_max == Approx(std::numbers::pi / 2));
+    CHECK(m.yaw_min == Approx(-std::numbers::pi));
+    CHECK(m.yaw_max == Approx(std::numbers::pi));
+    const auto d = gimbal_protocol::device_information(g, state, 0);
+    CHECK(std::isnan(d.pitch_min));
+    CHECK(std::isnan(d.pitch_max));
+
+    // Inverted limits from another gimbal's STATE are dropped by the manager as well.
+    json orion = state;
+    orion["device"]["limits"] = {{"pitch_min", 30}, {"pitch_max", -90}, {"yaw_min", -1e30},
+                                 {"yaw_max", 1e30}, {"roll_min", 0},    {"roll_max", 0}};
+    const auto m2 = gimbal_protocol::manager_information(g, orion, 0);
+    CHECK(m2.pitch_min == Approx(-std::numbers::pi / 2));
+    CHECK(m2.yaw_max == Approx(std::numbers::pi));
+}
+
 TEST_CASE("the simulated device: information on request, slew rate and angle limits") {
     protocols::MavlinkDeviceSimOptions o;
     o.slew_rate_dps = 50;
@@ -259,6 +312,7 @@ TEST_CASE("the simulated device: information on request, slew rate and angle lim
     receive(p, out, 0.1);
     const auto d = p.snapshot(0.1)["device"];
     CHECK(d["vendor"] == "gimbald");
+    CHECK(d["firmware"] == "2.4.1");
     CHECK(d["limits"]["pitch_min"].get<double>() == Approx(-60).margin(1e-3));
     CHECK(p.state().earth_frame_supported());
 

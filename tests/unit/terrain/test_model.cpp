@@ -213,7 +213,8 @@ TEST_CASE("model: errors name the file", "[terrain]") {
     CHECK_THAT(error({pattern}), Catch::Contains(pattern) && Catch::Contains("no file matches"));
     const auto junk = tmp.file("junk.tif");
     std::ofstream(junk) << "this is not a raster\n";
-    CHECK_THAT(error({good, junk}), Catch::Contains(junk) && Catch::Contains("cannot read"));
+    CHECK_THAT(error({good, junk}),
+               Catch::Contains(junk) && Catch::Contains("not a GeoTIFF, SRTM .hgt, DTED or VRT"));
     // A raster without any CRS.
     const auto bare = tmp.file("bare.tif");
     {
