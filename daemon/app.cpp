@@ -341,7 +341,9 @@ std::unique_ptr<gimbal::session::Protocol> App::make_protocol(const protocols::E
 
 std::unique_ptr<Link> App::make_link(const cfg::GimbalConfig& g) {
     if (const auto* tcp = std::get_if<cfg::TcpLink>(&g.link)) {
-        return std::make_unique<TcpLink>(io_, TcpLinkOptions(*tcp));
+        TcpLinkOptions options(*tcp);
+        options.discovery = protocols::entry(g.protocol).discovery;
+        return std::make_unique<TcpLink>(io_, std::move(options));
     }
     if (const auto* serial = std::get_if<cfg::SerialLink>(&g.link)) {
         return std::make_unique<SerialLink>(io_, SerialLinkOptions(*serial));

@@ -122,6 +122,14 @@ std::string quoted_protocols() {
     return config::quoted_list(views);
 }
 
+// The protocols a TCP link may find by broadcast discovery (host "discover").
+std::string quoted_discovering_protocols() {
+    std::vector<std::string_view> names;
+    for (const auto* entry : gimbal::protocols::entries())
+        if (entry->discovery) names.push_back(entry->name);
+    return config::quoted_list(names);
+}
+
 GimbalConfig read_gimbal(Fields& f, const ProtocolConfigContext& context) {
     static const std::regex name_pattern("[a-z0-9_-]{1,32}");
     GimbalConfig gimbal;
@@ -150,6 +158,10 @@ GimbalConfig read_gimbal(Fields& f, const ProtocolConfigContext& context) {
         return gimbal;
     }
     const auto& own = gimbal::protocols::entry(gimbal.protocol);
+    if (const auto* tcp = std::get_if<TcpLink>(&gimbal.link);
+        tcp != nullptr && tcp->discover() && !own.discovery)
+        f.problem("link.host", "\"discover\" only for a protocol with broadcast discovery (" +
+                                   quoted_discovering_protocols() + ")");
     gimbal.protocol_config = own.read_config(f, context);
     for (const auto* other : gimbal::protocols::entries()) {
         if (other == &own || other->config_section.empty()) continue;

@@ -17,6 +17,7 @@
 #include "config/fields.hpp"
 #include "framing/stream_splitter.hpp"
 #include "geo/surface.hpp"
+#include "protocols/discovery.hpp"
 #include "protocols/protocol_id.hpp"
 #include "protocols/simulator.hpp"
 #include "protocols/track.hpp"
@@ -90,6 +91,9 @@ struct Entry {
     std::unique_ptr<framing::StreamSplitter> (*make_splitter)() = nullptr;
     // The gimbal-to-ground stream as track points (gimbal-export).
     std::unique_ptr<TrackDecoder> (*make_track_decoder)() = nullptr;
+    // How gimbald finds such a gimbal by UDP broadcast (a TCP link with host "discover");
+    // empty: it cannot, and the configuration refuses "discover".
+    Discovery discovery;
     Simulator simulator;
 
     bool plans(std::string_view cmd) const;

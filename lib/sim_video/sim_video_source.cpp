@@ -1,7 +1,6 @@
 #include "sim_video/sim_video_source.hpp"
 
 #include "sim/frame_code.hpp"
-#include "sim/sim_camera.hpp"
 
 namespace gimbal::sim_video {
 
@@ -26,12 +25,6 @@ bool SimVideoSource::frame(const geo::CameraPose& camera, std::uint64_t unix_ms,
     renderer_.render(camera, picture_);
     sim::draw_frame_code(picture_, unix_ms);
     return encoder_->encode(picture_, pts_90k, out);
-}
-
-bool SimVideoSource::frame(const sim::OrionCameraView& view, std::uint64_t unix_ms,
-                           std::int64_t pts_90k, std::vector<AccessUnit>& out) {
-    renderer_.set_monochrome(view.infrared);
-    return frame(sim::camera_pose(view), unix_ms, pts_90k, out);
 }
 
 bool SimVideoSource::frame(const sim::CameraView& view, std::uint64_t unix_ms, std::int64_t pts_90k,

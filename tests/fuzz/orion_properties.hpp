@@ -13,10 +13,10 @@
 #include <type_traits>
 #include <vector>
 
-#include "orion/framer.hpp"
-#include "orion/framing.hpp"
-#include "orion/json.hpp"
-#include "orion/packets.hpp"
+#include "protocols/orion/codec/framer.hpp"
+#include "protocols/orion/codec/framing.hpp"
+#include "protocols/orion/codec/json.hpp"
+#include "protocols/orion/codec/packets.hpp"
 
 namespace gimbal::fuzz {
 

@@ -1,7 +1,7 @@
 #include "protocols/orion/orion_protocol.hpp"
 
-#include "orion/enums.hpp"
-#include "orion/framing.hpp"
+#include "protocols/orion/codec/enums.hpp"
+#include "protocols/orion/codec/framing.hpp"
 
 namespace gimbal::protocols {
 

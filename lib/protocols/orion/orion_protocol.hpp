@@ -3,11 +3,11 @@
 
 #include <memory>
 
-#include "command/orion_commands.hpp"
-#include "orion/framer.hpp"
+#include "protocols/orion/codec/framer.hpp"
 #include "protocols/orion/orion_capabilities.hpp"
+#include "protocols/orion/orion_commands.hpp"
+#include "protocols/orion/orion_state.hpp"
 #include "session/protocol.hpp"
-#include "state/orion_state.hpp"
 
 namespace gimbal::protocols {
 

@@ -10,7 +10,7 @@ namespace gimbal::protocols {
 
 namespace {
 
-// The catalogue commands a Viewpro plans (command/viewpro_commands.cpp), with their frames.
+// The catalogue commands a Viewpro plans (viewpro_commands.cpp), with their frames.
 constexpr PlannedCommand commands[] = {
     {"viewpro_output", "`AA 55 0F MM FF`, `sent: [{\"frame\":\"mode\",\"len\":5}]`"},
     {"viewpro_adjust",

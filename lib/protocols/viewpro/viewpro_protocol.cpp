@@ -1,6 +1,6 @@
 #include "protocols/viewpro/viewpro_protocol.hpp"
 
-#include "command/viewpro_commands.hpp"
+#include "protocols/viewpro/viewpro_commands.hpp"
 
 namespace gimbal::protocols {
 

@@ -2,11 +2,11 @@
 // every (re)connect it sends the configured mode command so the gimbal starts reporting.
 #pragma once
 
+#include "protocols/viewpro/codec/mode.hpp"
+#include "protocols/viewpro/codec/output_framer.hpp"
 #include "protocols/viewpro/viewpro_capabilities.hpp"
+#include "protocols/viewpro/viewpro_state.hpp"
 #include "session/protocol.hpp"
-#include "state/viewpro_state.hpp"
-#include "viewpro/mode.hpp"
-#include "viewpro/output_framer.hpp"
 
 namespace gimbal::protocols {
 

@@ -20,7 +20,7 @@
 #include <vector>
 
 #include "logging.hpp"
-#include "orion/framing.hpp"
+#include "protocols/orion/codec/framing.hpp"
 #include "record/recorder.hpp"
 #include "record/recording_link.hpp"
 

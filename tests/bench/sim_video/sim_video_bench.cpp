@@ -20,13 +20,13 @@
 #include <iostream>
 #include <vector>
 
-#include "orion/codec.hpp"
-#include "orion/framing.hpp"
-#include "orion/packets.hpp"
+#include "protocols/orion/codec/codec.hpp"
+#include "protocols/orion/codec/framing.hpp"
+#include "protocols/orion/codec/packets.hpp"
+#include "protocols/orion/sim/orion_sim.hpp"
+#include "protocols/orion/sim/sim_camera.hpp"
 #include "sim/frame_code.hpp"
-#include "sim/orion_sim.hpp"
 #include "sim/scene_renderer.hpp"
-#include "sim/sim_camera.hpp"
 #include "sim/terrain.hpp"
 #include "sim_video/h264_encoder.hpp"
 

@@ -25,9 +25,9 @@
 
 #include "geo/image.hpp"
 #include "geo/wgs84.hpp"
-#include "orion/packets.hpp"
+#include "protocols/orion/codec/packets.hpp"
+#include "protocols/orion/orion_state.hpp"
 #include "sim/terrain.hpp"
-#include "state/orion_state.hpp"
 #include "terrain/elevation_model.hpp"
 #include "terrain/geotiff_writer.hpp"
 

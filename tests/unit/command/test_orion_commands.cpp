@@ -4,10 +4,10 @@
 #include <cmath>
 
 #include "command/envelope.hpp"
-#include "command/orion_commands.hpp"
 #include "geo/wgs84.hpp"
-#include "orion/framer.hpp"
-#include "orion/packets.hpp"
+#include "protocols/orion/codec/framer.hpp"
+#include "protocols/orion/codec/packets.hpp"
+#include "protocols/orion/orion_commands.hpp"
 
 using namespace gimbal;
 using nlohmann::json;

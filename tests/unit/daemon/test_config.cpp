@@ -373,6 +373,12 @@ TEST_CASE("each invalid value is reported with its path and message", "[config]"
          "gimbals[0].link.host: required"},
         {"host with space", [](json& c) { c["gimbals"][0]["link"]["host"] = "my host"; },
          "gimbals[0].link.host: must be a host name, an IP address or \"discover\""},
+        {"discover without a discovery",
+         [](json& c) {
+             c["gimbals"][1]["link"] = {{"type", "tcp"}, {"host", "discover"}, {"port", 2000}};
+         },
+         "gimbals[1].link.host: \"discover\" only for a protocol with broadcast discovery "
+         "(\"orion\")"},
         {"missing port", [](json& c) { c["gimbals"][0]["link"].erase("port"); },
          "gimbals[0].link.port: required"},
         {"port zero", [](json& c) { c["gimbals"][0]["link"]["port"] = 0; },

@@ -230,6 +230,22 @@ TEST_CASE("discovery: only the protocol that has it answers", "[registry]") {
     }
 }
 
+TEST_CASE("discovery: gimbald's request is what the simulated gimbal answers", "[registry]") {
+    int with_discovery = 0;
+    for (const auto* e : protocols::entries()) {
+        INFO(e->name);
+        // gimbald finds a protocol's gimbals exactly when its simulator can be found.
+        CHECK(static_cast<bool>(e->discovery) == (e->simulator.is_discovery_request != nullptr));
+        CHECK((e->discovery.request == nullptr) == (e->discovery.is_reply == nullptr));
+        if (!e->discovery) continue;
+        ++with_discovery;
+        CHECK(e->simulator.is_discovery_request(e->discovery.request()));
+        CHECK(e->discovery.is_reply(e->simulator.discovery_reply()));
+        CHECK_FALSE(e->discovery.is_reply(std::vector<std::uint8_t>{'h', 'i'}));
+    }
+    CHECK(with_discovery == 1);  // the Orion's
+}
+
 TEST_CASE("feeders: kinds from the gimbal's feed configuration", "[registry]") {
     for (const auto* e : protocols::entries()) {
         auto feeder = e->make_feeder(gimbal_config(*e));
