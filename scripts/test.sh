@@ -22,9 +22,15 @@ done
 
 scripts/install-deps.sh
 
+# Each phase's wall time, printed as it ends (docs/operations.md "Test run time").
+phase_start=$SECONDS
+phase() { echo "scripts/test.sh: $1 took $((SECONDS - phase_start)) s (total $SECONDS s)"; phase_start=$SECONDS; }
+phase "installing packages"
+
 jobs=$(nproc 2>/dev/null || echo 2)
 cmake --preset debug
 cmake --build --preset debug -j "$jobs"
+phase "the debug build"
 
 # The package and fuzz builds, in the background at nice 19 (their output in build/*.log).
 fuzz=0
@@ -50,6 +56,7 @@ junit="$PWD/build/debug/ctest-junit.xml"
 rm -f "$junit"
 status=0
 ctest --preset debug -j "$jobs" --output-junit "$junit" || status=$?
+phase "ctest"
 python3 scripts/list-skipped.py "$junit" || true
 if [ "$status" -ne 0 ]; then
   echo "scripts/test.sh: ctest failed (exit $status)" >&2
@@ -63,12 +70,15 @@ if ! wait "$builds"; then
   tail -n 40 "build/$failed-build.log" >&2 || true
   exit 1
 fi
+phase "waiting for the package and fuzz builds"
 
 # The amd64 Debian package (a release build in build/package-amd64): lintian, control
 # fields, contents, and the programs run from the unpacked package.
 deb=$(tail -n 1 build/package-build.log)
 tests/package/check-package.sh "$deb"
+phase "the package check"
 
 if [ "$fuzz" -eq 1 ]; then
   scripts/fuzz.sh "$fuzz_seconds"
+  phase "the fuzz runs"
 fi
