@@ -212,30 +212,26 @@ void RequestPath::read(Outcome& o, std::string_view bytes) {
     }
     auto& envelope = **signed_request;
     auto key = verifier_.authenticate(envelope);
-    if (const auto* rejected = std::get_if<gimbal::auth::Rejected>(&key)) {
-        o.error = Error{code::forbidden, rejected->reason};
+    if (!key) {
+        o.error = key.error();
         // The unsigned refusal still echoes id and cmd, so the client can match it;
         // nothing else of an unverified payload is used.
         o.echo_id_and_cmd(envelope.payload);
         return;
     }
-    o.authentic = std::get<const gimbal::auth::Key*>(key);
+    o.authentic = *key;
     o.envelope = std::move(envelope);
 }
 
 void RequestPath::accept(Outcome& o) {
     if (!o.authentic || o.key) return;  // not signed, or accepted already
     auto result = verifier_.accept(*o.authentic, *o.envelope, options_.unix_ms());
-    if (const auto* rejected = std::get_if<gimbal::auth::Rejected>(&result)) {
-        using Kind = gimbal::auth::Rejected::Kind;
-        o.error = Error{rejected->kind == Kind::bad_json    ? code::bad_json
-                        : rejected->kind == Kind::too_large ? code::too_large
-                                                            : code::forbidden,
-                        rejected->reason};
+    if (!result) {
+        o.error = result.error();
         o.echo_id_and_cmd(o.envelope->payload);
         return;
     }
-    auto& verified = std::get<gimbal::auth::Verified>(result);
+    auto& verified = *result;
     o.key = verified.key;
     o.nonce = std::move(verified.nonce);
     if (auto bad = cmdns::parse_envelope(o.envelope->payload, known_command, o.env)) {
