@@ -194,8 +194,7 @@ void packet_command(Request& r, std::initializer_list<std::string_view> required
             return p.fail(code::bad_request, "missing parameter '" + std::string(key) + "'");
     P packet;
     o::JsonError error;
-    if (!o::from_json(fields, packet, error))
-        return p.fail(parse_error_code(error.code).value_or(code::bad_request), error.message);
+    if (!o::from_json(fields, packet, error)) return p.fail(error.code, error.message);
     if (!add_packet(packet, r.plan))
         p.fail(code::internal, std::string(P::name) + " did not encode");
 }
