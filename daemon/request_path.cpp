@@ -63,7 +63,7 @@ std::string rate_key(const RequestSource& from) {
 
 // One request on its way through the path: what was read of it, and what it came to.
 struct RequestPath::Outcome {
-    cmdns::Envelope env;
+    cmdns::JsonEnvelope env;
     std::optional<std::string> cmd;
     std::optional<std::string> gimbal;  // the gimbal the reply names
     std::optional<Error> error;
@@ -87,7 +87,7 @@ struct RequestPath::Outcome {
     // parse_envelope() refuses an oversize or too deeply nested text unread: then nothing
     // is echoed.
     void echo_id_and_cmd(std::string_view text) {
-        cmdns::Envelope read_back;
+        cmdns::JsonEnvelope read_back;
         if (auto bad = cmdns::parse_envelope(text, known_command, read_back)) {
             env.id = bad->id;
             cmd = bad->cmd;
@@ -419,7 +419,7 @@ json RequestPath::dispatch(Outcome& o, const RequestSource& from) {
     const std::string& cmd = o.env.cmd;
     const json& request = o.env.request;
     json results = json::object();
-    cmdns::Params params(request);
+    cmdns::JsonParams params(request);
 
     if (cmd == "ping" || cmd == "version" || cmd == "list") {
         params.reject_unknown();
@@ -494,7 +494,7 @@ json RequestPath::dispatch(Outcome& o, const RequestSource& from) {
 
 json RequestPath::subscription(Outcome& o, const RequestSource& from) {
     const std::string& cmd = o.env.cmd;
-    cmdns::Params params(o.env.request);
+    cmdns::JsonParams params(o.env.request);
     json results = json::object();
     if (!from.udp || !subscriptions_)
         return o.fail(Error{code::unsupported,

@@ -179,7 +179,7 @@ std::optional<std::string> StreamHub::too_large(WsClient& client) {
 // The UDP `subscribe` parameters with the UDP validation; ttl_s is accepted and ignored (the
 // stream lasts as long as the connection).
 std::string StreamHub::subscribe(WsClient& client, const json& request, bool unsubscribe) {
-    cmdns::Envelope env;
+    cmdns::JsonEnvelope env;
     if (auto bad = cmdns::parse_envelope(dump(request), known_command, env))
         return dump(cmdns::error_reply(bad->id, bad->cmd, bad->error));
     auto fail = [&](const cmdns::Error& error) {
@@ -187,7 +187,7 @@ std::string StreamHub::subscribe(WsClient& client, const json& request, bool uns
     };
     if (env.gimbal && !path_.find(*env.gimbal))
         return fail({code::unknown_gimbal, "no gimbal named '" + *env.gimbal + "'"});
-    cmdns::Params params(env.request);
+    cmdns::JsonParams params(env.request);
     json results = json::object();
     auto& s = client.subscription();
     if (unsubscribe) {

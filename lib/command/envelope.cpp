@@ -21,7 +21,7 @@ bool is_global_command(std::string_view cmd) {
 }
 
 std::optional<EnvelopeError> parse_envelope(std::string_view datagram,
-                                            bool (*known_cmd)(std::string_view), Envelope& out) {
+                                            bool (*known_cmd)(std::string_view), JsonEnvelope& out) {
     if (auto refused = check_request_limits(datagram)) {
         // Not parsed, so nothing is echoed; a too_large reply says "id": null outright.
         const bool too_large = refused->code == code::too_large;

@@ -15,7 +15,7 @@ namespace gimbal::command {
 
 inline constexpr std::size_t max_datagram = max_request_bytes;
 
-struct Envelope {
+struct JsonEnvelope {
     nlohmann::json request;  // the whole object
     std::string cmd;
     std::optional<nlohmann::json> id;  // echoed unchanged when given
@@ -42,7 +42,7 @@ bool is_global_command(std::string_view cmd);
 // request_limits.hpp is refused before it is parsed: nothing of it is echoed (a too_large
 // reply's id is null).
 std::optional<EnvelopeError> parse_envelope(std::string_view datagram,
-                                            bool (*known_cmd)(std::string_view), Envelope& out);
+                                            bool (*known_cmd)(std::string_view), JsonEnvelope& out);
 
 nlohmann::json ok_reply(const std::optional<nlohmann::json>& id, std::string_view cmd,
                         const std::optional<std::string>& gimbal, nlohmann::json results);

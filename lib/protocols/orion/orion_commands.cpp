@@ -38,7 +38,7 @@ bool add_packet(const P& packet, Plan& plan) {
 
 struct Request {
     const nlohmann::json& request;
-    Params& p;
+    JsonParams& p;
     const OrionContext& ctx;
     Plan& plan;
 };
@@ -269,7 +269,7 @@ std::optional<Error> plan_orion(std::string_view cmd, const nlohmann::json& requ
                                 const OrionContext& context, Plan& plan) {
     const auto it = handlers().find(cmd);
     if (it == handlers().end()) return Error{code::unknown_cmd, "unknown command"};
-    Params params(request);
+    JsonParams params(request);
     Request r{request, params, context, plan};
     it->second(r);
     params.reject_unknown();

@@ -267,7 +267,7 @@ TEST_CASE("stare_ack echoes the latest StareStart by default", "[command][stare]
 }
 
 TEST_CASE("envelope: the reply shapes and the first checks", "[command][envelope]") {
-    command::Envelope env;
+    command::JsonEnvelope env;
     auto known = [](std::string_view c) { return c == "ping" || c == "geopoint"; };
     auto err = command::parse_envelope("not json", known, env);
     REQUIRE(err);

@@ -58,7 +58,7 @@ TEST_CASE("limits: nesting is counted outside strings only", "[command][limits]"
 }
 
 TEST_CASE("envelope: an oversize request is refused unread, id null", "[command][envelope]") {
-    command::Envelope env;
+    command::JsonEnvelope env;
     // 70,000 nested arrays in `id`: 140 KB, the issue's crash. Never parsed, never echoed.
     const auto huge = nested_id(70000);
     REQUIRE(huge.size() > 140000);
@@ -79,17 +79,17 @@ TEST_CASE("envelope: an oversize request is refused unread, id null", "[command]
     CHECK(err->id->is_null());  // the request's id 9 is not read
     CHECK_FALSE(err->cmd);
 
-    command::Envelope at_limit;
+    command::JsonEnvelope at_limit;
     CHECK_FALSE(command::parse_envelope(padded(8192), known, at_limit));
     CHECK(*at_limit.id == 9);
 }
 
 TEST_CASE("envelope: nesting over 32 is bad_json, echoing nothing", "[command][envelope]") {
-    command::Envelope env;
+    command::JsonEnvelope env;
     CHECK_FALSE(command::parse_envelope(nested_id(31), known, env));
     CHECK(env.id->dump() == std::string(31, '[') + std::string(31, ']'));
 
-    command::Envelope deep;
+    command::JsonEnvelope deep;
     auto err = command::parse_envelope(nested_id(32), known, deep);
     REQUIRE(err);
     CHECK(err->error.code == "bad_json");

@@ -37,7 +37,7 @@ json orion_state() {
 }
 
 command::Result<session::ImagePosition> read(const json& request) {
-    command::Params p(request);
+    command::JsonParams p(request);
     return session::read_image_position(p);
 }
 
