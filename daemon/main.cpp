@@ -1,4 +1,6 @@
 // gimbald: ground-control daemon for camera gimbals. See `gimbald --help` and docs/.
+#include <malloc.h>
+
 #include <boost/system/system_error.hpp>
 #include <exception>
 #include <iostream>
@@ -12,6 +14,11 @@
 int main(int argc, char** argv) {
     namespace cfg = gimbal::daemon;
     namespace log = gimbal::log;
+    // Blocks of 1 MiB and more are mapped and unmapped on their own, always: glibc would
+    // otherwise raise this threshold after the first such block is freed and keep later ones
+    // in its arenas, so a peer that made gimbald buffer megabytes once (a hostile camera's
+    // endless frame, a large KLV set) would leave its RSS up for good (contract section 14 v4).
+    mallopt(M_MMAP_THRESHOLD, 1 << 20);
 
     const auto cli = cfg::parse_command_line(argc, argv, std::cout, std::cerr);
     if (cli.exit_code) return *cli.exit_code;

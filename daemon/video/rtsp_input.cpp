@@ -7,6 +7,8 @@ extern "C" {
 #include <libavutil/mem.h>
 }
 
+#include <malloc.h>
+
 #include <cstring>
 
 #include <fmt/format.h>
@@ -56,6 +58,7 @@ struct RtspInput::Attempt {
     std::string url;                    // being opened (ours, or a Location without userinfo)
     std::string authority;              // its host:port
     std::string seen;                   // the url libavformat is on
+    const char* seen_url = nullptr;     // and the string it was in (see interrupt())
     int redirects = 0;                  // for this attempt, ours and libavformat's
     int max_redirects = 4;
     std::string redirect;  // libavformat was about to follow one to another host:port
@@ -68,8 +71,18 @@ struct RtspInput::Attempt {
         auto& a = *static_cast<Attempt*>(opaque);
         // Once stopped, stopped for good: libavformat ignores some failed writes and goes on.
         if (a.shared->expired() || a.too_many || !a.redirect.empty()) return 1;
-        if (a.format == nullptr || a.format->url == nullptr || a.seen == a.format->url) return 0;
-        a.seen = a.format->url;
+        if (a.format == nullptr || a.format->url == nullptr) return 0;
+        // A redirect gives the context a newly allocated url (allocated before the old one is
+        // freed, so never at the same address): a new string is a redirect even when its text
+        // is the same - a camera that redirects to itself loops inside avformat_open_input.
+        const char* url = a.format->url;
+        const bool first_look = a.seen_url == nullptr;
+        if (url == a.seen_url || (first_look && a.seen == url)) {
+            a.seen_url = url;
+            return 0;
+        }
+        a.seen_url = url;
+        a.seen = url;
         if (++a.redirects > a.max_redirects) {
             a.too_many = true;
             return 1;
@@ -86,9 +99,10 @@ struct RtspInput::Attempt {
 namespace {
 
 // One allocation of libavformat at most (process-wide: gimbald's only other user of libav is
-// the simulator's encoder, whose largest buffer is a frame). Room for an access unit of
-// max_access_unit_bytes in the parser's buffer; a hostile length is refused.
-constexpr std::size_t max_libav_alloc_bytes = 16u << 20;
+// the simulator's encoder, whose largest buffer is a frame): room for an access unit of
+// max_access_unit_bytes (its parser grows a buffer by 1/16 at a time), and no more, since a
+// camera that never ends its frame keeps that buffer for as long as its session lasts.
+constexpr std::size_t max_libav_alloc_bytes = gv::max_access_unit_bytes + (1u << 20);
 // RTP packets held for reordering (RTP over UDP); libavformat's default is 500.
 constexpr int reorder_queue_packets = 64;
 
@@ -203,6 +217,9 @@ void RtspInput::run(std::shared_ptr<Shared> shared) {
         if (!first) ++shared->reconnects;
         first = false;
         if (read_session(*shared)) backoff.reset();
+        // What libavformat allocated for the session (up to av_max_alloc per buffer) goes back
+        // to the system: glibc keeps freed large blocks in its arenas once they have been used.
+        malloc_trim(0);
         if (shared->stop) break;
         std::unique_lock lock(shared->mutex);
         shared->wake.wait_for(lock, std::chrono::duration<double>(backoff.next()),
@@ -220,6 +237,7 @@ bool RtspInput::read_session(Shared& shared) {
     for (;;) {
         attempt.authority = gv::rtsp_authority(attempt.url).value_or("");
         attempt.seen = attempt.url;
+        attempt.seen_url = nullptr;  // a new context: its url not looked at yet
         attempt.redirect.clear();
         open_and_read(shared, attempt);
         if (shared.stop) return attempt.got_video;

@@ -12,7 +12,7 @@
 // max_access_unit_bytes.
 //
 // A hostile camera (contract section 14 v4): libavformat's allocations are capped (one
-// allocation at most 16 MiB, av_max_alloc - a 2 GB Content-Length is refused, an endless
+// allocation at most 9 MiB, av_max_alloc - a 2 GB Content-Length is refused, an endless
 // fragmented frame stops growing), its RTP reordering queue is short, and the interrupt
 // callback watches redirects. libavformat follows an RTSP redirect by itself and would keep
 // sending the input's credentials to the new host; the callback sees the new URL before any

@@ -29,6 +29,27 @@ def note_video_counters(rig, f):
     return v
 
 
+def paced_bursts(rig, psi, grams, bursts, period_s, counter):
+    """Traffic: the PSI, then `grams` in `bursts` bursts 10 ms apart, once every `period_s`;
+    each whole pass counted as `counter`."""
+    def send(stop):
+        sender = S.UdpSender(rig.video_port, rig=rig)
+        per_burst = len(grams) // bursts + 1
+        while not stop.is_set():
+            began = time.monotonic()
+            sender.send_all(psi)
+            for i in range(0, len(grams), per_burst):
+                if stop.is_set():
+                    break
+                sender.send_all(grams[i:i + per_burst])
+                time.sleep(0.01)
+            else:
+                rig.count(counter)
+            time.sleep(max(0.0, began + period_s - time.monotonic()))
+        sender.close()
+    return send
+
+
 def klv_huge(suite, f, bad_checksum):
     """Item 1: one 8 MB ST 0601 set of 2 M distinct unknown tags, every second."""
     data = suite.cached("klv-huge-%s" % bad_checksum,
@@ -38,22 +59,7 @@ def klv_huge(suite, f, bad_checksum):
         psi = S.datagrams(ts.psi())
         grams = S.datagrams(ts.pes(S.KLV_PID, 0xBD, data, 90000, bounded=False))
 
-        def huge_sets(stop):
-            sender = S.UdpSender(rig.video_port, rig=rig)
-            per_burst = len(grams) // 70 + 1
-            while not stop.is_set():
-                began = time.monotonic()
-                sender.send_all(psi)
-                for i in range(0, len(grams), per_burst):
-                    if stop.is_set():
-                        break
-                    sender.send_all(grams[i:i + per_burst])
-                    time.sleep(0.01)
-                else:
-                    rig.count("sets")
-                time.sleep(max(0.0, began + 1.0 - time.monotonic()))
-            sender.close()
-
+        huge_sets = paced_bursts(rig, psi, grams, 70, 1.0, "sets")
         rig.measure([huge_sets])
         v = note_video_counters(rig, f)
         if v is not None and not bad_checksum and v.get("klv") is not None:
@@ -264,22 +270,7 @@ def pes_16mib(suite, f):
         grams = S.datagrams(ts.video(au, 90000))
         psi = S.datagrams(ts.psi())
 
-        def big_pes(stop):
-            sender = S.UdpSender(rig.video_port, rig=rig)
-            per_burst = len(grams) // 180 + 1
-            while not stop.is_set():
-                began = time.monotonic()
-                sender.send_all(psi)
-                for i in range(0, len(grams), per_burst):
-                    if stop.is_set():
-                        break
-                    sender.send_all(grams[i:i + per_burst])
-                    time.sleep(0.01)
-                else:
-                    rig.count("PES")
-                time.sleep(max(0.0, began + 2.0 - time.monotonic()))
-            sender.close()
-
+        big_pes = paced_bursts(rig, psi, grams, 180, 2.0, "PES")
         rig.measure([big_pes])
 
 
