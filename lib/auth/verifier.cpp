@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "command/request.hpp"
 #include "command/request_limits.hpp"
 
 namespace gimbal::auth {
@@ -18,10 +19,21 @@ const Key* Verifier::find(const std::string& id) const {
     return nullptr;
 }
 
+Result<nlohmann::json> read_signed_payload(std::string_view payload) {
+    // A key holder's request meets the same limits as anyone's, before it is parsed.
+    if (auto refused = command::check_request_limits(payload))
+        return Error{refused->code, "the signed payload: " + refused->message};
+    auto parsed = command::parse_object(payload);
+    if (!parsed) return Error{code::bad_json, "the signed payload is not a JSON object"};
+    return std::move(*parsed);
+}
+
 Result<Verified> Verifier::verify(const SignedEnvelope& envelope, std::int64_t now_unix_ms) {
     auto key = authenticate(envelope);
     if (!key) return key.error();
-    return accept(**key, envelope, now_unix_ms);
+    auto payload = read_signed_payload(envelope.payload);
+    if (!payload) return payload.error();
+    return accept(**key, std::move(payload).value(), now_unix_ms);
 }
 
 Result<const Key*> Verifier::authenticate(const SignedEnvelope& envelope) const {
@@ -34,17 +46,14 @@ Result<const Key*> Verifier::authenticate(const SignedEnvelope& envelope) const 
     return key;
 }
 
-Result<Verified> Verifier::accept(const Key& key, const SignedEnvelope& envelope,
+Result<Verified> Verifier::accept(const Key& key, nlohmann::json payload,
                                   std::int64_t now_unix_ms) {
     auto forbid = [](std::string reason) { return Error{code::forbidden, std::move(reason)}; };
-    // A key holder's request meets the same limits as anyone's, before it is parsed.
-    if (auto refused = gimbal::command::check_request_limits(envelope.payload))
-        return Error{refused->code, "the signed payload: " + refused->message};
+    if (!payload.is_object())
+        return Error{code::bad_json, "the signed payload is not a JSON object"};
     Verified v;
     v.key = &key;
-    v.request = nlohmann::json::parse(envelope.payload, nullptr, false);
-    if (v.request.is_discarded() || !v.request.is_object())
-        return Error{code::bad_json, "the signed payload is not a JSON object"};
+    v.request = std::move(payload);
 
     const auto ts = v.request.find("ts");
     if (ts == v.request.end() || !ts->is_number_integer())

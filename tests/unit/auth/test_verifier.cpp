@@ -182,8 +182,9 @@ TEST_CASE("authenticate checks key and MAC only; accept spends the nonce") {
     REQUIRE_FALSE(refused);
     CHECK_THAT(refused.error().message, Catch::Contains("bad MAC"));
 
-    CHECK(static_cast<bool>(v.accept(ops, good, now_ms)));
-    CHECK_THAT(reason(v.accept(ops, good, now_ms)), Catch::Contains("replayed"));
+    CHECK(static_cast<bool>(v.accept(ops, json::parse(good.payload), now_ms)));
+    CHECK_THAT(reason(v.accept(ops, json::parse(good.payload), now_ms)),
+               Catch::Contains("replayed"));
 }
 
 TEST_CASE("a signed payload meets the request limits before it is parsed") {
