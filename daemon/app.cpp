@@ -1,5 +1,6 @@
 #include "app.hpp"
 
+#include <atomic>
 #include <chrono>
 #include <csignal>
 #include <cstdlib>
@@ -296,7 +297,32 @@ void App::tap_recorder() {
     }
 }
 
-App::~App() = default;
+namespace {
+std::atomic<bool> terrain_read_left{false};
+}
+
+bool App::left_a_terrain_read_running() {
+    return terrain_read_left;
+}
+
+// A read GDAL cannot interrupt (docs/terrain.md "Reads off the io thread") may take seconds;
+// a stopping daemon gives it a moment and then leaves it running: ~App leaves the loader and
+// the model (whose GDAL handles it reads) to the process's end, and main ends the process
+// without tearing GDAL down under it.
+void App::stop_terrain_reads() {
+    constexpr std::chrono::milliseconds grace(300);
+    if (!terrain_loader_ || terrain_loader_->stop(grace)) return;
+    terrain_read_left = true;
+    log::warn("terrain_read_left", "a terrain read was still running at stop: not waited for",
+              {{"waited_s", std::chrono::duration<double>(grace).count()}});
+}
+
+App::~App() {
+    if (!terrain_read_left) return;
+    // The sessions, destroyed after this body, keep pointers to the model: it stays valid.
+    static_cast<void>(terrain_loader_.release());
+    static_cast<void>(terrain_.release());
+}
 
 // Once, before the sessions: the geoid grid when a gimbal's protocol asks for the undulation
 // where the aircraft flies; without one those sessions use 0, which is said once here.
@@ -491,6 +517,7 @@ int App::run() {
     arm_watchdog();
     poll_logs();
     io_.run();
+    stop_terrain_reads();
     // Both `stop` lines name the signal, so either one answers "why did it stop".
     log::info("stop", "gimbald stopped",
               {{"signal",

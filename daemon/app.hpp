@@ -40,6 +40,9 @@ class App {
 
     // Runs until SIGTERM/SIGINT; returns the process exit code.
     int run();
+    // A terrain read was still running when run() returned (stop_terrain_reads): the process
+    // must end with std::_Exit, so that nothing tears GDAL down under that read.
+    static bool left_a_terrain_read_running();
 
   private:
     std::unique_ptr<gimbal::session::Protocol> make_protocol(
@@ -50,6 +53,7 @@ class App {
     void tap_recorder();
     void on_signal(const boost::system::error_code& ec, int signo);
     void shutdown();
+    void stop_terrain_reads();
     void arm_watchdog();
     void poll_logs();  // once a second: the log roll-up's summaries of stopped bursts
     void start_http();

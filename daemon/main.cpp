@@ -2,6 +2,7 @@
 #include <malloc.h>
 
 #include <boost/system/system_error.hpp>
+#include <cstdlib>
 #include <exception>
 #include <iostream>
 
@@ -49,8 +50,14 @@ int main(int argc, char** argv) {
               {{"source", cfg::config_source(options)}, {"config", cfg::to_json(config)}});
 
     try {
-        gimbald::App app(config, std::move(terrain.model));
-        return app.run();
+        int code = 0;
+        {
+            gimbald::App app(config, std::move(terrain.model));
+            code = app.run();
+        }
+        // Every log line is written and flushed as it is made; nothing else is left to do.
+        if (gimbald::App::left_a_terrain_read_running()) std::_Exit(code);
+        return code;
     } catch (const cfg::ConfigError& e) {
         // Found only now (a key file changed since --check-config): still exit 1.
         std::cerr << "gimbald: " << cfg::config_source(options) << ": " << e.what() << "\n";

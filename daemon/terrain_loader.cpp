@@ -28,13 +28,16 @@ TerrainLoader::TerrainLoader(boost::asio::io_context& io, gimbal::terrain::Eleva
 }
 
 TerrainLoader::~TerrainLoader() {
-    stopping_ = true;
-    {
-        std::lock_guard lock(mutex_);
-        wanted_.clear();
-    }
-    read_done_.notify_all();
+    stop(std::chrono::milliseconds(0));
     worker_.stop();
+}
+
+bool TerrainLoader::stop(std::chrono::milliseconds grace) {
+    stopping_ = true;
+    std::unique_lock lock(mutex_);
+    wanted_.clear();
+    read_done_.notify_all();  // lookups waiting for a block
+    return read_done_.wait_for(lock, grace, [this] { return !loop_running_; });
 }
 
 bool TerrainLoader::fetch(const Key& key, Block& out) {
@@ -129,6 +132,7 @@ void TerrainLoader::read_loop() {
             std::lock_guard lock(mutex_);
             if (stopping_ || wanted_.empty()) {
                 loop_running_ = false;
+                read_done_.notify_all();  // stop() waits for this
                 return;
             }
             key = wanted_.front();

@@ -52,7 +52,7 @@ class TerrainLoader final : public gimbal::terrain::BlockSource {
     // loader thread touches GDAL. `model` must not look a block up after the loader is gone.
     TerrainLoader(boost::asio::io_context& io, gimbal::terrain::ElevationModel& model,
                   TerrainLoaderOptions options = {});
-    // Stops the thread; a read under way is abandoned at GDAL's next step.
+    // Stops the thread (stop(), then waits for a read under way to end).
     ~TerrainLoader() override;
     TerrainLoader(const TerrainLoader&) = delete;
     TerrainLoader& operator=(const TerrainLoader&) = delete;
@@ -62,6 +62,12 @@ class TerrainLoader final : public gimbal::terrain::BlockSource {
     bool fetch(const gimbal::terrain::BlockKey& key, gimbal::terrain::Block& out) override;
 
     TerrainLoaderCounters counters() const;
+
+    // Reads nothing more: drops the blocks still wanted, asks the read under way to stop at
+    // GDAL's next step and waits up to `grace` for it. False when it is still running: GDAL
+    // cannot interrupt every read (3.6 reads a VRT's sources without asking the progress
+    // callback), and a daemon told to stop must not wait seconds for one (App).
+    bool stop(std::chrono::milliseconds grace);
 
   private:
     using Clock = std::chrono::steady_clock;

@@ -20,11 +20,11 @@ while [ $# -gt 0 ]; do
   esac
 done
 
-scripts/install-deps.sh
-
 # Each phase's wall time, printed as it ends (docs/operations.md "Test run time").
 phase_start=$SECONDS
 phase() { echo "scripts/test.sh: $1 took $((SECONDS - phase_start)) s (total $SECONDS s)"; phase_start=$SECONDS; }
+
+scripts/install-deps.sh
 phase "installing packages"
 
 jobs=$(nproc 2>/dev/null || echo 2)
