@@ -77,7 +77,7 @@ cmdns::Result<json> GroundCommands::prepare(std::string_view cmd, const json& re
 }
 
 cmdns::Result<json> GroundCommands::elevation(const json& request) {
-    cmdns::Params p(request);
+    cmdns::JsonParams p(request);
     const auto lat = p.number("lat", -90.0, 90.0, true);
     const auto lon = p.number("lon", -180.0, 180.0, true);
     p.reject_unknown();
@@ -103,7 +103,7 @@ cmdns::Result<json> GroundCommands::elevation(const json& request) {
 
 GimbalSession::Outcome GroundCommands::locate(GimbalSession& session, const json& request,
                                               bool point) {
-    cmdns::Params p(request);
+    cmdns::JsonParams p(request);
     const auto position = session::read_image_position(p);
     const bool stare = point && p.boolean_or("stare", false);
     p.reject_unknown();
@@ -141,7 +141,7 @@ GimbalSession::Outcome GroundCommands::locate(GimbalSession& session, const json
 }
 
 GimbalSession::Outcome GroundCommands::project(GimbalSession& session, const json& request) {
-    cmdns::Params p(request);
+    cmdns::JsonParams p(request);
     const auto lat = p.number("lat", -90.0, 90.0, true);
     const auto lon = p.number("lon", -180.0, 180.0, true);
     const auto alt = p.number("alt", -2000.0, 100000.0, true);

@@ -21,8 +21,8 @@ namespace {
 
 gv::VideoUrl parse(const std::string& text) {
     auto parsed = gv::parse_video_url(text);
-    if (!parsed.url) throw std::invalid_argument(text + ": " + parsed.error);
-    return *parsed.url;
+    if (!parsed) throw std::invalid_argument(text + ": " + parsed.error().message);
+    return *parsed;
 }
 
 std::uint64_t unix_us_now() {
@@ -264,14 +264,14 @@ void GimbalVideo::generate() {
     klv::Encoded encoded = klv::encode(klv::sensor_set(frame));
     if (!encoded.ok()) {
         ++generate_errors_;
-        generate_error_log_.hit("a generated KLV set did not encode: " + encoded.error,
+        generate_error_log_.hit("a generated KLV set did not encode: " + encoded.error().message,
                                 {{"gimbal", options_.gimbal}});
         return;
     }
     ++generated_;
-    send_klv(encoded.bytes);
-    if (options_.record) options_.record(encoded.bytes, true);
-    track_.generated(std::move(encoded.bytes), now_s());
+    send_klv(*encoded);
+    if (options_.record) options_.record(*encoded, true);
+    track_.generated(std::move(encoded).value(), now_s());
 }
 
 gimbal::state::VideoState GimbalVideo::video_state() const {

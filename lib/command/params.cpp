@@ -20,13 +20,13 @@ std::string format_number(double v) {
     return buf;
 }
 
-Params::Params(const nlohmann::json& params) : params_(params) {}
+JsonParams::JsonParams(const nlohmann::json& params) : params_(params) {}
 
-void Params::fail(ErrorCode c, std::string message) {
+void JsonParams::fail(ErrorCode c, std::string message) {
     if (!error_) error_ = Error{c, std::move(message)};
 }
 
-void Params::reject_unknown() {
+void JsonParams::reject_unknown() {
     if (error_ || !params_.is_object()) return;
     for (const auto& item : params_.items()) {
         if (is_envelope(item.key()) || used_.count(item.key())) continue;
@@ -35,11 +35,11 @@ void Params::reject_unknown() {
     }
 }
 
-bool Params::has(std::string_view key) const {
+bool JsonParams::has(std::string_view key) const {
     return params_.is_object() && params_.contains(std::string(key));
 }
 
-const nlohmann::json* Params::take(std::string_view key, bool required) {
+const nlohmann::json* JsonParams::take(std::string_view key, bool required) {
     if (error_) return nullptr;
     used_.insert(std::string(key));
     auto it = params_.find(std::string(key));
@@ -50,11 +50,11 @@ const nlohmann::json* Params::take(std::string_view key, bool required) {
     return &*it;
 }
 
-const nlohmann::json* Params::raw(std::string_view key) {
+const nlohmann::json* JsonParams::raw(std::string_view key) {
     return take(key, false);
 }
 
-std::optional<double> Params::number(std::string_view key, double lo, double hi, bool required) {
+std::optional<double> JsonParams::number(std::string_view key, double lo, double hi, bool required) {
     const nlohmann::json* j = take(key, required);
     if (!j) return std::nullopt;
     if (!j->is_number()) {
@@ -70,7 +70,7 @@ std::optional<double> Params::number(std::string_view key, double lo, double hi,
     return v;
 }
 
-std::optional<std::int64_t> Params::integer(std::string_view key, std::int64_t lo, std::int64_t hi,
+std::optional<std::int64_t> JsonParams::integer(std::string_view key, std::int64_t lo, std::int64_t hi,
                                             bool required) {
     const nlohmann::json* j = take(key, required);
     if (!j) return std::nullopt;
@@ -88,7 +88,7 @@ std::optional<std::int64_t> Params::integer(std::string_view key, std::int64_t l
     return static_cast<std::int64_t>(v);
 }
 
-std::optional<bool> Params::boolean(std::string_view key, bool required) {
+std::optional<bool> JsonParams::boolean(std::string_view key, bool required) {
     const nlohmann::json* j = take(key, required);
     if (!j) return std::nullopt;
     if (!j->is_boolean()) {
@@ -98,7 +98,7 @@ std::optional<bool> Params::boolean(std::string_view key, bool required) {
     return j->get<bool>();
 }
 
-std::optional<std::string> Params::choice(std::string_view key,
+std::optional<std::string> JsonParams::choice(std::string_view key,
                                           std::span<const std::string_view> choices,
                                           bool required) {
     const nlohmann::json* j = take(key, required);
@@ -116,7 +116,7 @@ std::optional<std::string> Params::choice(std::string_view key,
     return std::nullopt;
 }
 
-std::optional<std::string> Params::text(std::string_view key, std::size_t max_chars,
+std::optional<std::string> JsonParams::text(std::string_view key, std::size_t max_chars,
                                         bool required) {
     const nlohmann::json* j = take(key, required);
     if (!j) return std::nullopt;
@@ -140,7 +140,7 @@ std::optional<std::string> Params::text(std::string_view key, std::size_t max_ch
     return v;
 }
 
-std::optional<std::vector<double>> Params::numbers(std::string_view key, std::size_t count,
+std::optional<std::vector<double>> JsonParams::numbers(std::string_view key, std::size_t count,
                                                    double lo, double hi, bool required) {
     const nlohmann::json* j = take(key, required);
     if (!j) return std::nullopt;

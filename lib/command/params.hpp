@@ -15,11 +15,11 @@
 
 namespace gimbal::command {
 
-class Params {
+class JsonParams {
   public:
     // `params` is the request object; `envelope` keys (cmd, id, gimbal, token, ts, nonce) are not
     // parameters and are ignored here.
-    explicit Params(const nlohmann::json& params);
+    explicit JsonParams(const nlohmann::json& params);
 
     bool ok() const { return !error_; }
     const Error& error() const { return *error_; }

@@ -13,7 +13,7 @@ constexpr double min_alt_m = -2000.0;
 constexpr double max_alt_m = 100000.0;
 }  // namespace
 
-Result<PathRequest> read_path_request(Params& p) {
+Result<PathRequest> read_path_request(JsonParams& p) {
     PathRequest r;
     const nlohmann::json* points = p.raw("points");
     r.down = p.boolean_or("down", false);
@@ -40,7 +40,7 @@ Result<PathRequest> read_path_request(Params& p) {
         const std::string where = "points[" + std::to_string(i) + "]";
         if (!item.is_object())
             return Error{code::bad_request, where + " must be {\"lat\",\"lon\",\"alt\"}"};
-        Params point(item);
+        JsonParams point(item);
         const auto lat = point.number("lat", -90.0, 90.0, true);
         const auto lon = point.number("lon", -180.0, 180.0, true);
         const auto alt = point.number("alt", min_alt_m, max_alt_m, true);

@@ -28,7 +28,7 @@ bool present(const json& object, const char* key) {
 // The alt_ref of a request (nullopt when absent), refused when not one of `allowed`.
 command::Result<std::optional<std::string>> alt_ref(const json& request,
                                                     std::span<const std::string_view> allowed) {
-    command::Params p(request);
+    command::JsonParams p(request);
     auto ref = p.choice("alt_ref", allowed, false);
     if (!p.ok()) return p.error();
     return ref;
@@ -38,7 +38,7 @@ command::Result<std::optional<std::string>> alt_ref(const json& request,
 // above ground when `above_ground`, else the terrain's height. `where` prefixes messages.
 command::Result<double> ground_altitude(const json& point, bool above_ground, geo::Surface* terrain,
                                         const std::string& where) {
-    command::Params p(point);
+    command::JsonParams p(point);
     const auto lat = p.number("lat", -90.0, 90.0, true);
     const auto lon = p.number("lon", -180.0, 180.0, true);
     const auto agl = p.number("alt", min_alt_m, max_alt_m, false);

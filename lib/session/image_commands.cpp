@@ -19,7 +19,7 @@ constexpr double max_pixels = 65535;
 
 }  // namespace
 
-command::Result<ImagePosition> read_image_position(command::Params& p) {
+command::Result<ImagePosition> read_image_position(command::JsonParams& p) {
     const bool has_x = p.has("x"), has_y = p.has("y");
     const bool has_px = p.has("px"), has_py = p.has("py");
     const auto x = p.number("x", -1.0, 1.0, false);

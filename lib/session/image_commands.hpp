@@ -23,7 +23,7 @@ struct ImagePosition {
 
 // Reads x,y (each -1..1) or px,py (each 0..65535; the image's size is checked later). One
 // pair, whole: both or neither of a pair, never both pairs. Errors name the keys.
-command::Result<ImagePosition> read_image_position(command::Params& p);
+command::Result<ImagePosition> read_image_position(command::JsonParams& p);
 
 // The normalised point: pixels converted with the image's size (out_of_range beyond it,
 // unavailable when the gimbal reports no size).

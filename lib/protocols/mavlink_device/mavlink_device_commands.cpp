@@ -14,7 +14,7 @@ namespace gimbal::protocols {
 namespace {
 
 namespace code = command::code;
-using command::Params;
+using command::JsonParams;
 using nlohmann::json;
 
 // The catalogue's ranges (lib/command/catalogue.cpp).
@@ -32,7 +32,7 @@ command::Error no_fix(std::string_view cmd) {
 
 // The Orion's meaning of `stabilized` (contract section 4): held in the earth frame. Roll
 // and pitch are levelled by the device either way.
-command::Result<Hold> position(Params& p, const DeviceCommandContext& ctx) {
+command::Result<Hold> position(JsonParams& p, const DeviceCommandContext& ctx) {
     const auto pan = p.number("pan", -180.0, 180.0, true);
     const auto tilt = p.number("tilt", -180.0, 180.0, true);
     const bool stabilized = p.boolean_or("stabilized", false);
@@ -49,7 +49,7 @@ command::Result<Hold> position(Params& p, const DeviceCommandContext& ctx) {
     return Hold{HoldHeading{session::wrap180(ctx.vehicle_heading_deg + *pan), *tilt}};
 }
 
-command::Result<Hold> rate(Params& p, const DeviceCommandContext& ctx) {
+command::Result<Hold> rate(JsonParams& p, const DeviceCommandContext& ctx) {
     const auto pan = p.number("pan", -max_rate_dps, max_rate_dps, true);
     const auto tilt = p.number("tilt", -max_rate_dps, max_rate_dps, true);
     const bool stabilized = p.boolean_or("stabilized", true);
@@ -61,7 +61,7 @@ command::Result<Hold> rate(Params& p, const DeviceCommandContext& ctx) {
     return Hold{r};
 }
 
-command::Result<Hold> geopoint(Params& p, const DeviceCommandContext& ctx) {
+command::Result<Hold> geopoint(JsonParams& p, const DeviceCommandContext& ctx) {
     const auto lat = p.number("lat", -90.0, 90.0, true);
     const auto lon = p.number("lon", -180.0, 180.0, true);
     const auto alt = p.number("alt", min_alt_m, max_alt_m, true);
@@ -92,7 +92,7 @@ command::Result<Hold> geopoint(Params& p, const DeviceCommandContext& ctx) {
     return Hold{g};
 }
 
-command::Result<Hold> path(Params& p, const DeviceCommandContext& ctx) {
+command::Result<Hold> path(JsonParams& p, const DeviceCommandContext& ctx) {
     auto read = command::read_path_request(p);
     if (!read) return read.error();
     if (read->down) return Hold{HoldAngles{0, -90}};
@@ -119,7 +119,7 @@ bool is_device_command(std::string_view cmd) {
 
 command::Result<Hold> plan_device_command(std::string_view cmd, const json& request,
                                           const DeviceCommandContext& context) {
-    Params p(request);
+    JsonParams p(request);
     if (cmd == "position") return position(p, context);
     if (cmd == "rate") return rate(p, context);
     if (cmd == "geopoint") return geopoint(p, context);

@@ -183,7 +183,7 @@ std::optional<command::Error> MavlinkDeviceProtocol::plan(std::string_view cmd,
 
 std::optional<command::Error> MavlinkDeviceProtocol::acknowledge_stare(
     const nlohmann::json& request) {
-    command::Params p(request);
+    command::JsonParams p(request);
     const auto time = p.integer("system_time_ms", 0, 4294967295LL, false);
     p.reject_unknown();
     if (!p.ok()) return p.error();

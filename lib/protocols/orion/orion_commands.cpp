@@ -38,7 +38,7 @@ bool add_packet(const P& packet, Plan& plan) {
 
 struct Request {
     const nlohmann::json& request;
-    Params& p;
+    JsonParams& p;
     const OrionContext& ctx;
     Plan& plan;
 };
@@ -194,8 +194,7 @@ void packet_command(Request& r, std::initializer_list<std::string_view> required
             return p.fail(code::bad_request, "missing parameter '" + std::string(key) + "'");
     P packet;
     o::JsonError error;
-    if (!o::from_json(fields, packet, error))
-        return p.fail(parse_error_code(error.code).value_or(code::bad_request), error.message);
+    if (!o::from_json(fields, packet, error)) return p.fail(error.code, error.message);
     if (!add_packet(packet, r.plan))
         p.fail(code::internal, std::string(P::name) + " did not encode");
 }
@@ -270,7 +269,7 @@ std::optional<Error> plan_orion(std::string_view cmd, const nlohmann::json& requ
                                 const OrionContext& context, Plan& plan) {
     const auto it = handlers().find(cmd);
     if (it == handlers().end()) return Error{code::unknown_cmd, "unknown command"};
-    Params params(request);
+    JsonParams params(request);
     Request r{request, params, context, plan};
     it->second(r);
     params.reject_unknown();

@@ -23,7 +23,7 @@ void add(Plan& plan, std::string_view frame, std::span<const std::uint8_t> bytes
     plan.packets.push_back(std::move(w));
 }
 
-void output(Params& p, Plan& plan) {
+void output(JsonParams& p, Plan& plan) {
     static constexpr std::array<std::string_view, 2> osds{"target", "uav"};
     static constexpr std::array<std::string_view, 4> formats{"out1", "out2", "out3", "out4"};
     const auto osd = p.choice("osd", osds, true);
@@ -52,7 +52,7 @@ std::vector<std::int8_t> shift_steps(double deg) {
     return steps;
 }
 
-void adjust(Params& p, Plan& plan) {
+void adjust(JsonParams& p, Plan& plan) {
     const auto yaw = p.number("yaw_deg", -20.0, 20.0, false);
     const auto pitch = p.number("pitch_deg", -20.0, 20.0, false);
     p.reject_unknown();  // a misspelt key explains a missing shift better than the rule below
@@ -65,7 +65,7 @@ void adjust(Params& p, Plan& plan) {
     plan.result["steps"] = plan.packets.size();
 }
 
-void vehicle(Params& p, const ViewproContext& ctx, Plan& plan) {
+void vehicle(JsonParams& p, const ViewproContext& ctx, Plan& plan) {
     const auto time = p.text("time", 40, false);
     const auto roll = p.number("roll", -180.0, 180.0, true);
     const auto pitch = p.number("pitch", -90.0, 90.0, true);
@@ -104,7 +104,7 @@ bool is_viewpro_command(std::string_view cmd) {
 
 std::optional<Error> plan_viewpro(std::string_view cmd, const nlohmann::json& request,
                                   const ViewproContext& context, Plan& plan) {
-    Params params(request);
+    JsonParams params(request);
     if (cmd == "viewpro_output")
         output(params, plan);
     else if (cmd == "viewpro_adjust")
