@@ -45,7 +45,11 @@ background_builds() {
 }
 rm -f build/background-failed
 # In a process group of its own (setsid) so that a failed or interrupted run stops it too.
-setsid nice -n 19 bash -c "$(declare -f background_builds); fuzz=$fuzz jobs=$jobs background_builds" &
+# setsid also starts a new scheduler autogroup, and the kernel shares the CPUs between
+# autogroups before it looks at nice: the group itself is set to nice 19 (where
+# /proc/self/autogroup exists), or the builds would take half the machine from ctest.
+setsid nice -n 19 bash -c "{ echo 19 >/proc/self/autogroup; } 2>/dev/null || true
+  $(declare -f background_builds); fuzz=$fuzz jobs=$jobs background_builds" &
 builds=$!
 trap 'kill -- -"$builds" 2>/dev/null || true' EXIT
 

@@ -152,6 +152,9 @@ class Rig:
         self.stats_lock = threading.Lock()
         self.fires = []  # (send time, request id)
         self.epoch = None
+        # How far the epoch may be off: half the calibrating exchange's round trip (a loaded
+        # machine's can be tens of ms), or the simulator's start's few ms.
+        self.epoch_error = 0.005
         self.daemon = None
         self.client = None
         self.ready = False
@@ -279,6 +282,7 @@ class Rig:
             self.epoch = self.sim_started
             return
         self.epoch = best[0]
+        self.epoch_error = best[1] / 2.0
 
     def rx_laser(self):
         """(sim time, index, fire) of every laser command the simulator received."""
@@ -313,7 +317,8 @@ class Rig:
                 continue
             at = t + self.epoch
             if fire_at is None:
-                if firing and at >= since - 0.002:
+                # A fire sent at `since` arrives after it, give or take the epoch's error.
+                if firing and at >= since - self.epoch_error - 0.002:
                     fire_at = at
             elif not firing and at > fire_at:
                 cease_at = at
@@ -403,9 +408,15 @@ class Rig:
             fire_at, cease_at = self.laser_events(sent)
             reply = self.client.reply(rid, 0.01)
             if fire_at is None:
-                f.fail("the fire never reached the gimbal (reply: %s)" % (
-                    "none" if reply is None else
-                    "ok" if reply.get("ok") else reply.get("error", {}).get("code")))
+                # What the simulator logged, for the reader: a fire-on just before `since`
+                # would mean a clock calibration further off than its round trip says.
+                ons = [t + self.epoch - sent for t, index, firing in self.rx_laser()
+                       if index == 0 and firing]
+                f.fail("the fire never reached the gimbal (reply: %s; fire-on at the simulator: "
+                       "%s s from the send, clock within %.3f s)" % (
+                           "none" if reply is None else
+                           "ok" if reply.get("ok") else reply.get("error", {}).get("code"),
+                           ", ".join("%+.3f" % d for d in ons) or "none", self.epoch_error))
                 continue
             f.cease_s.append(None if cease_at is None else cease_at - sent)
         if self.stats:
