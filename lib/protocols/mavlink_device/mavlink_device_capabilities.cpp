@@ -46,7 +46,9 @@ session::Request MavlinkDeviceCapabilities::point_angles(const json& state,
     }
     if (!t.pitch_deg && !cur_tilt)
         return session::unavailable("no attitude from the device yet for the angle left out");
-    return json{{"cmd", "position"}, {"pan", pan}, {"tilt", t.pitch_deg.value_or(*cur_tilt)}};
+    // Not value_or(*cur_tilt): that would read an empty optional when the pitch is given.
+    const double tilt = t.pitch_deg ? *t.pitch_deg : *cur_tilt;
+    return json{{"cmd", "position"}, {"pan", pan}, {"tilt", tilt}};
 }
 
 session::Request MavlinkDeviceCapabilities::rate(const json&, const session::RateTarget& t) const {
