@@ -282,7 +282,11 @@ class Rig:
             self.epoch = self.sim_started
             return
         self.epoch = best[0]
-        self.epoch_error = best[1] / 2.0
+        # Capped: a fire is still told from the one before it (fires are seconds apart).
+        self.epoch_error = min(best[1] / 2.0, 0.25)
+        if best[1] > 0.1:
+            self.figures.note("clock calibrated within %.3f s only (a loaded machine): cease-fire "
+                              "times are that uncertain" % (best[1] / 2.0))
 
     def rx_laser(self):
         """(sim time, index, fire) of every laser command the simulator received."""
