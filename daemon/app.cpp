@@ -173,7 +173,7 @@ void App::start_video() {
         videos_.push_back(nullptr);
         if (!g.video) {
             session.add_command("klv", [name = g.name](const nlohmann::json& request) {
-                gimbal::command::JsonParams params(request);
+                gimbal::command::JsonParams params(request, "klv");
                 params.reject_unknown();
                 if (!params.ok()) return gimbal::command::Result<nlohmann::json>(params.error());
                 return gimbal::command::Result<nlohmann::json>(
@@ -197,7 +197,7 @@ void App::start_video() {
         auto& v = *(videos_.back() = std::make_unique<video::GimbalVideo>(io_, std::move(o)));
         session.set_video([&v] { return std::optional(v.video_state()); });
         session.add_command("klv", [&v](const nlohmann::json& request) {
-            gimbal::command::JsonParams params(request);
+            gimbal::command::JsonParams params(request, "klv");
             params.reject_unknown();
             if (!params.ok()) return gimbal::command::Result<nlohmann::json>(params.error());
             return v.klv_reply();

@@ -77,9 +77,9 @@ cmdns::Result<json> GroundCommands::prepare(std::string_view cmd, const json& re
 }
 
 cmdns::Result<json> GroundCommands::elevation(const json& request) {
-    cmdns::JsonParams p(request);
-    const auto lat = p.number("lat", -90.0, 90.0, true);
-    const auto lon = p.number("lon", -180.0, 180.0, true);
+    cmdns::JsonParams p(request, "elevation");
+    const auto lat = p.number("lat", true);
+    const auto lon = p.number("lon", true);
     p.reject_unknown();
     if (!p.ok()) return p.error();
     if (!terrain_)
@@ -103,7 +103,7 @@ cmdns::Result<json> GroundCommands::elevation(const json& request) {
 
 GimbalSession::Outcome GroundCommands::locate(GimbalSession& session, const json& request,
                                               bool point) {
-    cmdns::JsonParams p(request);
+    cmdns::JsonParams p(request, point ? "point" : "locate");
     const auto position = session::read_image_position(p);
     const bool stare = point && p.boolean_or("stare", false);
     p.reject_unknown();
@@ -141,10 +141,10 @@ GimbalSession::Outcome GroundCommands::locate(GimbalSession& session, const json
 }
 
 GimbalSession::Outcome GroundCommands::project(GimbalSession& session, const json& request) {
-    cmdns::JsonParams p(request);
-    const auto lat = p.number("lat", -90.0, 90.0, true);
-    const auto lon = p.number("lon", -180.0, 180.0, true);
-    const auto alt = p.number("alt", -2000.0, 100000.0, true);
+    cmdns::JsonParams p(request, "project");
+    const auto lat = p.number("lat", true);
+    const auto lon = p.number("lon", true);
+    const auto alt = p.number("alt", true);
     p.reject_unknown();
     if (!p.ok()) return failed(p.error());
     const auto view = session.capabilities().image();

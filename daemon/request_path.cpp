@@ -430,7 +430,7 @@ json RequestPath::dispatch(Outcome& o, const RequestSource& from) {
     const std::string cmd(o.env.cmd());
     const json& request = o.doc;
     json results = json::object();
-    cmdns::JsonParams params(request);
+    cmdns::JsonParams params(request, cmd);
 
     if (cmd == "ping" || cmd == "version" || cmd == "list") {
         params.reject_unknown();
@@ -505,7 +505,7 @@ json RequestPath::dispatch(Outcome& o, const RequestSource& from) {
 
 json RequestPath::subscription(Outcome& o, const RequestSource& from) {
     const std::string cmd(o.env.cmd());
-    cmdns::JsonParams params(o.doc);
+    cmdns::JsonParams params(o.doc, cmd);
     json results = json::object();
     if (!from.udp || !subscriptions_)
         return o.fail(Error{code::unsupported,
@@ -528,8 +528,8 @@ json RequestPath::subscription(Outcome& o, const RequestSource& from) {
     Subscription s;
     s.gimbal = o.env.gimbal;
     if (o.key) s.key_id = o.key->id;
-    s.rate_hz = params.number_or("rate_hz", 0.1, 50.0, 10.0);
-    s.ttl_s = params.number_or("ttl_s", 1.0, 3600.0, 60.0);
+    s.rate_hz = params.number_or("rate_hz", 10.0);
+    s.ttl_s = params.number_or("ttl_s", 60.0);
     s.events = params.boolean_or("events", true);
     read_stream_options(params, s.stream);
     params.reject_unknown();

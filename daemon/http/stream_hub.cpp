@@ -190,7 +190,7 @@ std::string StreamHub::subscribe(WsClient& client, const json& request, bool uns
     };
     if (env.gimbal && !path_.find(*env.gimbal))
         return fail({code::unknown_gimbal, "no gimbal named '" + *env.gimbal + "'"});
-    cmdns::JsonParams params(request);
+    cmdns::JsonParams params(request, env.cmd());
     json results = json::object();
     auto& s = client.subscription();
     if (unsubscribe) {
@@ -203,8 +203,8 @@ std::string StreamHub::subscribe(WsClient& client, const json& request, bool uns
     }
     StreamSubscription next;
     next.gimbal = env.gimbal;
-    next.rate_hz = params.number_or("rate_hz", 0.1, 50.0, 2.0);
-    params.number_or("ttl_s", 1.0, 3600.0, 60.0);
+    next.rate_hz = params.number_or("rate_hz", 2.0);
+    params.number_or("ttl_s", 60.0);
     next.events = params.boolean_or("events", true);
     read_stream_options(params, next.stream);
     params.reject_unknown();

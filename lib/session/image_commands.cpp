@@ -15,17 +15,15 @@ using command::Error;
 using nlohmann::json;
 namespace code = command::code;
 
-constexpr double max_pixels = 65535;
-
 }  // namespace
 
 command::Result<ImagePosition> read_image_position(command::JsonParams& p) {
     const bool has_x = p.has("x"), has_y = p.has("y");
     const bool has_px = p.has("px"), has_py = p.has("py");
-    const auto x = p.number("x", -1.0, 1.0, false);
-    const auto y = p.number("y", -1.0, 1.0, false);
-    const auto px = p.number("px", 0.0, max_pixels, false);
-    const auto py = p.number("py", 0.0, max_pixels, false);
+    const auto x = p.number("x", false);
+    const auto y = p.number("y", false);
+    const auto px = p.number("px", false);
+    const auto py = p.number("py", false);
     if (!p.ok()) return p.error();
     const bool normalised = has_x || has_y;
     const bool pixels = has_px || has_py;

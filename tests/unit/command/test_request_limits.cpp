@@ -74,8 +74,8 @@ TEST_CASE("envelope: an oversize request is refused unread", "[command][envelope
     CHECK(command::request_parses() == parses);  // neither was parsed
 
     const auto at_limit = command::parse_request(padded(8192));
-    REQUIRE_FALSE(at_limit);  // read all the way: its parameters are looked at
-    CHECK(at_limit.error().message == "unknown parameter 'pad'");
+    REQUIRE(at_limit);  // parsed: its parameters are its planner's to read
+    CHECK(at_limit->doc.contains("pad"));
     CHECK(*command::echo_of(nlohmann::json::parse(padded(8192))).id == 9);
 }
 

@@ -50,7 +50,7 @@ const session::Capabilities& viewpro_caps() {
 }
 
 command::Result<session::ImagePosition> read(const json& request) {
-    command::JsonParams p(request);
+    command::JsonParams p(request, request.value("cmd", "locate"));
     return session::read_image_position(p);
 }
 
