@@ -28,9 +28,10 @@ session::Features mavlink_device_features() {
 }
 
 session::Request MavlinkDeviceCapabilities::point_angles(const session::AnglesTarget& t) const {
+    // The device's angles read in place: copying a disengaged optional<double> makes GCC 12
+    // at -O2 warn (-Wmaybe-uninitialized) about its unset value.
     const auto* tel = data_.telemetry ? &*data_.telemetry : nullptr;
-    const auto cur_pan = tel ? tel->pan : std::nullopt;
-    const auto cur_tilt = tel ? tel->tilt : std::nullopt;
+    const bool have_pan = tel && tel->pan, have_tilt = tel && tel->tilt;
     double pan = 0;
     if (t.yaw_deg && t.yaw_frame == session::YawFrame::earth) {
         if (!t.vehicle_heading_deg)
@@ -38,15 +39,19 @@ session::Request MavlinkDeviceCapabilities::point_angles(const session::AnglesTa
         pan = session::wrap180(*t.yaw_deg - *t.vehicle_heading_deg);
     } else if (t.yaw_deg) {
         pan = *t.yaw_deg;
-    } else if (cur_pan) {
-        pan = *cur_pan;
+    } else if (have_pan) {
+        pan = *tel->pan;
     } else {
         return session::unavailable("no attitude from the device yet for the angle left out");
     }
-    if (!t.pitch_deg && !cur_tilt)
+    // Not value_or(*tel->tilt): that would read an empty optional when a pitch is given.
+    double tilt = 0;
+    if (t.pitch_deg)
+        tilt = *t.pitch_deg;
+    else if (have_tilt)
+        tilt = *tel->tilt;
+    else
         return session::unavailable("no attitude from the device yet for the angle left out");
-    // Not value_or(*cur_tilt): that would read an empty optional when the pitch is given.
-    const double tilt = t.pitch_deg ? *t.pitch_deg : *cur_tilt;
     return json{{"cmd", "position"}, {"pan", pan}, {"tilt", tilt}};
 }
 
