@@ -38,7 +38,8 @@ namespace {
 nlohmann::json capabilities_key(const protocols::Entry& protocol) {
     nlohmann::json commands = nlohmann::json::array();
     for (const auto& c : protocol.commands) commands.push_back(c.name);
-    return {{"features", protocol.capabilities->names()}, {"commands", std::move(commands)}};
+    return {{"features", gimbal::session::feature_names(protocol.features)},
+            {"commands", std::move(commands)}};
 }
 
 }  // namespace
@@ -171,9 +172,8 @@ void App::start_video() {
         const auto& g = config_.gimbals[i];
         videos_.push_back(nullptr);
         if (!g.video) {
-            session.add_state_key("video", [] { return nlohmann::json(nullptr); });
             session.add_command("klv", [name = g.name](const nlohmann::json& request) {
-                gimbal::command::Params params(request);
+                gimbal::command::JsonParams params(request, "klv");
                 params.reject_unknown();
                 if (!params.ok()) return gimbal::command::Result<nlohmann::json>(params.error());
                 return gimbal::command::Result<nlohmann::json>(
@@ -185,8 +185,7 @@ void App::start_video() {
         video::GimbalVideoOptions o;
         o.gimbal = g.name;
         o.config = *g.video;
-        o.capabilities = protocols::entry(g.protocol).capabilities;
-        o.state = [&session] { return session.snapshot(); };
+        o.view = [&session] { return session.view(); };
         if (recorder_) {
             const auto interface = static_cast<std::uint32_t>(first_interface + recorded++);
             o.record = [this, interface](std::span<const std::uint8_t> bytes, bool generated) {
@@ -196,9 +195,9 @@ void App::start_video() {
             };
         }
         auto& v = *(videos_.back() = std::make_unique<video::GimbalVideo>(io_, std::move(o)));
-        session.add_state_key("video", [&v] { return v.snapshot(); });
+        session.set_video([&v] { return std::optional(v.video_state()); });
         session.add_command("klv", [&v](const nlohmann::json& request) {
-            gimbal::command::Params params(request);
+            gimbal::command::JsonParams params(request, "klv");
             params.reject_unknown();
             if (!params.ok()) return gimbal::command::Result<nlohmann::json>(params.error());
             return v.klv_reply();

@@ -77,9 +77,9 @@ cmdns::Result<json> GroundCommands::prepare(std::string_view cmd, const json& re
 }
 
 cmdns::Result<json> GroundCommands::elevation(const json& request) {
-    cmdns::Params p(request);
-    const auto lat = p.number("lat", -90.0, 90.0, true);
-    const auto lon = p.number("lon", -180.0, 180.0, true);
+    cmdns::JsonParams p(request, "elevation");
+    const auto lat = p.number("lat", true);
+    const auto lon = p.number("lon", true);
     p.reject_unknown();
     if (!p.ok()) return p.error();
     if (!terrain_)
@@ -103,16 +103,15 @@ cmdns::Result<json> GroundCommands::elevation(const json& request) {
 
 GimbalSession::Outcome GroundCommands::locate(GimbalSession& session, const json& request,
                                               bool point) {
-    cmdns::Params p(request);
+    cmdns::JsonParams p(request, point ? "point" : "locate");
     const auto position = session::read_image_position(p);
     const bool stare = point && p.boolean_or("stare", false);
     p.reject_unknown();
     if (!p.ok()) return failed(p.error());
     if (!position) return failed(position.error());
 
-    const json state = session.snapshot();
     const auto& capabilities = session.capabilities();
-    const auto view = capabilities.image(state);
+    const auto view = capabilities.image();
     if (!view) return failed(view.error());
     const auto at = session::image_point(*position, *view);
     if (!at) return failed(at.error());
@@ -128,7 +127,7 @@ GimbalSession::Outcome GroundCommands::locate(GimbalSession& session, const json
         out.results = std::move(located);
         return out;
     }
-    auto pointing = session::point_request(capabilities, state, *view, *ground, stare);
+    auto pointing = session::point_request(capabilities, *view, *ground, stare);
     if (!pointing) return failed(pointing.error());
     const std::string cmd = pointing->value("cmd", std::string());
     if (!session.supports(cmd))
@@ -142,13 +141,13 @@ GimbalSession::Outcome GroundCommands::locate(GimbalSession& session, const json
 }
 
 GimbalSession::Outcome GroundCommands::project(GimbalSession& session, const json& request) {
-    cmdns::Params p(request);
-    const auto lat = p.number("lat", -90.0, 90.0, true);
-    const auto lon = p.number("lon", -180.0, 180.0, true);
-    const auto alt = p.number("alt", -2000.0, 100000.0, true);
+    cmdns::JsonParams p(request, "project");
+    const auto lat = p.number("lat", true);
+    const auto lon = p.number("lon", true);
+    const auto alt = p.number("alt", true);
     p.reject_unknown();
     if (!p.ok()) return failed(p.error());
-    const auto view = session.capabilities().image(session.snapshot());
+    const auto view = session.capabilities().image();
     if (!view) return failed(view.error());
     const auto before = misses();
     GimbalSession::Outcome out;

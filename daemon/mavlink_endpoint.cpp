@@ -189,18 +189,10 @@ gp::VehicleView MavlinkEndpoint::vehicle_view() const {
     return v;
 }
 
-nlohmann::json MavlinkEndpoint::state_of(const std::string& gimbal) const {
-    // The gimbal's own keys are all the MAVLink mapping and streams read (lib/gimbal_protocol).
+gimbal::session::GimbalView MavlinkEndpoint::state_of(const std::string& gimbal) const {
     for (const auto* s : sessions_)
-        if (s->name() == gimbal) return s->gimbal_state();
-    return nlohmann::json::object();
-}
-
-nlohmann::json MavlinkEndpoint::camera_state_of(const std::string& gimbal) const {
-    // The camera also reports the video (STATE `video`, a key the daemon adds).
-    for (const auto* s : sessions_)
-        if (s->name() == gimbal) return s->snapshot();
-    return nlohmann::json::object();
+        if (s->name() == gimbal) return s->view();
+    return {};
 }
 
 bool MavlinkEndpoint::authentic(const mav::Message& m) {
@@ -316,7 +308,7 @@ void MavlinkEndpoint::on_camera_command(const gp::CommandView& command,
             camera.component_id);
         return;
     }
-    const gp::StateLookup lookup = [this](const std::string& g) { return camera_state_of(g); };
+    const gp::StateLookup lookup = [this](const std::string& g) { return state_of(g); };
     // Zoom is the gimbal manager's mapping, for this camera's gimbal only.
     if (command.command == mav::mav_cmd::set_camera_zoom) {
         gp::CommandView as_manager = command;
@@ -356,12 +348,8 @@ void MavlinkEndpoint::hold(const gp::ExposedCamera& camera, const nlohmann::json
     h.point.lon = *lon;
     h.point.alt = *alt;
     h.point.radius = radius;
-    const nlohmann::json state = state_of(camera.gimbal.name);
-    const auto* t =
-        state.is_object() && state.contains("telemetry") ? &state["telemetry"] : nullptr;
-    if (t && t->is_object() && t->contains("geoid_undulation") &&
-        (*t)["geoid_undulation"].is_number())
-        h.point.alt_msl = *alt - (*t)["geoid_undulation"].get<double>();
+    const auto* t = state_of(camera.gimbal.name).telemetry;
+    if (t && t->geoid_undulation) h.point.alt_msl = *alt - *t->geoid_undulation;
     h.since_tick = h.next_geo_tick = h.next_image_tick = ticks_ + 1;
     held_[camera.gimbal.device_id] = h;
     log::info("mavlink_track", "click-to-track: holding a point",
@@ -381,7 +369,7 @@ void MavlinkEndpoint::release(std::uint8_t device_id, const char* why) {
         log::info("mavlink_track", std::string("click-to-track ended: ") + why,
                   {{"gimbal", c.gimbal.name}, {"component", c.component_id}});
         // One IDLE status, so a ground station stops drawing the point.
-        send(gp::tracking_geo_status(std::nullopt, nlohmann::json()), c.component_id);
+        send(gp::tracking_geo_status(std::nullopt, {}), c.component_id);
         if (cameras_.intervals(c.component_id).image_ms != 0)
             send(gp::tracking_image_status(std::nullopt, std::nullopt), c.component_id);
     }
@@ -394,12 +382,9 @@ void MavlinkEndpoint::check_held() {
         if (ticks_ < h.since_tick + settle_ticks) continue;
         for (const auto& c : cameras_.cameras()) {
             if (c.gimbal.device_id != device_id) continue;
-            const nlohmann::json state = state_of(c.gimbal.name);
-            const auto* t =
-                state.is_object() && state.contains("telemetry") ? &state["telemetry"] : nullptr;
-            if (t && t->is_object() && t->contains("mode") && (*t)["mode"].is_string() &&
-                (*t)["mode"] != "geopoint")
-                ended.push_back(device_id);
+            // A gimbal that reports its pointing mode and has left geopoint.
+            const auto* caps = state_of(c.gimbal.name).capabilities;
+            if (caps && caps->holds_geopoint() == false) ended.push_back(device_id);
         }
     }
     for (const auto id : ended) release(id, "the gimbal left geopoint mode");
@@ -409,7 +394,7 @@ std::optional<gp::ImageAt> MavlinkEndpoint::image_at(const std::string& gimbal,
                                                      const gp::HeldPoint& held) const {
     for (const auto* s : sessions_) {
         if (s->name() != gimbal) continue;
-        const auto view = s->capabilities().image(s->gimbal_state());
+        const auto view = s->capabilities().image();
         if (!view) return std::nullopt;
         const nlohmann::json p = gimbal::session::project_reply(
             *view, gimbal::geo::Lla{held.lat, held.lon, held.alt}, nullptr);
@@ -518,7 +503,7 @@ void MavlinkEndpoint::on_tick() {
         if (ticks_ % 10 == 1) send(gp::heartbeat(), g.component_id);
         const bool status = ticks_ % 2 == 0;
         const bool fov = ticks_ % 5 == 0;
-        const nlohmann::json state = state_of(g.name);
+        const gimbal::session::GimbalView state = state_of(g.name);
         send(gp::attitude_status(g, state, t), g.component_id);
         if (status) send(gp::manager_status(g, manager_.control(g.device_id), t), g.component_id);
         if (fov) send(gp::fov_status(g, state, t), g.component_id);
@@ -529,7 +514,7 @@ void MavlinkEndpoint::on_tick() {
         if (ticks_ % 10 == 1) send(gp::camera_heartbeat(), c.component_id);
         const auto it = held_.find(c.gimbal.device_id);
         if (ticks_ % 5 != 0 && it == held_.end()) continue;
-        const nlohmann::json state = state_of(c.gimbal.name);
+        const gimbal::session::GimbalView state = state_of(c.gimbal.name);
         if (ticks_ % 5 == 0) send(gp::camera_fov_status(c, state, t), c.component_id);
         if (it == held_.end()) continue;
         Held& h = it->second;

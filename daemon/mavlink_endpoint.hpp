@@ -104,8 +104,9 @@ class MavlinkEndpoint {
     std::uint64_t signing_now() const;
     void restore_signing_state();
     void save_signing_state_now();
-    nlohmann::json state_of(const std::string& gimbal) const;
-    nlohmann::json camera_state_of(const std::string& gimbal) const;
+    // The gimbal's typed state (capabilities, telemetry, health, video); an empty view for a
+    // name no session has.
+    gimbal::session::GimbalView state_of(const std::string& gimbal) const;
 
     gimbal::daemon::MavlinkConfig config_;
     std::optional<gimbal::mavlink::SigningKey> key_;

@@ -44,13 +44,13 @@ void check_readable(config::Fields& f, std::string_view key,
 
 void read_url(config::Fields& f, MqttConfig& c) {
     if (!f.string("url", c.url)) return;
-    auto url = parse_mqtt_url(c.url);
-    if (auto* parsed = std::get_if<MqttUrl>(&url)) {
-        c.tls = parsed->tls;
-        c.host = parsed->host;
-        c.port = parsed->port;
+    const auto url = parse_mqtt_url(c.url);
+    if (url) {
+        c.tls = url->tls;
+        c.host = url->host;
+        c.port = url->port;
     } else {
-        f.problem("url", std::get<std::string>(url));
+        f.problem("url", url.error().message);
     }
 }
 

@@ -7,6 +7,7 @@
 #include "klv/local_set.hpp"
 #include "klv_state/sensor_frame.hpp"
 #include "state/precision.hpp"
+#include "state/writer.hpp"
 #include "video/url.hpp"
 
 namespace gimbald::video {
@@ -20,8 +21,8 @@ namespace {
 
 gv::VideoUrl parse(const std::string& text) {
     auto parsed = gv::parse_video_url(text);
-    if (!parsed.url) throw std::invalid_argument(text + ": " + parsed.error);
-    return *parsed.url;
+    if (!parsed) throw std::invalid_argument(text + ": " + parsed.error().message);
+    return *parsed;
 }
 
 std::uint64_t unix_us_now() {
@@ -55,7 +56,7 @@ GimbalVideo::GimbalVideo(boost::asio::io_context& io, GimbalVideoOptions options
       dropped_log_(gimbal::log::Level::warn, "video_dropped", "times video was dropped"),
       generate_error_log_(gimbal::log::Level::warn, "klv_generate_error",
                           "KLV sets not generated") {
-    if (!options_.capabilities) throw std::invalid_argument("GimbalVideo needs capabilities");
+    if (!options_.view) throw std::invalid_argument("GimbalVideo needs the gimbal's view");
     const bool klv_off = options_.config.klv == KlvMode::off;
     for (const auto& text : options_.config.outputs) {
         VideoOutputOptions o;
@@ -168,13 +169,10 @@ void GimbalVideo::on_klv(gimbal::klv::CheckedSets& checked) {
     for (const auto& set : checked.sets) send_klv(set.bytes);
     track_.stream_sets(std::move(checked), now);
     if (!any) return;
-    if (now - vs_telemetry_at_s_ >= compare_every_s && options_.state) {
+    if (now - vs_telemetry_at_s_ >= compare_every_s) {
         vs_telemetry_at_s_ = now;
-        const auto own = gimbal::klv_state::sensor_frame(options_.state(), *options_.capabilities,
-                                                         unix_us_now());
+        const auto own = gimbal::klv_state::sensor_frame(options_.view(), unix_us_now());
         vs_telemetry_ = gimbal::klv_state::compare(*track_.latest_stream_json(), own);
-        for (auto& [key, value] : vs_telemetry_.items())
-            if (value.is_number()) value = gimbal::state::metres(value.get<double>());
     }
 }
 
@@ -259,53 +257,58 @@ void GimbalVideo::watch_counters() {
 }
 
 void GimbalVideo::generate() {
-    if (!generating() || !options_.state) return;
-    const auto frame = gimbal::klv_state::sensor_frame(options_.state(), *options_.capabilities,
-                                                       unix_us_now(), options_.config.mission_id);
+    if (!generating()) return;
+    const auto frame =
+        gimbal::klv_state::sensor_frame(options_.view(), unix_us_now(), options_.config.mission_id);
     if (!gimbal::klv_state::has_position(frame)) return;  // nothing known about the camera yet
     klv::Encoded encoded = klv::encode(klv::sensor_set(frame));
     if (!encoded.ok()) {
         ++generate_errors_;
-        generate_error_log_.hit("a generated KLV set did not encode: " + encoded.error,
+        generate_error_log_.hit("a generated KLV set did not encode: " + encoded.error().message,
                                 {{"gimbal", options_.gimbal}});
         return;
     }
     ++generated_;
-    send_klv(encoded.bytes);
-    if (options_.record) options_.record(encoded.bytes, true);
-    track_.generated(std::move(encoded.bytes), now_s());
+    send_klv(*encoded);
+    if (options_.record) options_.record(*encoded, true);
+    track_.generated(std::move(encoded).value(), now_s());
+}
+
+gimbal::state::VideoState GimbalVideo::video_state() const {
+    const VideoInputStatus s = input_->status();
+    const auto& info = s.stream;
+    const auto positive = [](int v) { return v > 0 ? std::optional(v) : std::nullopt; };
+    const auto text = [](const std::string& t) {
+        return t.empty() ? std::nullopt : std::optional(t);
+    };
+    gimbal::state::VideoState v;
+    v.input = gv::redact_userinfo(options_.config.input);
+    v.connected = s.connected;
+    if (info.codec) v.codec = std::string(gv::to_string(*info.codec));
+    v.width = positive(info.width);
+    v.height = positive(info.height);
+    if (info.fps) v.fps = gimbal::state::round_decimals(*info.fps, 3);
+    v.bitrate_bps = static_cast<std::uint64_t>(std::llround(info.bitrate_bps));
+    if (const auto source = track_.source()) v.klv_source = std::string(to_string(*source));
+    if (track_.has_latest()) {
+        v.klv = track_.latest_json();
+        v.klv["age_s"] = gimbal::state::seconds(track_.latest_age_s(now_s()));
+    }
+    v.klv_sets = track_.sets();
+    v.klv_bad_checksums = track_.bad_checksums();
+    v.klv_refused = track_.refused() + s.demux.oversized_klv + s.demux.metadata_dropped;
+    v.klv_vs_telemetry = vs_telemetry_;
+    v.source = text(s.source);
+    v.foreign_datagrams = s.foreign_datagrams;
+    v.dropped_datagrams = s.dropped_datagrams;
+    v.dropped_units = s.dropped_units;
+    v.reconnects = s.reconnects;
+    v.last_error = text(s.last_error);
+    return v;
 }
 
 json GimbalVideo::snapshot() const {
-    const VideoInputStatus s = input_->status();
-    const auto& info = s.stream;
-    const auto positive = [](int v) { return v > 0 ? json(v) : json(nullptr); };
-    json klv = nullptr;
-    if (track_.has_latest()) {
-        klv = track_.latest_json();
-        klv["age_s"] = gimbal::state::seconds(track_.latest_age_s(now_s()));
-    }
-    const auto source = track_.source();
-    const auto text = [](const std::string& t) { return t.empty() ? json(nullptr) : json(t); };
-    return {{"input", gv::redact_userinfo(options_.config.input)},
-            {"connected", s.connected},
-            {"codec", info.codec ? json(std::string(gv::to_string(*info.codec))) : json(nullptr)},
-            {"width", positive(info.width)},
-            {"height", positive(info.height)},
-            {"fps", info.fps ? json(gimbal::state::round_decimals(*info.fps, 3)) : json(nullptr)},
-            {"bitrate_bps", static_cast<std::uint64_t>(std::llround(info.bitrate_bps))},
-            {"klv_source", source ? json(std::string(to_string(*source))) : json(nullptr)},
-            {"klv", std::move(klv)},
-            {"klv_sets", track_.sets()},
-            {"klv_bad_checksums", track_.bad_checksums()},
-            {"klv_refused", track_.refused() + s.demux.oversized_klv + s.demux.metadata_dropped},
-            {"klv_vs_telemetry", vs_telemetry_},
-            {"source", text(s.source)},
-            {"foreign_datagrams", s.foreign_datagrams},
-            {"dropped_datagrams", s.dropped_datagrams},
-            {"dropped_units", s.dropped_units},
-            {"reconnects", s.reconnects},
-            {"last_error", text(s.last_error)}};
+    return gimbal::state::write(video_state());
 }
 
 gimbal::command::Result<json> GimbalVideo::klv_reply() const {

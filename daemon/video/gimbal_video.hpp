@@ -26,7 +26,8 @@
 #include "klv/sensor_set.hpp"
 #include "link/lifetime.hpp"
 #include "logging.hpp"
-#include "session/capabilities.hpp"
+#include "session/gimbal_view.hpp"
+#include "state/video_state.hpp"
 #include "video/klv_clock.hpp"
 #include "video/klv_track.hpp"
 #include "video/ts_muxer.hpp"
@@ -40,10 +41,9 @@ namespace gimbald::video {
 struct GimbalVideoOptions {
     std::string gimbal;
     VideoConfig config;
-    const gimbal::session::Capabilities* capabilities = nullptr;
-    // The gimbal's STATE (GimbalSession::snapshot), read to generate KLV and to compare the
-    // stream's KLV with gimbald's own values.
-    std::function<nlohmann::json()> state;
+    // The gimbal's typed state (GimbalSession::view): its capabilities and telemetry, read to
+    // generate KLV and to compare the stream's KLV with gimbald's own values. Required.
+    std::function<gimbal::session::GimbalView()> view;
     // The recorder's tap: the input's MPEG-TS (each UDP datagram; an RTSP input's access
     // units muxed into TS) with generated = false, and each generated set with generated =
     // true. Empty: not recording.
@@ -61,7 +61,9 @@ class GimbalVideo final : public VideoTap {
     void start();
     void stop();
 
-    // STATE `video`.
+    // STATE `video`, typed (state/video_state.hpp).
+    gimbal::state::VideoState video_state() const;
+    // STATE `video` as JSON.
     nlohmann::json snapshot() const;
     // The `klv` command: {"klv_hex", "klv"}, or unavailable when no set is known yet.
     gimbal::command::Result<nlohmann::json> klv_reply() const;
@@ -102,7 +104,7 @@ class GimbalVideo final : public VideoTap {
     bool running_ = false;
     std::uint64_t generated_ = 0;
     std::uint64_t generate_errors_ = 0;
-    nlohmann::json vs_telemetry_;  // null until a stream set was compared
+    std::optional<gimbal::state::KlvOffsets> vs_telemetry_;  // until a stream set was compared
     double vs_telemetry_at_s_ = -1e9;
     gimbal::log::RateLimitedLog bad_checksum_log_;
     gimbal::log::RateLimitedLog refused_log_;

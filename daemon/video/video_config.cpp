@@ -31,11 +31,11 @@ std::optional<gv::VideoUrl> read_url(const json& value, const std::string& path,
         return std::nullopt;
     }
     const auto parsed = gv::parse_video_url(value.get<std::string>());
-    if (!parsed.url) {
-        problem(path, fmt::format("\"{}\": {}", value.get<std::string>(), parsed.error));
+    if (!parsed) {
+        problem(path, fmt::format("\"{}\": {}", value.get<std::string>(), parsed.error().message));
         return std::nullopt;
     }
-    const gv::VideoUrl& url = *parsed.url;
+    const gv::VideoUrl& url = *parsed;
     if (input && url.scheme == gv::UrlScheme::klv_udp) {
         problem(path, "an input is udp:// (MPEG-TS) or rtsp://, not klv-udp://");
         return std::nullopt;

@@ -49,6 +49,8 @@
 #include "klv/ber.hpp"
 #include "klv/st0601.hpp"
 
+#include "result/result.hpp"
+
 namespace gimbal::klv {
 
 struct Reserved {};  // the tag's reserved "out of range" / error value
@@ -84,15 +86,14 @@ struct LatLon {
 };
 std::uint32_t add_corners(LocalSet& set, LatLon frame_center, const std::array<LatLon, 4>& corners);
 
-struct Encoded {
-    Bytes bytes;        // key, BER length, items, checksum; empty on error
-    std::string error;  // "tag 13 (sensor_latitude): ..." ; empty on success
-    bool ok() const { return error.empty(); }
-};
+// The set's bytes (key, BER length, items, checksum), or bad_request naming the item it
+// refuses: "tag 13 (sensor_latitude) takes a number".
+using Encoded = Result<Bytes>;
 
 Encoded encode(const LocalSet& set);
-// One item's value bytes (no tag, no length). False with `error` when encode() would refuse it.
-bool encode_value(const Item& item, Bytes& out, std::string& error);
+// One item's value bytes (no tag, no length) appended to `out`, or bad_request saying why
+// encode() would refuse it ("takes a number").
+Status encode_value(const Item& item, Bytes& out);
 
 // A set is at most this long, key through checksum (contract section 14 v4), and has at most
 // this many items: ST 0601 defines 143 tags, and a few of them may repeat.

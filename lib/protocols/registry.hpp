@@ -69,7 +69,9 @@ struct Entry {
     // find_by_dissector maps a recording's frames back to their entry.
     std::string_view dissector;
     std::span<const PlannedCommand> commands;
-    const session::Capabilities* capabilities = nullptr;
+    // What every gimbal of the protocol can do (a session's capabilities say the same, bound
+    // to its state: session::Protocol::capabilities()).
+    session::Features features;
 
     // The gimbal keys this protocol owns besides name, protocol, link and video, declared in
     // its <protocol>_config.hpp. read_config reads them from the gimbal's object, reporting

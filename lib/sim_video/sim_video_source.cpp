@@ -4,17 +4,17 @@
 
 namespace gimbal::sim_video {
 
-SimVideoSource::Opened SimVideoSource::open(const SimVideoOptions& options) {
+Result<std::unique_ptr<SimVideoSource>> SimVideoSource::open(const SimVideoOptions& options) {
     if (!sim::valid(options.scene))
-        return {nullptr, "scene: width and height must be even, 16..4096; grid 4..64 px"};
+        return Error{code::bad_request,
+                     "scene: width and height must be even, 16..4096; grid 4..64 px"};
     H264Options h264 = options.h264;
     h264.width = options.scene.width;
     h264.height = options.scene.height;
     auto opened = H264Encoder::open(h264);
-    if (!opened.encoder) return {nullptr, opened.error};
-    return {std::unique_ptr<SimVideoSource>(
-                new SimVideoSource(options.scene, std::move(opened.encoder))),
-            {}};
+    if (!opened) return opened.error();
+    return std::unique_ptr<SimVideoSource>(
+        new SimVideoSource(options.scene, std::move(opened).value()));
 }
 
 SimVideoSource::SimVideoSource(const sim::SceneOptions& scene, std::unique_ptr<H264Encoder> encoder)

@@ -26,11 +26,8 @@ struct SimVideoOptions {
 
 class SimVideoSource {
   public:
-    struct Opened {
-        std::unique_ptr<SimVideoSource> source;
-        std::string error;
-    };
-    static Opened open(const SimVideoOptions& options);
+    // The source, or why not (bad_request for options, unavailable for the encoder).
+    static Result<std::unique_ptr<SimVideoSource>> open(const SimVideoOptions& options);
 
     // One frame of what `camera` sees, taken at unix_ms and shown at pts_90k; its access
     // unit(s) are appended to `out`. False (error() says why) when the encoder refuses it; an

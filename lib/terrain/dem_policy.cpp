@@ -115,7 +115,7 @@ std::string Checker::file(const std::string& given, int depth, CheckedDem* out) 
     }
     if (!driver) return "not a GeoTIFF, SRTM .hgt, DTED or VRT file";
     const std::string name = GDALGetDriverShortName(driver);
-    if (out) *out = {path.string(), name, {}};
+    if (out) *out = {path.string(), name};
     if (accepted_.count(path)) return {};
     if (name == "VRT")
         if (auto e = vrt(path, depth); !e.empty()) return e;
@@ -203,11 +203,12 @@ std::string check_dem_name(const std::string& pattern) {
     return e.empty() ? e : pattern + ": " + e;
 }
 
-CheckedDem check_dem_file(const std::string& path, const std::vector<fs::path>& folders) {
+Result<CheckedDem> check_dem_file(const std::string& path, const std::vector<fs::path>& folders) {
     gdal_init();
     Checker checker(folders);
     CheckedDem out;
-    if (auto e = checker.file(path, 0, &out); !e.empty()) out.error = path + ": " + e;
+    if (auto e = checker.file(path, 0, &out); !e.empty())
+        return Error{code::unavailable, path + ": " + e};
     return out;
 }
 

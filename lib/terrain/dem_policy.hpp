@@ -25,6 +25,8 @@
 #include <string>
 #include <vector>
 
+#include "result/result.hpp"
+
 namespace gimbal::terrain {
 
 namespace dem_limits {
@@ -44,16 +46,16 @@ std::vector<std::filesystem::path> dem_folders(const std::vector<std::string>& p
 struct CheckedDem {
     std::string path;    // resolved (what GDAL opens)
     std::string driver;  // "GTiff", "SRTMHGT", "DTED" or "VRT", from the content
-    std::string error;   // why it is refused, naming the file as given; empty when accepted
 };
 
 // A configured path or glob that names something other than a local file (a GDAL virtual
 // file system, a URL): the problem, naming it; "" when it may be a local file.
 std::string check_dem_name(const std::string& pattern);
 
-// Checks a configured file (and, for a VRT, all it names) before GDAL opens it for reading.
-CheckedDem check_dem_file(const std::string& path,
-                          const std::vector<std::filesystem::path>& folders);
+// Checks a configured file (and, for a VRT, all it names) before GDAL opens it for reading;
+// a refusal (unavailable) says why, naming the file as given.
+Result<CheckedDem> check_dem_file(const std::string& path,
+                                  const std::vector<std::filesystem::path>& folders);
 
 // The size rules on an opened raster, before anything is read from it: "" or the problem
 // (without the file's name).

@@ -343,37 +343,43 @@ bool DemReader::load_projected(const DemLattice& l, const Tile& t, const BlockKe
     return true;
 }
 
-DemReader::Opened DemReader::open(const TerrainOptions& options) {
+namespace {
+Error unusable(std::string message) {
+    return {code::unavailable, std::move(message)};
+}
+}  // namespace
+
+Result<std::unique_ptr<DemReader>> DemReader::open(const TerrainOptions& options) {
     gdal_init();
     QuietErrors quiet;
-    if (options.files.empty()) return {nullptr, "terrain.files names no file"};
+    if (options.files.empty()) return unusable("terrain.files names no file");
     std::unique_ptr<DemReader> reader(new DemReader());
     DemLayout& layout = *reader->layout_;
-    if (const auto e = expand(options.files, layout.files); !e.empty()) return {nullptr, e};
+    if (const auto e = expand(options.files, layout.files); !e.empty()) return unusable(e);
     if (options.geoid == GeoidModel::egm96) {
         std::string grid = options.geoid_grid;
         if (grid.empty()) {
             const auto found = Geoid::find_egm96();
             if (!found)
-                return {nullptr,
-                        "egm96_15.gtx: EGM96 geoid grid not found on PROJ's search path or in "
-                        "/usr/share/proj (install proj-data, or set geoid none)"};
+                return unusable(
+                    "egm96_15.gtx: EGM96 geoid grid not found on PROJ's search path or in "
+                    "/usr/share/proj (install proj-data, or set geoid none)");
             grid = *found;
         }
         auto g = Geoid::open(grid);
-        if (!g.geoid) return {nullptr, g.error};
-        layout.geoid = std::move(g.geoid);
+        if (!g) return g.error();
+        layout.geoid = std::move(g).value();
     }
     const auto folders = dem_folders(options.files);
     reader->tiles_.resize(layout.files.size());
     for (std::size_t i = 0; i < layout.files.size(); ++i) {
         const std::string& path = layout.files[i];
-        const CheckedDem checked = check_dem_file(path, folders);
-        if (!checked.error.empty()) return {nullptr, checked.error};
+        const auto checked = check_dem_file(path, folders);
+        if (!checked) return checked.error();
         layout.tiles.push_back({path, {}});
-        if (auto e = reader->open_tile(path, checked.path, checked.driver, reader->tiles_[i]);
+        if (auto e = reader->open_tile(path, checked->path, checked->driver, reader->tiles_[i]);
             !e.empty())
-            return {nullptr, e};
+            return unusable(e);
         reader->place(i);
     }
     std::stable_sort(layout.lattices.begin(), layout.lattices.end(),
@@ -387,7 +393,7 @@ DemReader::Opened DemReader::open(const TerrainOptions& options) {
     const std::size_t budget = static_cast<std::size_t>(std::max(options.cache_mb, 1)) << 20;
     GDALSetCacheMax64(static_cast<GIntBig>(
         std::clamp<std::size_t>(budget / 8, std::size_t{1} << 20, std::size_t{32} << 20)));
-    return {std::move(reader), {}};
+    return reader;
 }
 
 }  // namespace gimbal::terrain

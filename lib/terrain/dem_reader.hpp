@@ -19,6 +19,8 @@
 #include "terrain/dem_layout.hpp"
 #include "terrain/terrain_config.hpp"
 
+#include "result/result.hpp"
+
 namespace gimbal::terrain {
 
 // The config section `terrain` (terrain_config.hpp) and where the EGM96 grid is.
@@ -30,11 +32,10 @@ struct TerrainOptions : TerrainConfig {
 
 class DemReader {
   public:
-    struct Opened;
-    // Opens every file (globs expanded, sorted). Errors name the file: a path or glob that
-    // names no file, a file the policy refuses, a file GDAL cannot read, a raster without
-    // usable georeferencing or CRS, a missing geoid grid with geoid egm96.
-    static Opened open(const TerrainOptions& options);
+    // Opens every file (globs expanded, sorted). Errors (unavailable) name the file: a path
+    // or glob that names no file, a file the policy refuses, a file GDAL cannot read, a
+    // raster without usable georeferencing or CRS, a missing geoid grid with geoid egm96.
+    static Result<std::unique_ptr<DemReader>> open(const TerrainOptions& options);
     ~DemReader();
     DemReader(const DemReader&) = delete;
     DemReader& operator=(const DemReader&) = delete;
@@ -61,11 +62,6 @@ class DemReader {
     std::vector<Tile> tiles_;
     std::vector<float> scratch_;
     const std::function<bool()>* keep_going_ = nullptr;  // during read()
-};
-
-struct DemReader::Opened {
-    std::unique_ptr<DemReader> reader;
-    std::string error;  // when reader is null: names the file and what is wrong with it
 };
 
 }  // namespace gimbal::terrain

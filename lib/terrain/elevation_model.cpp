@@ -174,13 +174,13 @@ std::optional<geo::Patch> ElevationModel::Impl::find(double lat, double lon, dou
 ElevationModel::ElevationModel(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 ElevationModel::~ElevationModel() = default;
 
-OpenedModel ElevationModel::open(const TerrainOptions& options) {
-    if (options.cache_mb <= 0) return {nullptr, "terrain.cache_mb must be positive"};
+Result<std::unique_ptr<ElevationModel>> ElevationModel::open(const TerrainOptions& options) {
+    if (options.cache_mb <= 0) return Error{code::bad_request, "terrain.cache_mb must be positive"};
     auto opened = DemReader::open(options);
-    if (!opened.reader) return {nullptr, opened.error};
+    if (!opened) return opened.error();
     const std::size_t budget = static_cast<std::size_t>(options.cache_mb) << 20;
-    auto impl = std::make_unique<Impl>(std::move(opened.reader), budget);
-    return {std::unique_ptr<ElevationModel>(new ElevationModel(std::move(impl))), {}};
+    auto impl = std::make_unique<Impl>(std::move(opened).value(), budget);
+    return std::unique_ptr<ElevationModel>(new ElevationModel(std::move(impl)));
 }
 
 std::unique_ptr<DemReader> ElevationModel::read_elsewhere(BlockSource& source) {

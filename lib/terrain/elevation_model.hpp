@@ -30,10 +30,6 @@
 namespace gimbal::terrain {
 
 class ElevationModel;
-struct OpenedModel {
-    std::unique_ptr<ElevationModel> model;
-    std::string error;  // when model is null: names the file and what is wrong with it
-};
 
 struct Elevation {
     double alt_m = 0;                 // above the WGS84 ellipsoid
@@ -45,7 +41,7 @@ class ElevationModel final : public geo::Surface {
   public:
     // Opens every file (DemReader::open: globs expanded, sorted, each checked; errors name
     // the file); blocks are read from the files when first needed.
-    static OpenedModel open(const TerrainOptions& options);
+    static Result<std::unique_ptr<ElevationModel>> open(const TerrainOptions& options);
     ~ElevationModel() override;
 
     // From now on blocks come from `source` (which must outlive the model's use); returns the

@@ -78,8 +78,8 @@ bool host_port(std::string_view hp, VideoUrl& url, std::string& error) {
     return true;
 }
 
-UrlResult fail(std::string error) {
-    return {std::nullopt, std::move(error)};
+Error fail(std::string error) {
+    return {code::bad_request, std::move(error)};
 }
 
 }  // namespace
@@ -96,7 +96,7 @@ std::string_view to_string(UrlScheme scheme) {
     return "udp";
 }
 
-UrlResult parse_video_url(std::string_view text) {
+Result<VideoUrl> parse_video_url(std::string_view text) {
     VideoUrl url;
     url.text = std::string(text);
     const std::size_t sep = text.find("://");
@@ -158,13 +158,13 @@ UrlResult parse_video_url(std::string_view text) {
             url.port = 554;
         }
         url.rtsp_url = "rtsp://" + std::string(rest) + (kept.empty() ? "" : "?" + kept);
-        return {url, {}};
+        return url;
     }
     std::string error;
     if (!host_port(rest, url, error)) return fail(error);
     if (url.host.empty() && url.scheme == UrlScheme::klv_udp)
         return fail("klv-udp:// needs a host");
-    return {url, {}};
+    return url;
 }
 
 namespace {

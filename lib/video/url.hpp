@@ -13,6 +13,8 @@
 #include <string>
 #include <string_view>
 
+#include "result/result.hpp"
+
 namespace gimbal::video {
 
 enum class UrlScheme : std::uint8_t { udp, rtsp, klv_udp };
@@ -31,12 +33,8 @@ struct VideoUrl {
     std::string rtsp_url;  // rtsp: the URL for the RTSP client, our own keys removed
 };
 
-struct UrlResult {
-    std::optional<VideoUrl> url;
-    std::string error;  // why not, when url is empty
-};
-
-UrlResult parse_video_url(std::string_view text);
+// The URL, or bad_request saying why not.
+Result<VideoUrl> parse_video_url(std::string_view text);
 
 // RTSP redirects and credentials (contract section 14 v4): the "host:port" an rtsp:// URL
 // names (host lower-cased, an IPv6 address in brackets, port 554 when none is given), so two

@@ -46,7 +46,7 @@ void check_set(std::span<const std::uint8_t> set) {
         if (item.tag != 1) relay.add(item.tag, item.value);
     const klv::Encoded e = klv::encode(relay);
     if (!e.ok()) fail("a relayed set does not encode");
-    const klv::DecodeResult again = klv::decode(e.bytes);
+    const klv::DecodeResult again = klv::decode(e.value());
     if (!again.ok()) fail("a relayed set does not decode");
     // encode() writes only the final checksum: earlier tag 1 items are not relayed.
     const auto without_checksums = [](nlohmann::json j) {
@@ -78,7 +78,7 @@ void check_values(std::span<const std::uint8_t> data) {
             if (!std::isnan(x)) fail("a number was refused");
             continue;
         }
-        const klv::DecodeResult r = klv::decode(e.bytes, klv::Digits::exact);
+        const klv::DecodeResult r = klv::decode(e.value(), klv::Digits::exact);
         if (!r.ok()) fail("an encoded number does not decode");
         if (!klv::in_range(row.tag, x)) continue;
         const nlohmann::json& v = r.json[std::string(row.name)];

@@ -159,10 +159,6 @@ bool MavlinkDeviceProtocol::supports(std::string_view cmd) const {
     return is_device_command(cmd);
 }
 
-const session::Capabilities& MavlinkDeviceProtocol::capabilities() const {
-    return mavlink_device_capabilities();
-}
-
 std::optional<command::Error> MavlinkDeviceProtocol::plan(std::string_view cmd,
                                                           const nlohmann::json& request,
                                                           const session::Now& now,
@@ -187,8 +183,8 @@ std::optional<command::Error> MavlinkDeviceProtocol::plan(std::string_view cmd,
 
 std::optional<command::Error> MavlinkDeviceProtocol::acknowledge_stare(
     const nlohmann::json& request) {
-    command::Params p(request);
-    const auto time = p.integer("system_time_ms", 0, 4294967295LL, false);
+    command::JsonParams p(request, "stare_ack");
+    const auto time = p.integer("system_time_ms", false);
     p.reject_unknown();
     if (!p.ok()) return p.error();
     if (!time && !last_stare_time_ms_)

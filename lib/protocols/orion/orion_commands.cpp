@@ -19,12 +19,6 @@ namespace {
 namespace o = gimbal::orion;
 constexpr double deg2rad = o::pi / 180.0;
 
-// Altitudes a command may name, metres (below the Dead Sea to well above any aircraft).
-constexpr double min_alt_m = -2000.0;
-constexpr double max_alt_m = 100000.0;
-// OrionCmd targets are I16 scaled by 1000 (radians or radians/s).
-constexpr double max_cmd_target_deg = 32.767 / deg2rad;
-
 template <class P>
 bool add_packet(const P& packet, Plan& plan) {
     o::Payload payload;
@@ -38,7 +32,7 @@ bool add_packet(const P& packet, Plan& plan) {
 
 struct Request {
     const nlohmann::json& request;
-    Params& p;
+    JsonParams& p;
     const OrionContext& ctx;
     Plan& plan;
 };
@@ -47,14 +41,13 @@ using Handler = std::function<void(Request&)>;
 
 void geopoint(Request& r) {
     auto& p = r.p;
-    const auto lat = p.number("lat", -90.0, 90.0, true);
-    const auto lon = p.number("lon", -180.0, 180.0, true);
-    const auto alt = p.number("alt", min_alt_m, max_alt_m, true);
+    const auto lat = p.number("lat", true);
+    const auto lon = p.number("lon", true);
+    const auto alt = p.number("alt", true);
     // "terrain" is the daemon's to resolve (session/ground_altitude.hpp) before planning.
-    static constexpr std::array<std::string_view, 3> refs{"wgs84", "msl", "terrain"};
-    const auto ref = p.choice("alt_ref", refs, false).value_or("wgs84");
-    const auto vel = p.numbers("vel_ned", 3, -327.67, 327.67, false);
-    const auto joystick = p.integer_or("joystick_range_m", 0, 65535, 0);
+    const auto ref = p.choice("alt_ref", false).value_or("wgs84");
+    const auto vel = p.numbers("vel_ned", false);
+    const auto joystick = p.integer_or("joystick_range_m", 0);
     const bool stare = p.boolean_or("stare", false);
     const bool closure = p.boolean_or("closure", false);
     if (!p.ok()) return;
@@ -93,14 +86,14 @@ void path(Request& r) {
 
 void laser(Request& r) {
     auto& p = r.p;
-    const auto index = p.integer_or("index", 0, 1, 0);
+    const auto index = p.integer_or("index", 0);
     const auto enable = p.boolean("enable", true);
     const auto arm = p.boolean("arm", true);
     const auto fire = p.boolean("fire", true);
-    const auto on_ms = p.integer_or("on_ms", 0, 65535, 0);
-    const auto off_ms = p.integer_or("off_ms", 0, 65535, 0);
-    const auto prf = p.integer_or("prf_code", 0, 65535, 0);
-    auto password = p.text("password", 15, false).value_or("");
+    const auto on_ms = p.integer_or("on_ms", 0);
+    const auto off_ms = p.integer_or("off_ms", 0);
+    const auto prf = p.integer_or("prf_code", 0);
+    auto password = p.text("password", false).value_or("");
     const bool bypass = p.boolean_or("safety_bypass", false);
     if (!p.ok()) return;
 
@@ -133,12 +126,12 @@ void laser(Request& r) {
     r.plan.laser = std::move(intent);
 }
 
-void pan_tilt(Request& r, o::Mode mode, double limit_deg, bool default_stabilized) {
+void pan_tilt(Request& r, o::Mode mode, bool default_stabilized) {
     auto& p = r.p;
-    const auto pan = p.number("pan", -limit_deg, limit_deg, true);
-    const auto tilt = p.number("tilt", -limit_deg, limit_deg, true);
+    const auto pan = p.number("pan", true);
+    const auto tilt = p.number("tilt", true);
     const bool stabilized = p.boolean_or("stabilized", default_stabilized);
-    const double impulse = p.number_or("impulse_time_s", 0.0, 25.5, 0.0);
+    const double impulse = p.number_or("impulse_time_s", 0.0);
     if (!p.ok()) return;
     o::Cmd cmd;
     cmd.cmd.target = {*pan * deg2rad, *tilt * deg2rad};
@@ -149,9 +142,7 @@ void pan_tilt(Request& r, o::Mode mode, double limit_deg, bool default_stabilize
 }
 
 void mode(Request& r) {
-    static constexpr std::array<std::string_view, 7> modes{
-        "disabled", "ffc_auto", "ffc_manual", "calibration", "scene", "track", "geo_rate"};
-    const auto name = r.p.choice("mode", modes, true);
+    const auto name = r.p.choice("mode", true);
     if (!r.p.ok()) return;
     o::Cmd cmd;
     o::enum_from_name(*name, cmd.cmd.mode);
@@ -160,7 +151,7 @@ void mode(Request& r) {
 
 void stare_ack(Request& r) {
     auto& p = r.p;
-    const auto time = p.integer("system_time_ms", 0, 4294967295LL, false);
+    const auto time = p.integer("system_time_ms", false);
     if (!p.ok()) return;
     if (!time && !r.ctx.last_stare_time_ms)
         return p.fail(code::unavailable, "no StareStart received yet: give 'system_time_ms'");
@@ -170,8 +161,7 @@ void stare_ack(Request& r) {
 }
 
 void retract(Request& r) {
-    static constexpr std::array<std::string_view, 3> actions{"deploy", "retract", "disable"};
-    const auto action = r.p.choice("action", actions, true);
+    const auto action = r.p.choice("action", true);
     if (!r.p.ok()) return;
     o::RetractCommand cmd;
     o::enum_from_name(*action, cmd.cmd);
@@ -194,8 +184,7 @@ void packet_command(Request& r, std::initializer_list<std::string_view> required
             return p.fail(code::bad_request, "missing parameter '" + std::string(key) + "'");
     P packet;
     o::JsonError error;
-    if (!o::from_json(fields, packet, error))
-        return p.fail(parse_error_code(error.code).value_or(code::bad_request), error.message);
+    if (!o::from_json(fields, packet, error)) return p.fail(error.code, error.message);
     if (!add_packet(packet, r.plan))
         p.fail(code::internal, std::string(P::name) + " did not encode");
 }
@@ -213,7 +202,7 @@ bool requestable(std::uint8_t id) {
 
 void request(Request& r) {
     auto& p = r.p;
-    const auto name = p.text("packet", 64, true);
+    const auto name = p.text("packet", true);
     if (!p.ok()) return;
     std::vector<std::uint8_t> ids;
     std::uint8_t id = 0;
@@ -247,8 +236,8 @@ const std::map<std::string, Handler, std::less<>>& handlers() {
         {"geopoint", geopoint},
         {"path", path},
         {"laser", laser},
-        {"position", [](Request& r) { pan_tilt(r, o::Mode::position, 180.0, false); }},
-        {"rate", [](Request& r) { pan_tilt(r, o::Mode::rate, max_cmd_target_deg, true); }},
+        {"position", [](Request& r) { pan_tilt(r, o::Mode::position, false); }},
+        {"rate", [](Request& r) { pan_tilt(r, o::Mode::rate, true); }},
         {"mode", mode},
         {"stare_ack", stare_ack},
         {"retract", retract},
@@ -270,7 +259,7 @@ std::optional<Error> plan_orion(std::string_view cmd, const nlohmann::json& requ
                                 const OrionContext& context, Plan& plan) {
     const auto it = handlers().find(cmd);
     if (it == handlers().end()) return Error{code::unknown_cmd, "unknown command"};
-    Params params(request);
+    JsonParams params(request, cmd);
     Request r{request, params, context, plan};
     it->second(r);
     params.reject_unknown();

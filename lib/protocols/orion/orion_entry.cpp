@@ -47,7 +47,7 @@ Entry make_entry() {
     e.display_name = "Orion";
     e.dissector = "orion";
     e.commands = commands;
-    e.capabilities = &orion_capabilities();
+    e.features = orion_features();
     e.read_config = [](config::Fields& gimbal, const ConfigContext&) {
         return config::read_and_write<OrionConfig>(gimbal);
     };

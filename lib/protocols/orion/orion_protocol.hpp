@@ -33,11 +33,17 @@ class OrionProtocol final : public session::Protocol {
     void tick(double now_s, std::vector<state::Event>& events) override;
     std::vector<Bytes> on_connect() override;
     bool stale(double now_s) const override { return state_.stale(now_s); }
+    std::optional<double> telemetry_age_s(double now_s) const override {
+        return state_.telemetry_age_s(now_s);
+    }
     std::uint64_t telemetry_count() const override { return state_.telemetry_count(); }
-    nlohmann::json snapshot(double now_s) const override { return state_.snapshot(now_s); }
+    void write_state(state::JsonWriter& w, const session::StateContext& c) const override;
     FrameCounters counters() const override;
     bool supports(std::string_view cmd) const override;
-    const session::Capabilities& capabilities() const override;
+    const session::Capabilities& capabilities() const override { return capabilities_; }
+    const state::Telemetry* telemetry() const override {
+        return state_.telemetry() ? &state_.telemetry()->shared : nullptr;
+    }
     std::optional<command::Error> plan(std::string_view cmd, const nlohmann::json& request,
                                        const Now& now, command::Plan& plan) override;
 
@@ -47,6 +53,7 @@ class OrionProtocol final : public session::Protocol {
     OrionOptions options_;
     orion::Framer framer_;
     state::OrionState state_;
+    OrionCapabilities capabilities_{state_.data()};
 };
 
 }  // namespace gimbal::protocols

@@ -8,7 +8,6 @@
 #include "geo/image.hpp"
 #include "geo/wgs84.hpp"
 #include "protocols/orion/codec/json.hpp"
-#include "state/ground_json.hpp"
 #include "state/precision.hpp"
 
 namespace gimbal::state {
@@ -16,65 +15,84 @@ namespace {
 
 namespace o = gimbal::orion;
 
-// Where each packet kind lives in STATE. Version packets and per-board packets are keyed
-// by board; everything else keeps its latest copy.
-struct Slot {
-    std::string_view packet;
-    std::string_view key;
-    std::string_view sub;  // fixed sub-key (versions), or empty
-};
-
-constexpr std::array<Slot, 21> slots{{
-    {"ins_quality", "ins", ""},
-    {"gps_data", "gps", ""},
-    {"laser_states", "lasers", ""},
-    {"diagnostics", "diagnostics", ""},
-    {"performance", "performance", ""},
-    {"software_diagnostics", "software", ""},
-    {"network_diagnostics", "network_diagnostics", ""},
-    {"vibration", "vibration", ""},
-    {"retract_status", "retract", ""},
-    {"stare_start", "stare", ""},
-    {"cameras", "cameras", ""},
-    {"limits", "limits", ""},
-    {"network_settings", "network_settings", ""},
-    {"network_video", "network_video", ""},
-    {"uart_config", "uart_config", ""},
-    {"ins_options", "ins_options", ""},
-    {"reset_source", "reset_source", ""},
-    {"board", "boards", ""},
-    {"clevis_version", "versions", "clevis"},
-    {"crown_version", "versions", "crown"},
-    {"payload_version", "versions", "payload"},
-}};
-constexpr std::array<Slot, 3> more_versions{{
-    {"tracker_version", "versions", "tracker"},
-    {"retract_version", "versions", "retract"},
-    {"lensctl_version", "versions", "lensctl"},
-}};
-
-// Every key STATE shows for an Orion gimbal, in a stable order.
-constexpr std::array<std::string_view, 20> state_keys{"telemetry",     "ins",
-                                                      "gps",           "lasers",
-                                                      "diagnostics",   "performance",
-                                                      "software",      "network_diagnostics",
-                                                      "vibration",     "retract",
-                                                      "stare",         "cameras",
-                                                      "limits",        "network_settings",
-                                                      "network_video", "uart_config",
-                                                      "ins_options",   "versions",
-                                                      "reset_source",  "boards"};
-
-const Slot* find_slot(std::string_view packet) {
-    for (const auto& s : slots)
-        if (s.packet == packet) return &s;
-    for (const auto& s : more_versions)
-        if (s.packet == packet) return &s;
-    return nullptr;
+// Where a packet kind lives in STATE (nullptr: it is not shown, only its events).
+template <class P>
+std::optional<Received<P>>* latest(OrionPackets& p) {
+    if constexpr (std::is_same_v<P, o::InsQuality>)
+        return &p.ins;
+    else if constexpr (std::is_same_v<P, o::GpsData>)
+        return &p.gps;
+    else if constexpr (std::is_same_v<P, o::LaserStates>)
+        return &p.lasers;
+    else if constexpr (std::is_same_v<P, o::Diagnostics>)
+        return &p.diagnostics;
+    else if constexpr (std::is_same_v<P, o::Performance>)
+        return &p.performance;
+    else if constexpr (std::is_same_v<P, o::NetworkDiagnostics>)
+        return &p.network_diagnostics;
+    else if constexpr (std::is_same_v<P, o::Vibration>)
+        return &p.vibration;
+    else if constexpr (std::is_same_v<P, o::RetractStatus>)
+        return &p.retract;
+    else if constexpr (std::is_same_v<P, o::StareStart>)
+        return &p.stare;
+    else if constexpr (std::is_same_v<P, o::Cameras>)
+        return &p.cameras;
+    else if constexpr (std::is_same_v<P, o::Limits>)
+        return &p.limits;
+    else if constexpr (std::is_same_v<P, o::NetworkSettings>)
+        return &p.network_settings;
+    else if constexpr (std::is_same_v<P, o::NetworkVideo>)
+        return &p.network_video;
+    else if constexpr (std::is_same_v<P, o::UartConfig>)
+        return &p.uart_config;
+    else if constexpr (std::is_same_v<P, o::InsOptions>)
+        return &p.ins_options;
+    else if constexpr (std::is_same_v<P, o::ResetSource>)
+        return &p.reset_source;
+    else if constexpr (std::is_same_v<P, o::ClevisVersion>)
+        return &p.clevis_version;
+    else if constexpr (std::is_same_v<P, o::CrownVersion>)
+        return &p.crown_version;
+    else if constexpr (std::is_same_v<P, o::PayloadVersion>)
+        return &p.payload_version;
+    else if constexpr (std::is_same_v<P, o::TrackerVersion>)
+        return &p.tracker_version;
+    else if constexpr (std::is_same_v<P, o::RetractVersion>)
+        return &p.retract_version;
+    else if constexpr (std::is_same_v<P, o::LensCtlVersion>)
+        return &p.lensctl_version;
+    else
+        return nullptr;
 }
 
-bool keyed(std::string_view key) {
-    return key == "versions" || key == "software" || key == "boards";
+// Per-board packets are keyed by the board that sent them.
+std::string board_key(o::Board board) {
+    const auto name = o::enum_name(board);
+    return name.empty() ? "unknown" : std::string(name);
+}
+
+double age(double now_s, double received_s) {
+    return seconds(std::max(0.0, now_s - received_s));
+}
+
+// A packet's JSON with its age.
+template <class P>
+nlohmann::json aged(const Received<P>& r, double now_s) {
+    nlohmann::json v = r.json;
+    v["age_s"] = age(now_s, r.received_s);
+    return v;
+}
+template <class P>
+nlohmann::json aged(const std::optional<Received<P>>& r, double now_s) {
+    return r ? aged(*r, now_s) : nlohmann::json(nullptr);
+}
+template <class P>
+nlohmann::json aged(const std::map<std::string, Received<P>>& by_board, double now_s) {
+    if (by_board.empty()) return nullptr;
+    nlohmann::json out = nlohmann::json::object();
+    for (const auto& [board, r] : by_board) out[board] = aged(r, now_s);
+    return out;
 }
 
 // Days since 1970-01-01 -> civil date (Howard Hinnant's algorithm).
@@ -115,59 +133,77 @@ std::string gps_to_utc_iso(std::uint16_t week, std::uint32_t itow_ms, std::uint8
     return buf;
 }
 
-nlohmann::json telemetry_json(const o::GeolocateTelemetry& t, geo::Surface* terrain) {
-    nlohmann::json j = o::to_json(t, o::Digits::shortest);
-    j["utc"] = t.gps_week != 0 || t.gps_itow_ms != 0
-                   ? nlohmann::json(gps_to_utc_iso(t.gps_week, t.gps_itow_ms, t.leap_seconds))
-                   : nlohmann::json(nullptr);
-    j["alt_msl"] = metres(t.alt - t.geoid_undulation);
+OrionTelemetry orion_telemetry(const o::GeolocateTelemetry& t, geo::Surface* terrain) {
+    OrionTelemetry out{t, o::to_json(t, o::Digits::shortest), std::nullopt, {}};
+    if (t.gps_week != 0 || t.gps_itow_ms != 0)
+        out.utc = gps_to_utc_iso(t.gps_week, t.gps_itow_ms, t.leap_seconds);
+    // The reported keys as STATE shows them: the codec's digits.
+    const auto shown = [&t](const auto& member) -> std::optional<double> {
+        const nlohmann::json v = o::field_json(t, member, o::Digits::shortest);
+        return v.is_number() ? std::optional(v.get<double>()) : std::nullopt;
+    };
+    Telemetry& s = out.shared;
+    s.lat = shown(t.lat);
+    s.lon = shown(t.lon);
+    s.alt = shown(t.alt);
+    s.geoid_undulation = shown(t.geoid_undulation);
+    s.pan = shown(t.pan);
+    s.tilt = shown(t.tilt);
+    s.hfov = shown(t.hfov);
+    s.vfov = shown(t.vfov);
+    s.alt_msl = metres(t.alt - t.geoid_undulation);
     const geo::Quat mount{t.quat[0], t.quat[1], t.quat[2], t.quat[3]};
     const auto att = geo::quat_to_euler(mount);
-    j["roll"] = angle_deg(att.roll_deg);
-    j["pitch"] = angle_deg(att.pitch_deg);
-    j["yaw"] = angle_deg(att.yaw_deg);
+    s.roll = angle_deg(att.roll_deg);
+    s.pitch = angle_deg(att.pitch_deg);
+    s.yaw = angle_deg(att.yaw_deg);
     const geo::Lla gimbal{t.lat * o::rad2deg, t.lon * o::rad2deg, t.alt};
     const auto target = geo::target_from_los(gimbal, {t.los_ecef[0], t.los_ecef[1], t.los_ecef[2]});
     if (target)
-        j["target"] = {{"lat", latlon_deg(target->lat_deg)},
-                       {"lon", latlon_deg(target->lon_deg)},
-                       {"alt", metres(target->alt_m)}};
-    else
-        j["target"] = nullptr;
+        s.target = GeoPoint{latlon_deg(target->lat_deg), latlon_deg(target->lon_deg),
+                            metres(target->alt_m)};
     // Contract sections 11 and 15. The Orion reports no image rotation.
     const geo::CameraPose camera =
         geo::camera_pose(gimbal, mount, t.pan * o::rad2deg, t.tilt * o::rad2deg,
                          t.hfov * o::rad2deg, t.vfov * o::rad2deg);
-    add_ground_keys(j, camera,
-                    geo::Ground{terrain, target ? std::optional(target->alt_m) : std::nullopt});
-    return j;
+    s.view = ground_view(
+        camera, geo::Ground{terrain, target ? std::optional(target->alt_m) : std::nullopt});
+    return out;
 }
 
-void OrionState::store(const std::string& key, nlohmann::json value, double now_s) {
-    auto& e = entries_[key];
-    e.value = std::move(value);
-    e.received_s = now_s;
+nlohmann::json telemetry_json(const o::GeolocateTelemetry& t, geo::Surface* terrain) {
+    return write(orion_telemetry(t, terrain));
 }
 
-void OrionState::store_keyed(const std::string& key, const std::string& sub, nlohmann::json value,
-                             double now_s) {
-    auto& e = keyed_[key][sub];
-    e.value = std::move(value);
-    e.received_s = now_s;
+template <class P>
+void OrionState::store(const P& packet, nlohmann::json json, double now_s) {
+    if constexpr (std::is_same_v<P, o::SoftwareDiagnostics>) {
+        data_.packets.software[board_key(packet.source_board)] = {packet, std::move(json), now_s};
+    } else if constexpr (std::is_same_v<P, o::BoardInfo>) {
+        data_.packets.boards[board_key(packet.board)] = {packet, std::move(json), now_s};
+    } else if constexpr (std::is_same_v<P, o::LaserStates>) {
+        // STATE `lasers` is the array of lasers, each as the codec writes it.
+        nlohmann::json states = nlohmann::json::array();
+        for (const auto& laser : packet.states)
+            states.push_back(o::to_json(laser, o::Digits::shortest));
+        data_.packets.lasers = Received<P>{packet, std::move(states), now_s};
+    } else if (auto* slot = latest<P>(data_.packets)) {
+        *slot = Received<P>{packet, std::move(json), now_s};
+    }
 }
 
 void OrionState::on_telemetry(const o::GeolocateTelemetry& t, double now_s,
                               std::vector<Event>& events) {
-    if (telemetry_ && telemetry_->mode != t.mode) {
-        events.push_back(Event{"mode",
-                               {{"from", o::JsonWriter::scalar(telemetry_->mode, o::Unit::none)},
-                                {"to", o::JsonWriter::scalar(t.mode, o::Unit::none)}}});
+    if (data_.telemetry && data_.telemetry->packet.mode != t.mode) {
+        events.push_back(
+            Event{"mode",
+                  {{"from", o::JsonWriter::scalar(data_.telemetry->packet.mode, o::Unit::none)},
+                   {"to", o::JsonWriter::scalar(t.mode, o::Unit::none)}}});
     }
-    telemetry_ = t;
+    data_.telemetry = orion_telemetry(t, terrain_);
     telemetry_s_ = now_s;
     ++telemetry_count_;
     lost_reported_ = false;
-    store("telemetry", telemetry_json(t, terrain_), now_s);
 }
 
 bool OrionState::apply(const o::Frame& frame, double now_s, std::vector<Event>& events) {
@@ -195,79 +231,79 @@ bool OrionState::apply(const o::Frame& frame, double now_s, std::vector<Event>& 
                                         {"priority", j.value("priority", nlohmann::json())},
                                         {"text", j.value("description", std::string())}}});
             }
-            const Slot* slot = find_slot(P::name);
-            if (!slot) return;  // commands echoed back, debug strings: events only
-            const std::string key(slot->key);
-            if (!slot->sub.empty()) {
-                store_keyed(key, std::string(slot->sub), std::move(j), now_s);
-            } else if (keyed(key)) {
-                // Per-board packets: keyed by the board that sent them.
-                std::string board = "unknown";
-                for (const char* field : {"source_board", "board", "source"})
-                    if (j.contains(field) && j[field].is_string()) {
-                        board = j[field].get<std::string>();
-                        break;
-                    }
-                store_keyed(key, board, std::move(j), now_s);
-            } else if (key == "lasers") {
-                store(key, j.value("states", nlohmann::json::array()), now_s);
-            } else {
-                store(key, std::move(j), now_s);
-            }
+            store(d.value, std::move(j), now_s);  // commands echoed back, debug: events only
         }
     });
     return decoded;
 }
 
 bool OrionState::stale(double now_s) const {
-    return !telemetry_s_ || now_s - *telemetry_s_ > stale_after_s_;
+    return !data_.telemetry || now_s - telemetry_s_ > stale_after_s_;
 }
 
 void OrionState::tick(double now_s, std::vector<Event>& events) {
-    if (telemetry_s_ && !lost_reported_ && stale(now_s)) {
+    if (data_.telemetry && !lost_reported_ && stale(now_s)) {
         lost_reported_ = true;
-        events.push_back(Event{"lost", {{"age_s", seconds(now_s - *telemetry_s_)}}});
+        events.push_back(Event{"lost", {{"age_s", seconds(now_s - telemetry_s_)}}});
     }
+}
+
+void OrionState::write(JsonWriter& w, double now_s,
+                       const std::function<bool(std::uint8_t)>& firing) const {
+    const OrionPackets& p = data_.packets;
+    if (data_.telemetry)
+        w.object("telemetry", [&](JsonWriter& t) {
+            fields(t, *data_.telemetry);
+            t.seconds("age_s", std::max(0.0, now_s - telemetry_s_));
+        });
+    else
+        w.null("telemetry");
+    w.json("ins", aged(p.ins, now_s));
+    w.json("gps", aged(p.gps, now_s));
+    if (p.lasers) {
+        // An array: each laser carries the packet's age, and the daemon's record of firing.
+        nlohmann::json lasers = p.lasers->json;
+        for (std::size_t i = 0; i < lasers.size(); ++i) {
+            lasers[i]["age_s"] = age(now_s, p.lasers->received_s);
+            if (firing) lasers[i]["firing"] = firing(static_cast<std::uint8_t>(i));
+        }
+        w.json("lasers", std::move(lasers));
+    } else {
+        w.null("lasers");
+    }
+    w.json("diagnostics", aged(p.diagnostics, now_s));
+    w.json("performance", aged(p.performance, now_s));
+    w.json("software", aged(p.software, now_s));
+    w.json("network_diagnostics", aged(p.network_diagnostics, now_s));
+    w.json("vibration", aged(p.vibration, now_s));
+    w.json("retract", aged(p.retract, now_s));
+    w.json("stare", aged(p.stare, now_s));
+    w.json("cameras", aged(p.cameras, now_s));
+    w.json("limits", aged(p.limits, now_s));
+    w.json("network_settings", aged(p.network_settings, now_s));
+    w.json("network_video", aged(p.network_video, now_s));
+    w.json("uart_config", aged(p.uart_config, now_s));
+    w.json("ins_options", aged(p.ins_options, now_s));
+    w.json("reset_source", aged(p.reset_source, now_s));
+    w.json("boards", aged(p.boards, now_s));
+    // The version packets, by board; null until one arrives.
+    nlohmann::json versions = nlohmann::json::object();
+    const auto version = [&](const char* board, const auto& r) {
+        if (r) versions[board] = aged(*r, now_s);
+    };
+    version("clevis", p.clevis_version);
+    version("crown", p.crown_version);
+    version("payload", p.payload_version);
+    version("tracker", p.tracker_version);
+    version("retract", p.retract_version);
+    version("lensctl", p.lensctl_version);
+    w.json("versions", versions.empty() ? nlohmann::json(nullptr) : std::move(versions));
 }
 
 nlohmann::json OrionState::snapshot(double now_s) const {
     nlohmann::json out = nlohmann::json::object();
-    auto with_age = [now_s](const Entry& e) {
-        nlohmann::json v = e.value;
-        const double age = seconds(std::max(0.0, now_s - e.received_s));
-        if (v.is_object())
-            v["age_s"] = age;
-        else
-            v = {{"items", v}, {"age_s", age}};
-        return v;
-    };
-    for (const auto key : state_keys) {
-        const std::string k(key);
-        if (keyed(key)) {
-            auto it = keyed_.find(k);
-            if (it == keyed_.end()) {
-                out[k] = nullptr;
-                continue;
-            }
-            nlohmann::json obj = nlohmann::json::object();
-            for (const auto& [sub, e] : it->second) obj[sub] = with_age(e);
-            out[k] = std::move(obj);
-        } else if (key == "lasers") {
-            auto it = entries_.find(k);
-            if (it == entries_.end()) {
-                out[k] = nullptr;
-                continue;
-            }
-            // An array: each laser carries the packet's age.
-            nlohmann::json arr = it->second.value;
-            for (auto& laser : arr)
-                laser["age_s"] = seconds(std::max(0.0, now_s - it->second.received_s));
-            out[k] = std::move(arr);
-        } else {
-            auto it = entries_.find(k);
-            out[k] = it == entries_.end() ? nlohmann::json(nullptr) : with_age(it->second);
-        }
-    }
+    JsonWriter w(out);
+    write(w, now_s);
     return out;
 }
 

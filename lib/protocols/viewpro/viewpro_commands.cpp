@@ -23,13 +23,11 @@ void add(Plan& plan, std::string_view frame, std::span<const std::uint8_t> bytes
     plan.packets.push_back(std::move(w));
 }
 
-void output(Params& p, Plan& plan) {
-    static constexpr std::array<std::string_view, 2> osds{"target", "uav"};
-    static constexpr std::array<std::string_view, 4> formats{"out1", "out2", "out3", "out4"};
-    const auto osd = p.choice("osd", osds, true);
+void output(JsonParams& p, Plan& plan) {
+    const auto osd = p.choice("osd", true);
     const auto serial = p.boolean("serial", true);
     const auto network = p.boolean("network", true);
-    const auto format = p.choice("format", formats, true);
+    const auto format = p.choice("format", true);
     if (!p.ok()) return;
     v::Mode mode;
     mode.osd = *v::parse_osd(*osd);
@@ -52,9 +50,9 @@ std::vector<std::int8_t> shift_steps(double deg) {
     return steps;
 }
 
-void adjust(Params& p, Plan& plan) {
-    const auto yaw = p.number("yaw_deg", -20.0, 20.0, false);
-    const auto pitch = p.number("pitch_deg", -20.0, 20.0, false);
+void adjust(JsonParams& p, Plan& plan) {
+    const auto yaw = p.number("yaw_deg", false);
+    const auto pitch = p.number("pitch_deg", false);
     p.reject_unknown();  // a misspelt key explains a missing shift better than the rule below
     if (!p.ok()) return;
     if (!yaw && !pitch) return p.fail(code::bad_request, "give 'yaw_deg' and/or 'pitch_deg'");
@@ -65,15 +63,15 @@ void adjust(Params& p, Plan& plan) {
     plan.result["steps"] = plan.packets.size();
 }
 
-void vehicle(Params& p, const ViewproContext& ctx, Plan& plan) {
-    const auto time = p.text("time", 40, false);
-    const auto roll = p.number("roll", -180.0, 180.0, true);
-    const auto pitch = p.number("pitch", -90.0, 90.0, true);
-    const auto yaw = p.number("yaw", -180.0, 360.0, true);
-    const auto lat = p.number("lat", -90.0, 90.0, true);
-    const auto lon = p.number("lon", -180.0, 180.0, true);
-    const auto alt = p.number("alt_msl", -2000.0, 100000.0, true);
-    const auto vel = p.numbers("vel_ned", 3, -327.67, 327.67, false);
+void vehicle(JsonParams& p, const ViewproContext& ctx, Plan& plan) {
+    const auto time = p.text("time", false);
+    const auto roll = p.number("roll", true);
+    const auto pitch = p.number("pitch", true);
+    const auto yaw = p.number("yaw", true);
+    const auto lat = p.number("lat", true);
+    const auto lon = p.number("lon", true);
+    const auto alt = p.number("alt_msl", true);
+    const auto vel = p.numbers("vel_ned", false);
     if (!p.ok()) return;
     v::VehicleInput in;
     if (time) {
@@ -104,7 +102,7 @@ bool is_viewpro_command(std::string_view cmd) {
 
 std::optional<Error> plan_viewpro(std::string_view cmd, const nlohmann::json& request,
                                   const ViewproContext& context, Plan& plan) {
-    Params params(request);
+    JsonParams params(request, cmd);
     if (cmd == "viewpro_output")
         output(params, plan);
     else if (cmd == "viewpro_adjust")

@@ -38,7 +38,7 @@ Entry make_entry() {
     e.display_name = "Viewpro";
     e.dissector = "viewpro";
     e.commands = commands;
-    e.capabilities = &viewpro_capabilities();
+    e.features = viewpro_features();
     e.config_section = "viewpro";
     e.read_config = [](config::Fields& gimbal, const ConfigContext&) {
         return config::read_and_write<ViewproConfig>(gimbal);

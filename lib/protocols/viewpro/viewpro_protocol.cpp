@@ -31,10 +31,6 @@ bool ViewproProtocol::supports(std::string_view cmd) const {
     return command::is_viewpro_command(cmd);
 }
 
-const session::Capabilities& ViewproProtocol::capabilities() const {
-    return viewpro_capabilities();
-}
-
 std::optional<command::Error> ViewproProtocol::plan(std::string_view cmd,
                                                     const nlohmann::json& request, const Now& now,
                                                     command::Plan& plan) {

@@ -31,11 +31,18 @@ void ViewproState::tick(double now_s, std::vector<Event>& events) {
     }
 }
 
-nlohmann::json ViewproState::snapshot(double now_s) const {
-    if (!output_) return {{"output", nullptr}};
+void ViewproState::write(JsonWriter& w, double now_s) const {
+    if (!output_) return w.null("output");
     nlohmann::json out = viewpro::to_json(*output_);
     out["age_s"] = seconds(std::max(0.0, now_s - received_s_));
-    return {{"output", std::move(out)}};
+    w.json("output", std::move(out));
+}
+
+nlohmann::json ViewproState::snapshot(double now_s) const {
+    nlohmann::json out = nlohmann::json::object();
+    JsonWriter w(out);
+    write(w, now_s);
+    return out;
 }
 
 }  // namespace gimbal::state

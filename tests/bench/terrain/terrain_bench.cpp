@@ -126,11 +126,11 @@ void build(Fixture& f, const std::string& keep_dir) {
     options.files = {file};
     options.cache_mb = 64;
     auto opened = terrain::ElevationModel::open(options);
-    if (!opened.model) {
-        std::cerr << opened.error << "\n";
+    if (!opened) {
+        std::cerr << opened.error().message << "\n";
         std::exit(1);
     }
-    f.model = std::move(opened.model);
+    f.model = std::move(opened).value();
 
     std::mt19937_64 rng(19);
     std::uniform_real_distribution<double> unit(0, 1);

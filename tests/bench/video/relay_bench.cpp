@@ -96,7 +96,7 @@ Bytes klv_set(std::size_t frame) {
     set.add(gimbal::klv::tag_of("slant_range"), 1700.0);
     set.add(gimbal::klv::tag_of("uas_datalink_ls_version_number"),
             std::uint64_t{gimbal::klv::st0601_version});
-    return gimbal::klv::encode(set).bytes;
+    return gimbal::klv::encode(set).value();
 }
 
 double percentile(std::vector<double> v, double p) {
@@ -188,7 +188,7 @@ int main(int argc, char** argv) {
     std::thread relay([&] {
         asio::io_context io;
         vd::VideoOutputOptions oo;
-        auto url = [](const std::string& s) { return *gv::parse_video_url(s).url; };
+        auto url = [](const std::string& s) { return *gv::parse_video_url(s); };
         vd::TsUdpOutput out1(io, url("udp://127.0.0.1:" + std::to_string(port_of(rx1))), oo);
         vd::TsUdpOutput out2(io, url("udp://127.0.0.1:" + std::to_string(port_of(rx2))), oo);
         std::optional<std::uint64_t> klv_pts;  // the latest video DTS, as gimbald's KlvClock

@@ -87,8 +87,8 @@ std::unique_ptr<terrain::ElevationModel> open(const std::string& file) {
     o.files = {file};
     o.geoid = terrain::GeoidModel::none;
     auto opened = terrain::ElevationModel::open(o);
-    REQUIRE(opened.model);
-    return std::move(opened.model);
+    REQUIRE(opened);
+    return std::move(opened).value();
 }
 
 // Asks until the model answers (the loader has read the block) or `seconds` pass.

@@ -37,8 +37,8 @@ vd::SourceSpec spec(const std::string& text) {
 
 gv::VideoUrl url(const std::string& text) {
     const auto r = gv::parse_video_url(text);
-    REQUIRE(r.url);
-    return *r.url;
+    REQUIRE(r);
+    return *r;
 }
 
 // A valid set of about `bytes` bytes: a position, then unknown tags of 48 bytes each.
@@ -50,7 +50,7 @@ Bytes big_set(std::size_t bytes) {
     for (std::uint32_t tag = 200; tag < 200 + bytes / 51; ++tag) set.add(tag, Bytes(48, 0xEE));
     const auto e = klv::encode(set);
     REQUIRE(e.ok());
-    return e.bytes;
+    return *e;
 }
 
 }  // namespace

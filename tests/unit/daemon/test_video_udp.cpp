@@ -44,9 +44,9 @@ struct Received {
 
 gv::VideoUrl url(const std::string& text) {
     const auto r = gv::parse_video_url(text);
-    INFO(r.error);
-    REQUIRE(r.url);
-    return *r.url;
+    INFO((r ? "" : r.error().message));
+    REQUIRE(r);
+    return *r;
 }
 
 void send_all(const std::vector<Bytes>& datagrams, const asio::ip::udp::endpoint& to) {

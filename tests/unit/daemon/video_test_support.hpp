@@ -55,7 +55,7 @@ inline Bytes klv_set(int i) {
     set.add(gimbal::klv::tag_of("sensor_latitude"), 45.0 + i * 1e-4);
     set.add(gimbal::klv::tag_of("uas_datalink_ls_version_number"),
             std::uint64_t{gimbal::klv::st0601_version});
-    return gimbal::klv::encode(set).bytes;
+    return gimbal::klv::encode(set).value();
 }
 
 // `count` access units (key frame every 10, 640x360 SPS) at 30 fps with a KLV set after

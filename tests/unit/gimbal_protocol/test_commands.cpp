@@ -290,7 +290,7 @@ TEST_CASE("DO_GIMBAL_MANAGER_PITCHYAW: angles, rates, earth frame, Viewpro steps
         CHECK(r.result == MavResult::unsupported);
         const Mapped none =
             m.command(long_cmd(cmd::do_gimbal_manager_pitchyaw, {-10, 0, NaN, NaN, 0, 0, 2}), gcs,
-                      vehicle(), states(orion_state(), nlohmann::json{{"output", nullptr}}), 0);
+                      vehicle(), states(orion_state(), empty_viewpro()), 0);
         CHECK(none.result == MavResult::temporarily_rejected);
     }
     SECTION("device id 0: every gimbal") {
@@ -440,8 +440,8 @@ TEST_CASE("SET_CAMERA_ZOOM: range and continuous -> Orion camera_zoom") {
     CHECK(zoom(4, 30).result == MavResult::unsupported);     // horizontal fov
     CHECK(zoom(2, 50, 2).result == MavResult::unsupported);  // Viewpro
     CHECK(zoom(2, 50, 9).result == MavResult::denied);
-    nlohmann::json no_cameras = orion_state();
-    no_cameras.erase("cameras");
+    auto no_cameras = orion_state();
+    no_cameras->data.packets.cameras.reset();
     CHECK(zoom(2, 50, 1, states(no_cameras)).result == MavResult::temporarily_rejected);
 }
 
@@ -559,7 +559,8 @@ TEST_CASE("gimbald error codes -> MAV_RESULT, every code as the enum and its spe
 
 TEST_CASE("a MAVLink gimbal device is steered and reported through its capabilities") {
     GimbalManager m(expose({{"gremsy", "mavlink"}}));
-    const StateLookup state = [](const std::string&) { return device_state(); };
+    const auto device = device_state();
+    const StateLookup state = [device](const std::string&) { return device->view(); };
 
     // PITCHYAW angles: a position (yaw from north converted with the heading), rates: a rate.
     auto out =

@@ -114,8 +114,8 @@ TEST_CASE("KLV limits: fit_json leaves out unknown tags first, then the largest 
     for (std::uint32_t tag = 200; tag < 200 + 900; ++tag) set.add(tag, Bytes(48, 0xEE));
     const Encoded e = encode(set);
     REQUIRE(e.ok());
-    REQUIRE(e.bytes.size() > 40'000);
-    const DecodeResult r = decode(e.bytes);
+    REQUIRE(e.value().size() > 40'000);
+    const DecodeResult r = decode(e.value());
     REQUIRE(r.ok());
     REQUIRE(r.json.dump().size() > 80'000);
 

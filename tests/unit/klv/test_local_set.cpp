@@ -42,12 +42,12 @@ LocalSet with_time(std::uint32_t tag, Value value, std::uint8_t length = 0) {
 
 json round_trip(const LocalSet& set) {
     const Encoded e = encode(set);
-    INFO(e.error);
+    INFO((e ? "" : e.error().message));
     REQUIRE(e.ok());
-    const DecodeResult r = decode(e.bytes, Digits::exact);
+    const DecodeResult r = decode(e.value(), Digits::exact);
     INFO(r.reason);
     REQUIRE(r.ok());
-    CHECK(r.consumed == e.bytes.size());
+    CHECK(r.consumed == e.value().size());
     return r.json;
 }
 
@@ -90,7 +90,7 @@ TEST_CASE("ST 0902.5 dynamic-only example: checksum 0xC850 and every value") {
     }
     const Encoded e = encode(set);
     REQUIRE(e.ok());
-    CHECK(to_hex(e.bytes) == to_hex(st0902_dynamic_only));
+    CHECK(to_hex(e.value()) == to_hex(st0902_dynamic_only));
 }
 
 TEST_CASE("ST 0902.5 dynamic-and-constant example: printed checksum wrong, values readable") {
@@ -245,9 +245,9 @@ TEST_CASE("Every tag round-trips at the ends of its range and in between") {
 TEST_CASE("Tags above 127 are written as two-byte BER-OIDs") {
     const Encoded e = encode(with_time(143, Bytes{0xAB}));
     REQUIRE(e.ok());
-    const std::string hex = to_hex(e.bytes);
+    const std::string hex = to_hex(e.value());
     CHECK(hex.find("810F01AB") != std::string::npos);
-    CHECK(decode(e.bytes).json["metadata_substream_id_pack"] == "AB");
+    CHECK(decode(e.value()).json["metadata_substream_id_pack"] == "AB");
 }
 
 TEST_CASE("Encoder: order kept, checksum last, long-form set length") {
@@ -258,9 +258,9 @@ TEST_CASE("Encoder: order kept, checksum last, long-form set length") {
     set.add(65, std::uint64_t{st0601_version});
     const Encoded e = encode(set);
     REQUIRE(e.ok());
-    CHECK(e.bytes[16] == 0x81);  // the value is 10 + 122 + 3 + 4 = 139 bytes
-    CHECK(e.bytes[17] == 139);
-    const DecodeResult r = decode(e.bytes);
+    CHECK(e.value()[16] == 0x81);  // the value is 10 + 122 + 3 + 4 = 139 bytes
+    CHECK(e.value()[17] == 139);
+    const DecodeResult r = decode(e.value());
     REQUIRE(r.ok());
     REQUIRE(r.items.size() == 4);
     CHECK(r.items[0].tag == 2);
@@ -370,7 +370,7 @@ TEST_CASE("Malformed input: items past the set, no checksum last") {
     CHECK(decode(no_sum).reason == "no checksum (tag 1, 2 bytes) as the last item");
     // A set whose last item is not the checksum.
     LocalSet set = with_time(13, 60.0);
-    Bytes bytes = encode(set).bytes;
+    Bytes bytes = encode(set).value();
     bytes.resize(bytes.size() - 4);
     bytes[16] = static_cast<std::uint8_t>(bytes[16] - 4);
     CHECK(decode(bytes).reason == "no checksum (tag 1, 2 bytes) as the last item");
@@ -416,7 +416,7 @@ TEST_CASE("Unknown tags and items of the wrong length are kept as hex") {
     set.add(14, Bytes{});  // a zero-length item: "unknown" in ST 0601
     Encoded e = encode(set);
     REQUIRE(e.ok());
-    DecodeResult r = decode(e.bytes);
+    DecodeResult r = decode(e.value());
     REQUIRE(r.ok());
     CHECK(r.json["unknown"] == json{{"200", "ABCD"}});
     CHECK(r.json["sensor_longitude"].is_null());
@@ -438,7 +438,7 @@ TEST_CASE("Unknown tags and items of the wrong length are kept as hex") {
 }
 
 TEST_CASE("Encoder refusals name the tag and the reason") {
-    const auto error_of = [](LocalSet set) { return encode(set).error; };
+    const auto error_of = [](LocalSet set) { return encode(set).error().message; };
     CHECK(error_of(with_time(13, std::string("north"))) ==
           "tag 13 (sensor_latitude) takes a number");
     CHECK(error_of(with_time(3, 1.0)) == "tag 3 (mission_id) takes a string");
@@ -464,7 +464,7 @@ TEST_CASE("Encoder refusals name the tag and the reason") {
 
 TEST_CASE("find_sets: several sets, junk between, a set cut at the end") {
     const Bytes a = st0902_dynamic_only;
-    const Bytes b = encode(with_time(13, 1.5)).bytes;
+    const Bytes b = encode(with_time(13, 1.5)).value();
     Bytes buffer{0x00, 0x06, 0x0E, 0xFF};  // junk, including a false start of the key
     buffer.insert(buffer.end(), a.begin(), a.end());
     buffer.insert(buffer.end(), {0x06, 0x0E, 0x2B, 0x34, 0x02, 0x0B, 0x01, 0x01, 0x0E, 0x01, 0x03,
@@ -493,7 +493,7 @@ TEST_CASE("find_sets: several sets, junk between, a set cut at the end") {
 TEST_CASE("find_sets: a stream split at every byte offset loses no set") {
     Bytes stream;
     for (int i = 0; i < 3; ++i) {
-        const Bytes one = encode(with_time(13, 10.0 * i)).bytes;
+        const Bytes one = encode(with_time(13, 10.0 * i)).value();
         stream.insert(stream.end(), one.begin(), one.end());
         stream.push_back(0x55);  // junk between sets
     }

@@ -13,6 +13,7 @@
 #include "mavlink/framer.hpp"
 #include "protocols/mavlink_device/mavlink_device_protocol.hpp"
 #include "protocols/mavlink_device/mavlink_device_sim.hpp"
+#include "protocols/orion/orion_capabilities.hpp"
 #include "protocols/registry.hpp"
 
 using namespace gimbal;
@@ -186,17 +187,17 @@ TEST_CASE("STATE telemetry: Orion's derived keys from the vehicle and the device
     CHECK(t["target"]["alt"].get<double>() == Approx(-20).margin(0.01));
     CHECK(t["footprint"].is_array());
     CHECK(t["ground"].is_object());
-    // The capabilities read the same STATE.
+    // The capabilities read the same state.
     const auto& caps = p.capabilities();
-    const auto los = caps.line_of_sight(state);
+    const auto los = caps.line_of_sight();
     REQUIRE(los);
     const auto e = geo::quat_to_euler(*los);
     CHECK(std::abs(e.yaw_deg) == Approx(180).margin(1e-3));
-    CHECK(caps.view(state).lat_deg.value() == Approx(45.7));
-    CHECK(caps.identity(state).vendor == "MAVLink");
+    CHECK(caps.view().lat_deg.value() == Approx(45.7));
+    CHECK(caps.identity().vendor == "MAVLink");
     session::AnglesTarget target;
     target.yaw_deg = 10.0;
-    const auto r = caps.point_angles(state, target);
+    const auto r = caps.point_angles(target);
     REQUIRE(r);
     CHECK(r.value() == json{{"cmd", "position"}, {"pan", 10.0}, {"tilt", -45.0}});
 }
@@ -277,25 +278,31 @@ TEST_CASE("limits no gimbal has are unknown, and not relayed to ground stations"
     for (const char* key : {"roll_min", "roll_max", "pitch_min", "pitch_max", "yaw_min"})
         CHECK(limits[key].is_null());
     CHECK(limits["yaw_max"].get<double>() == Approx(100).margin(1e-3));  // sane on its own
-    const auto l = p.capabilities().limits(state);
+    const auto l = p.capabilities().limits();
     CHECK_FALSE(l.tilt_min_deg);
     CHECK_FALSE(l.pan_min_deg);
     // What the gimbal manager relays: the defaults for unknown limits, never the absurd ones.
     const gimbal_protocol::ExposedGimbal g{"g", "mavlink", 1, 154};
-    const auto m = gimbal_protocol::manager_information(g, state, 0);
+    const session::GimbalView view{&p.capabilities(), p.telemetry(), true, false, {}};
+    const auto m = gimbal_protocol::manager_information(g, view, 0);
     CHECK(m.pitch_min == Approx(-std::numbers::pi / 2));
     CHECK(m.pitch_max == Approx(std::numbers::pi / 2));
     CHECK(m.yaw_min == Approx(-std::numbers::pi));
     CHECK(m.yaw_max == Approx(std::numbers::pi));
-    const auto d = gimbal_protocol::device_information(g, state, 0);
+    const auto d = gimbal_protocol::device_information(g, view, 0);
     CHECK(std::isnan(d.pitch_min));
     CHECK(std::isnan(d.pitch_max));
 
-    // Inverted limits from another gimbal's STATE are dropped by the manager as well.
-    json orion = state;
-    orion["device"]["limits"] = {{"pitch_min", 30}, {"pitch_max", -90}, {"yaw_min", -1e30},
-                                 {"yaw_max", 1e30}, {"roll_min", 0},    {"roll_max", 0}};
-    const auto m2 = gimbal_protocol::manager_information(g, orion, 0);
+    // Inverted limits another gimbal reports (an Orion's LIMITS: pitch 30..-90, yaw beyond a
+    // whole turn) are dropped by the manager as well.
+    state::OrionData orion;
+    orion::Limits inverted;
+    inverted.min_pos = {-30.0, 30 * deg};
+    inverted.max_pos = {30.0, -90 * deg};
+    orion.packets.limits = state::Received<orion::Limits>{inverted, nullptr, 0};
+    const protocols::OrionCapabilities orion_caps(orion);
+    const auto m2 =
+        gimbal_protocol::manager_information(g, {&orion_caps, nullptr, true, false, {}}, 0);
     CHECK(m2.pitch_min == Approx(-std::numbers::pi / 2));
     CHECK(m2.yaw_max == Approx(std::numbers::pi));
 }
@@ -384,7 +391,7 @@ TEST_CASE("stare: the line of sight stays on a geopoint while the aircraft circl
         receive(p, bytes, t);
         if (t > 2.0 && i % 10 == 0) {
             const auto state = p.snapshot(t);
-            const auto los = p.capabilities().line_of_sight(state);
+            const auto los = p.capabilities().line_of_sight();
             REQUIRE(los);
             const auto& tel = state["telemetry"];
             const geo::Lla from{tel["lat"].get<double>(), tel["lon"].get<double>(),

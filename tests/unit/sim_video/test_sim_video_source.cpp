@@ -17,8 +17,8 @@ TEST_CASE("sim video source: a frame from a camera pose and from the Orion's vie
     options.scene.height = 180;
     options.h264.width = 999;  // follows the scene
     auto opened = SimVideoSource::open(options);
-    REQUIRE(opened.source);
-    SimVideoSource& source = *opened.source;
+    REQUIRE(opened);
+    SimVideoSource& source = **opened;
     CHECK(source.encoder().options().width == 320);
 
     const geo::CameraPose camera =
@@ -55,10 +55,10 @@ TEST_CASE("sim video source: a frame from a camera pose and from the Orion's vie
 TEST_CASE("sim video source: bad options", "[sim_video][source]") {
     SimVideoOptions options;
     options.scene.width = 15;
-    CHECK_FALSE(SimVideoSource::open(options).source);
+    CHECK_FALSE(SimVideoSource::open(options));
     options = {};
     options.h264.bitrate_bps = 1;
     const auto opened = SimVideoSource::open(options);
-    CHECK_FALSE(opened.source);
-    CHECK(opened.error == "bitrate must be 50 kbit/s..50 Mbit/s");
+    REQUIRE_FALSE(opened);
+    CHECK(opened.error().message == "bitrate must be 50 kbit/s..50 Mbit/s");
 }

@@ -22,8 +22,8 @@ std::string refusal(std::vector<std::string> files) {
     o.files = std::move(files);
     o.geoid = terrain::GeoidModel::none;
     auto opened = terrain::ElevationModel::open(o);
-    CHECK_FALSE(opened.model);
-    return opened.error;
+    REQUIRE_FALSE(opened);
+    return opened.error().message;
 }
 
 // A small geographic GeoTIFF (37 x 37 nodes) whose height is 100 m + the column.

@@ -14,9 +14,9 @@ using t::Bytes;
 TEST_CASE("Video URLs: the forms and options, and what is refused", "[video][url]") {
     auto ok = [](std::string_view s) {
         const auto r = v::parse_video_url(s);
-        INFO(s << ": " << r.error);
-        REQUIRE(r.url);
-        return *r.url;
+        INFO(s << ": " << (r ? "" : r.error().message));
+        REQUIRE(r);
+        return *r;
     };
     const auto in = ok("udp://0.0.0.0:15004");
     CHECK(in.scheme == v::UrlScheme::udp);
@@ -52,8 +52,9 @@ TEST_CASE("Video URLs: the forms and options, and what is refused", "[video][url
           "udp://1.2.3.4:5?timeout_s=-1", "udp://1.2.3.4:5?iface="}) {
         const auto r = v::parse_video_url(bad);
         INFO(bad);
-        CHECK_FALSE(r.url);
-        CHECK_FALSE(r.error.empty());
+        REQUIRE_FALSE(r);
+        CHECK(r.error().code == gimbal::ErrorCode::bad_request);
+        CHECK_FALSE(r.error().message.empty());
     }
 }
 

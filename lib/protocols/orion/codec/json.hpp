@@ -16,6 +16,7 @@
 
 #include "protocols/orion/codec/fields.hpp"
 #include "protocols/orion/codec/wire.hpp"
+#include "result/result.hpp"
 
 namespace gimbal::orion {
 
@@ -166,11 +167,9 @@ class JsonWriter {
     Digits digits_ = Digits::exact;
 };
 
-// Error codes are those of the command socket (contract section 4).
-struct JsonError {
-    std::string code;  // "bad_request" or "out_of_range"
-    std::string message;
-};
+// What a packet's JSON reader refuses: bad_request or out_of_range (contract section 4),
+// gimbald's one error type.
+using JsonError = Error;
 
 class JsonReader {
   public:
@@ -178,15 +177,15 @@ class JsonReader {
     explicit JsonReader(const nlohmann::json& obj, std::string prefix = {})
         : obj_(obj), prefix_(std::move(prefix)) {}
 
-    bool ok() const { return error_.code.empty(); }
-    const JsonError& error() const { return error_; }
+    bool ok() const { return !error_; }
+    const JsonError& error() const { return *error_; }
 
     // Call after fields(): every key of the object must have been a field.
     void reject_unknown_keys(const std::set<std::string>& also_allowed = {}) {
         if (!ok() || !obj_.is_object()) return;
         for (const auto& item : obj_.items())
             if (!seen_.count(item.key()) && !also_allowed.count(item.key()))
-                fail("bad_request", "unknown key '" + path(item.key()) + "'");
+                fail(code::bad_request, "unknown key '" + path(item.key()) + "'");
     }
 
     template <class T, class E>
@@ -195,16 +194,16 @@ class JsonReader {
         if (!j) return;
         if constexpr (is_std_array<T>) {
             if (!j->is_array() || j->size() != member.size())
-                return fail("bad_request", path(key) + ": must be an array of " +
-                                               std::to_string(member.size()) + " numbers");
+                return fail(code::bad_request, path(key) + ": must be an array of " +
+                                                   std::to_string(member.size()) + " numbers");
             for (std::size_t i = 0; i < member.size() && ok(); ++i)
                 scalar((*j)[i], member[i], enc, s, unit, path(key) + "[" + std::to_string(i) + "]");
         } else if constexpr (is_std_vector<T>) {
-            if (!j->is_array()) return fail("bad_request", path(key) + ": must be an array");
+            if (!j->is_array()) return fail(code::bad_request, path(key) + ": must be an array");
             const std::size_t max = pending_max_.value_or(0);
             pending_max_.reset();
             if (j->size() > max)
-                return fail("out_of_range",
+                return fail(code::out_of_range,
                             path(key) + ": at most " + std::to_string(max) + " items");
             member.resize(j->size());
             for (std::size_t i = 0; i < member.size() && ok(); ++i) {
@@ -223,7 +222,8 @@ class JsonReader {
         if (!j) return;
         const double max = std::ldexp(1.0, width) - 1.0;
         if constexpr (std::is_same_v<T, bool>) {
-            if (!j->is_boolean()) return fail("bad_request", path(key) + ": must be true or false");
+            if (!j->is_boolean())
+                return fail(code::bad_request, path(key) + ": must be true or false");
             member = j->template get<bool>();
         } else if constexpr (std::is_enum_v<T>) {
             enum_value(*j, member, 0.0, max, path(key));
@@ -248,21 +248,21 @@ class JsonReader {
     void group(std::string_view key, std::vector<G>& items) {
         const nlohmann::json* j = find(key);
         if (!j) return;
-        if (!j->is_array()) return fail("bad_request", path(key) + ": must be an array");
+        if (!j->is_array()) return fail(code::bad_request, path(key) + ": must be an array");
         if (!pending_max_) {
             // A fixed repeat (no count field before it): the declaration sized the vector.
             if (j->size() != items.size())
-                return fail("bad_request", path(key) + ": must hold exactly " +
-                                               std::to_string(items.size()) + " items");
+                return fail(code::bad_request, path(key) + ": must hold exactly " +
+                                                   std::to_string(items.size()) + " items");
         } else if (j->size() > *pending_max_) {
-            return fail("out_of_range",
+            return fail(code::out_of_range,
                         path(key) + ": at most " + std::to_string(*pending_max_) + " items");
         }
         pending_max_.reset();
         items.assign(j->size(), G{});
         for (std::size_t i = 0; i < items.size() && ok(); ++i) {
             const std::string where = path(key) + "[" + std::to_string(i) + "]";
-            if (!(*j)[i].is_object()) return fail("bad_request", where + ": must be an object");
+            if (!(*j)[i].is_object()) return fail(code::bad_request, where + ": must be an object");
             JsonReader sub((*j)[i], where);
             items[i].fields(sub);
             sub.reject_unknown_keys();
@@ -280,7 +280,7 @@ class JsonReader {
         const nlohmann::json* j = find(key);
         if (!j) return;
         if (!j->is_string() || !ipv4_from_string(j->template get<std::string>(), addr))
-            fail("bad_request", path(key) + ": must be a dotted IPv4 address");
+            fail(code::bad_request, path(key) + ": must be a dotted IPv4 address");
     }
     void optional() {}
 
@@ -297,8 +297,8 @@ class JsonReader {
         return prefix_.empty() ? std::string(key) : prefix_ + "." + std::string(key);
     }
 
-    void fail(const char* code, std::string message) {
-        if (ok()) error_ = JsonError{code, std::move(message)};
+    void fail(ErrorCode c, std::string message) {
+        if (ok()) error_ = JsonError{c, std::move(message)};
     }
 
     static std::string num(double v) {
@@ -309,12 +309,12 @@ class JsonReader {
 
     bool number(const nlohmann::json& j, double& out, const std::string& where) {
         if (!j.is_number()) {
-            fail("bad_request", where + ": must be a number");
+            fail(code::bad_request, where + ": must be a number");
             return false;
         }
         out = j.template get<double>();
         if (!std::isfinite(out)) {
-            fail("bad_request", where + ": must be finite");
+            fail(code::bad_request, where + ": must be finite");
             return false;
         }
         return true;
@@ -323,7 +323,7 @@ class JsonReader {
     bool in_range(double v, double lo, double hi, const std::string& where) {
         const double eps = 1e-9 * std::max(1.0, std::fabs(hi - lo));
         if (v < lo - eps || v > hi + eps) {
-            fail("out_of_range", where + ": must be between " + num(lo) + " and " + num(hi));
+            fail(code::out_of_range, where + ": must be between " + num(lo) + " and " + num(hi));
             return false;
         }
         return true;
@@ -333,12 +333,12 @@ class JsonReader {
                  const std::string& where) {
         if (!number(j, out, where)) return false;
         if (out != std::floor(out)) {
-            fail("bad_request", where + ": must be an integer");
+            fail(code::bad_request, where + ": must be an integer");
             return false;
         }
         // Integers are exact in a double: no tolerance, or -1 would pass for a U32.
         if (out < lo || out > hi) {
-            fail("out_of_range", where + ": must be between " + num(lo) + " and " + num(hi));
+            fail(code::out_of_range, where + ": must be between " + num(lo) + " and " + num(hi));
             return false;
         }
         return true;
@@ -352,7 +352,7 @@ class JsonReader {
                 std::string names;
                 for (const auto& e : enum_names(T{}))
                     names += (names.empty() ? "" : ", ") + std::string(e.name);
-                fail("bad_request", where + ": must be one of " + names);
+                fail(code::bad_request, where + ": must be one of " + names);
             }
             return;
         }
@@ -365,7 +365,7 @@ class JsonReader {
     void scalar(const nlohmann::json& j, T& member, E, Scale s, Unit unit,
                 const std::string& where) {
         if constexpr (std::is_same_v<T, bool>) {
-            if (!j.is_boolean()) return fail("bad_request", where + ": must be true or false");
+            if (!j.is_boolean()) return fail(code::bad_request, where + ": must be true or false");
             member = j.template get<bool>();
         } else if constexpr (std::is_enum_v<T>) {
             if constexpr (is_int_enc<E>) enum_value(j, member, E::min_raw, E::max_raw, where);
@@ -391,15 +391,15 @@ class JsonReader {
     void text(std::string_view key, std::string& s, std::size_t max_chars) {
         const nlohmann::json* j = find(key);
         if (!j) return;
-        if (!j->is_string()) return fail("bad_request", path(key) + ": must be a string");
+        if (!j->is_string()) return fail(code::bad_request, path(key) + ": must be a string");
         auto v = j->template get<std::string>();
         if (v.size() > max_chars)
-            return fail("out_of_range",
+            return fail(code::out_of_range,
                         path(key) + ": at most " + std::to_string(max_chars) + " characters");
         for (const char ch : v) {
             const auto c = static_cast<unsigned char>(ch);
             if (c < 0x20 || c > 0x7E)
-                return fail("bad_request", path(key) + ": printable ASCII only");
+                return fail(code::bad_request, path(key) + ": printable ASCII only");
         }
         s = std::move(v);
     }
@@ -408,7 +408,7 @@ class JsonReader {
     std::string prefix_;
     std::set<std::string> seen_;
     std::optional<std::size_t> pending_max_;  // set by count(), used by the next repeat
-    JsonError error_{};
+    std::optional<JsonError> error_;
 };
 
 // Every field of a packet as a JSON object; Digits::shortest for what clients are sent.
@@ -422,10 +422,45 @@ nlohmann::json to_json(const P& packet, Digits digits = Digits::exact) {
 
 // Reads a packet from a JSON object. Absent keys keep the packet's defaults; unknown keys,
 // wrong types and values outside the wire field's range are errors.
+// The JSON of one field, found by its address (field_json below).
+class FieldPicker : public JsonWriter {
+  public:
+    FieldPicker(nlohmann::json& scratch, const void* target, Digits digits)
+        : JsonWriter(scratch, digits), scratch_(scratch), target_(target) {}
+    template <class M, class E>
+    void field(std::string_view key, const M& m, E enc, Scale s = {}, Unit unit = Unit::none) {
+        if (static_cast<const void*>(&m) != target_) return;
+        JsonWriter::field(key, m, enc, s, unit);
+        found = std::move(scratch_[std::string(key)]);
+    }
+    template <class M>
+    void bits(std::string_view key, const M& m, int n) {
+        if (static_cast<const void*>(&m) != target_) return;
+        JsonWriter::bits(key, m, n);
+        found = std::move(scratch_[std::string(key)]);
+    }
+    nlohmann::json found = nullptr;
+
+  private:
+    nlohmann::json& scratch_;
+    const void* target_;
+};
+
+// One field of a packet as to_json() writes it: `member` (a member of `packet`, found by its
+// address, so no key is spelled twice) as JSON - a number with the digits `digits` gives it,
+// an array for an array field; null when `member` is not one of the packet's fields.
+template <class P, class T>
+nlohmann::json field_json(const P& packet, const T& member, Digits digits = Digits::exact) {
+    nlohmann::json scratch = nlohmann::json::object();
+    FieldPicker picker(scratch, &member, digits);
+    const_cast<P&>(packet).fields(picker);  // fields() only reads through a JsonWriter
+    return std::move(picker.found);
+}
+
 template <class P>
 bool from_json(const nlohmann::json& obj, P& packet, JsonError& error) {
     if (!obj.is_object()) {
-        error = JsonError{"bad_request", "packet must be a JSON object"};
+        error = JsonError{code::bad_request, "packet must be a JSON object"};
         return false;
     }
     JsonReader r(obj);
