@@ -5,9 +5,9 @@
 
 namespace gimbald {
 
-void read_stream_options(gimbal::command::Params& params, gimbal::state::StreamOptions& out) {
+void read_stream_options(gimbal::command::JsonParams& params, gimbal::state::StreamOptions& out) {
     out.changes = params.boolean_or("changes", false);
-    out.full_every_s = params.number_or("full_every_s", 1.0, 3600.0, 10.0);
+    out.full_every_s = params.number_or("full_every_s", 10.0);
     if (const nlohmann::json* k = params.raw("keys")) {
         auto keys = gimbal::state::read_state_keys(*k);
         if (keys)

@@ -1,7 +1,9 @@
 #include "state/messages.hpp"
 
 #include <algorithm>
+#include <functional>
 #include <iterator>
+#include <utility>
 
 namespace gimbal::state {
 
@@ -55,6 +57,28 @@ nlohmann::json event_message(const std::string& gimbal, const Event& event) {
     nlohmann::json msg = {{"type", "event"}, {"gimbal", gimbal}, {"event", event.kind}};
     for (const auto& [k, v] : event.fields.items()) msg[k] = v;
     return msg;
+}
+
+nlohmann::json too_large_event(const std::string& gimbal, std::size_t bytes, std::size_t limit,
+                               const nlohmann::json& body) {
+    std::vector<std::pair<std::size_t, std::string>> sizes;
+    if (body.is_object())
+        for (const auto& [k, v] : body.items())
+            sizes.emplace_back(
+                v.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace).size(), k);
+    std::sort(sizes.begin(), sizes.end(), std::greater<>());
+    if (sizes.size() > 3) sizes.resize(3);
+    nlohmann::json largest = nlohmann::json::object();
+    for (const auto& [n, k] : sizes) largest[k] = n;
+    return {{"type", "event"},
+            {"gimbal", gimbal},
+            {"event", "too_large"},
+            {"bytes", bytes},
+            {"limit", limit},
+            {"largest", std::move(largest)},
+            {"message", "a push of " + std::to_string(bytes) +
+                            " bytes is over the limit of one datagram (" + std::to_string(limit) +
+                            " bytes) and was not sent; subscribe with fewer STATE keys ('keys')"}};
 }
 
 bool is_state_key(std::string_view key) {

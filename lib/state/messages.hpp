@@ -17,6 +17,14 @@ nlohmann::json state_message(const std::string& gimbal, nlohmann::json state);
 // {"type":"event","gimbal":NAME,"event":KIND, ...fields}
 nlohmann::json event_message(const std::string& gimbal, const Event& event);
 
+// What a subscriber gets in place of a push too large for one datagram (contract section 14,
+// v4; docs/json-api.md): {"type":"event","gimbal":NAME,"event":"too_large","bytes":N,
+// "limit":L,"largest":{KEY:BYTES,...},"message":TEXT}, `largest` naming the (at most three)
+// largest top-level members of `body`, what the push carried (a STATE, a patch, an event),
+// with their size as JSON text, so the subscriber can leave them out with `keys`.
+nlohmann::json too_large_event(const std::string& gimbal, std::size_t bytes, std::size_t limit,
+                               const nlohmann::json& body);
+
 // True for a name that is a top-level key of some gimbal's STATE (either protocol, plus the
 // daemon-level keys such as `vehicle`, `command`, `mavlink`, `mqtt`, `record`).
 bool is_state_key(std::string_view key);

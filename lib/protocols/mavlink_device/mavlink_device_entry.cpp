@@ -73,7 +73,7 @@ Entry make_entry() {
     e.display_name = "MAVLink";
     e.dissector = "mavlink";
     e.commands = commands;
-    e.capabilities = &mavlink_device_capabilities();
+    e.features = mavlink_device_features();
     e.config_section = "mavlink";
     e.read_config = read_config;
     e.make_session = make_session;

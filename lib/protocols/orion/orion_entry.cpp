@@ -10,7 +10,7 @@ namespace gimbal::protocols {
 
 namespace {
 
-// The catalogue commands an Orion plans (command/orion_commands.cpp), with their packets.
+// The catalogue commands an Orion plans (orion_commands.cpp), with their packets.
 constexpr PlannedCommand commands[] = {
     {"geopoint", "GeopointCmd, id 213, 21 bytes"},
     {"path", "OrionPath, id 215, 5 + 9 x points bytes"},
@@ -47,7 +47,7 @@ Entry make_entry() {
     e.display_name = "Orion";
     e.dissector = "orion";
     e.commands = commands;
-    e.capabilities = &orion_capabilities();
+    e.features = orion_features();
     e.read_config = [](config::Fields& gimbal, const ConfigContext&) {
         return config::read_and_write<OrionConfig>(gimbal);
     };
@@ -58,6 +58,7 @@ Entry make_entry() {
             std::make_unique<framing::FramerSplitter<orion::Framer, frame_size>>());
     };
     e.make_track_decoder = make_orion_track_decoder;
+    e.discovery = orion_discovery();
     e.simulator = orion_simulator();
     return e;
 }

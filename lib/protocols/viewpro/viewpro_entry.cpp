@@ -10,7 +10,7 @@ namespace gimbal::protocols {
 
 namespace {
 
-// The catalogue commands a Viewpro plans (command/viewpro_commands.cpp), with their frames.
+// The catalogue commands a Viewpro plans (viewpro_commands.cpp), with their frames.
 constexpr PlannedCommand commands[] = {
     {"viewpro_output", "`AA 55 0F MM FF`, `sent: [{\"frame\":\"mode\",\"len\":5}]`"},
     {"viewpro_adjust",
@@ -38,7 +38,7 @@ Entry make_entry() {
     e.display_name = "Viewpro";
     e.dissector = "viewpro";
     e.commands = commands;
-    e.capabilities = &viewpro_capabilities();
+    e.features = viewpro_features();
     e.config_section = "viewpro";
     e.read_config = [](config::Fields& gimbal, const ConfigContext&) {
         return config::read_and_write<ViewproConfig>(gimbal);

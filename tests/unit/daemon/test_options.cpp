@@ -179,7 +179,9 @@ TEST_CASE("help output reads like a man page", "[options]") {
                              "--help",
                              "Default: /etc/gimbald/gimbald.json",
                              "\"sim-orion\", \"sim-viewpro\", \"sim-mavlink\". Default: off.",
-                             "1 if not. Opens every terrain file, no device. Default: off.",
+                             "Reads every key file and opens every terrain file, no device. "
+                             "Default: off.",
+                             "gimbal-replay(1), gimbal-export(1)",
                              "Default: the file's (info)",
                              "Default: the file's (json)",
                              "EXAMPLES",
