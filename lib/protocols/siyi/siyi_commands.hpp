@@ -1,0 +1,35 @@
+// The commands a SIYI camera takes - `position`, `rate`, `camera_zoom`, `geopoint` and
+// `path` - read with the catalogue's parameters (lib/command/catalogue.cpp) and turned into
+// what to send now and what gimbald holds the camera to (SiyiSteering). Pure: a refused
+// command changes nothing.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string_view>
+#include <vector>
+
+#include "command/result.hpp"
+#include "protocols/siyi/siyi_steering.hpp"
+
+namespace gimbal::protocols {
+
+struct SiyiCommandContext {
+    double now_s = 0;                       // monotonic, for a rate's impulse, a path's timing
+    std::optional<double> vehicle_yaw_deg;  // with the vehicle's fix: its heading
+    bool has_vehicle_fix = false;           // geopoint and path aim from its position
+    double geoid_undulation_m = 0;          // alt_ref "msl"
+    const siyi::ModelInfo* model = nullptr;
+};
+
+struct SiyiPlan {
+    std::vector<siyi::ToGimbal> send;  // at once
+    std::optional<SiyiHold> hold;      // replaces the held target (nullopt: keeps it)
+};
+
+bool is_siyi_command(std::string_view cmd);
+
+command::Result<SiyiPlan> plan_siyi_command(std::string_view cmd, const nlohmann::json& request,
+                                            const SiyiCommandContext& context);
+
+}  // namespace gimbal::protocols
