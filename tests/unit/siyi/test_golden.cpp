@@ -102,7 +102,7 @@ TEST_CASE("SDK example requests carry the values their captions give", "[siyi][g
     CHECK(request<GimbalModeRequest>(sdk("Retrieve Current Gimbal Mode")).cmd == 0x19);
 }
 
-TEST_CASE("older SDK examples decode; the encoder writes today's layout", "[siyi][golden]") {
+TEST_CASE("older SDK examples decode, and the encoder writes today's layout", "[siyi][golden]") {
     // Earlier editions sent auto focus as one byte: the touch point is an optional tail.
     const auto af = request<AutoFocus>(sdk("Auto Focus (one byte)"));
     CHECK(af.trigger);

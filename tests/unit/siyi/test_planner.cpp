@@ -64,7 +64,7 @@ TEST_CASE("planner: stabilized position needs the heading and holds it", "[siyi]
     CHECK(std::get<siyi::SetGimbalAttitude>(*m).yaw == Approx(30));  // pan -30
 }
 
-TEST_CASE("planner: rate scales to the model's top rate; an impulse stops", "[siyi][planner]") {
+TEST_CASE("planner: rate scales to the model's top rate, and an impulse stops", "[siyi][planner]") {
     const auto& zt30 = siyi::model_info(siyi::Model::zt30);
     const json r = {
         {"pan", zt30.max_rate_dps / 2}, {"tilt", -zt30.max_rate_dps * 2}, {"impulse_time_s", 0.5}};
