@@ -124,7 +124,7 @@ TEST_CASE("command line options", "[options]") {
         auto p = parse({"--sim", "orion,gopro"});
         CHECK(p.command_line.exit_code == exit_config_error);
         CHECK(p.err ==
-              "gimbald: --sim: unknown protocol \"gopro\" (expected orion, viewpro, mavlink)\n");
+              "gimbald: --sim: unknown protocol \"gopro\" (expected orion, viewpro, mavlink, siyi)\n");
         p = parse({"--sim", "orion,orion"});
         CHECK(p.command_line.exit_code == exit_config_error);
         CHECK(p.err == "gimbald: --sim: protocol \"orion\" listed twice\n");
@@ -178,7 +178,7 @@ TEST_CASE("help output reads like a man page", "[options]") {
                              "--version",
                              "--help",
                              "Default: /etc/gimbald/gimbald.json",
-                             "\"sim-orion\", \"sim-viewpro\", \"sim-mavlink\". Default: off.",
+                             "\"sim-orion\", \"sim-viewpro\", \"sim-mavlink\", \"sim-siyi\". Default:",
                              "Reads every key file and opens every terrain file, no device. "
                              "Default: off.",
                              "gimbal-replay(1), gimbal-export(1)",
