@@ -85,10 +85,11 @@ void SiyiState::apply(const siyi::FromGimbal& message, double now_s) {
 
 void SiyiState::on_attitude(const siyi::GimbalAttitude& m, double now_s) {
     SiyiAttitude a;
-    a.pan_deg = session::wrap180(-m.yaw);
+    // + 0.0: a yaw of 0 negates to -0, which JSON would show as -0.0.
+    a.pan_deg = session::wrap180(-m.yaw) + 0.0;
     a.tilt_deg = m.pitch;
     a.roll_deg = m.roll;
-    a.pan_rate_dps = -m.yaw_rate;
+    a.pan_rate_dps = -m.yaw_rate + 0.0;
     a.tilt_rate_dps = m.pitch_rate;
     a.roll_rate_dps = m.roll_rate;
     a.received_s = now_s;
