@@ -12,7 +12,7 @@
 #include "protocols/siyi/codec/framer.hpp"
 #include "protocols/siyi/codec/json.hpp"
 #include "protocols/siyi/codec/messages.hpp"
-#include "protocols/siyi/siyi_sim.hpp"
+#include "protocols/siyi/sim/siyi_sim.hpp"
 
 namespace s = gimbal::siyi;
 

@@ -7,8 +7,8 @@
 #include <optional>
 
 #include "geo/surface.hpp"
+#include "protocols/siyi/codec/models.hpp"
 #include "protocols/siyi/siyi_config.hpp"
-#include "protocols/siyi/siyi_models.hpp"
 
 namespace gimbal::protocols {
 

@@ -2,8 +2,8 @@
 #include <string>
 
 #include "protocols/siyi/codec/json.hpp"
+#include "protocols/siyi/sim/siyi_sim.hpp"
 #include "protocols/siyi/siyi_entry.hpp"
-#include "protocols/siyi/siyi_sim.hpp"
 
 namespace gimbal::protocols {
 

@@ -13,8 +13,8 @@
 #include "geo/attitude.hpp"
 #include "geo/wgs84.hpp"
 #include "protocols/siyi/codec/messages.hpp"
+#include "protocols/siyi/codec/models.hpp"
 #include "protocols/siyi/siyi_fix.hpp"
-#include "protocols/siyi/siyi_models.hpp"
 #include "sim/frames.hpp"
 #include "sim/path_follower.hpp"
 

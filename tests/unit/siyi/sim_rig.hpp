@@ -7,7 +7,7 @@
 
 #include "protocols/siyi/codec/framer.hpp"
 #include "protocols/siyi/codec/messages.hpp"
-#include "protocols/siyi/siyi_sim.hpp"
+#include "protocols/siyi/sim/siyi_sim.hpp"
 
 namespace siyi_test {
 

@@ -2,7 +2,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "protocols/siyi/siyi_models.hpp"
+#include "protocols/siyi/codec/models.hpp"
 
 using namespace gimbal::siyi;
 

@@ -4,9 +4,9 @@
 #include <catch2/catch.hpp>
 
 #include "../vehicle/vehicle_fixtures.hpp"
+#include "protocols/siyi/sim/siyi_sim.hpp"
 #include "protocols/siyi/siyi_entry.hpp"
 #include "protocols/siyi/siyi_protocol.hpp"
-#include "protocols/siyi/siyi_sim.hpp"
 
 using namespace gimbal;
 using namespace gimbal::protocols;

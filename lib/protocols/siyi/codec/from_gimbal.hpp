@@ -28,7 +28,7 @@ struct FirmwareVersion {
 };
 
 // 0x02 hardware id: a 10-digit ASCII string in 12 bytes; its first two characters name the
-// product (protocols/siyi/siyi_models.hpp).
+// product (protocols/siyi/codec/models.hpp).
 struct HardwareId {
     static constexpr std::uint8_t cmd = cmd::hardware_id;
     static constexpr std::string_view name = "hardware_id";

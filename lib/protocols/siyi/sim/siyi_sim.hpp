@@ -18,8 +18,8 @@
 
 #include "protocols/siyi/codec/framer.hpp"
 #include "protocols/siyi/codec/messages.hpp"
-#include "protocols/siyi/siyi_models.hpp"
-#include "protocols/siyi/siyi_sim_motion.hpp"
+#include "protocols/siyi/codec/models.hpp"
+#include "protocols/siyi/sim/siyi_sim_motion.hpp"
 #include "sim/device.hpp"
 
 namespace gimbal::protocols {

@@ -1,4 +1,4 @@
-#include "protocols/siyi/siyi_sim_motion.hpp"
+#include "protocols/siyi/sim/siyi_sim_motion.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "protocols/siyi/siyi_models.hpp"
+#include "protocols/siyi/codec/models.hpp"
 
 #include <algorithm>
 #include <cctype>

@@ -1,4 +1,4 @@
-#include "protocols/siyi/siyi_sim.hpp"
+#include "protocols/siyi/sim/siyi_sim.hpp"
 
 #include <algorithm>
 #include <cmath>

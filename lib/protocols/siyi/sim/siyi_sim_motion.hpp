@@ -7,7 +7,7 @@
 #include <cstdint>
 
 #include "protocols/siyi/codec/commands.hpp"
-#include "protocols/siyi/siyi_models.hpp"
+#include "protocols/siyi/codec/models.hpp"
 
 namespace gimbal::siyi {
 
