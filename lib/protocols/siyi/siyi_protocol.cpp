@@ -17,6 +17,13 @@ constexpr double poll_period_s = 0.5;
 // 0x3E: position changes slowly against 0x22's attitude, which goes at every tick (20 Hz,
 // the SDK's 20-50 Hz).
 constexpr double gps_period_s = 0.2;
+// An attitude this late means the stream stopped: a camera that restarted behind a UDP link
+// (no connection to lose) has forgotten it.
+constexpr double attitude_late_s = 0.5;
+
+siyi::DataStreamRequest attitude_stream() {
+    return {siyi::StreamType::attitude, siyi::StreamRate::hz20};
+}
 
 }  // namespace
 
@@ -55,6 +62,8 @@ void SiyiProtocol::housekeeping(double now_s, std::vector<session::Bytes>& out) 
         last_identity_s_ = now_s;
     }
     if (!last_poll_s_ || now_s - *last_poll_s_ >= poll_period_s) {
+        if (!d.attitude || now_s - d.attitude->received_s > attitude_late_s)
+            out.push_back(frame(attitude_stream()));
         out.push_back(frame(siyi::CurrentZoomRequest{}));
         out.push_back(frame(siyi::CameraSystemInfoRequest{}));
         if (!d.zoom_max) out.push_back(frame(siyi::ZoomRangeRequest{}));
@@ -73,8 +82,7 @@ std::vector<session::Bytes> SiyiProtocol::on_connect() {
     std::vector<session::Bytes> out;
     out.push_back(frame(siyi::HardwareIdRequest{}));
     out.push_back(frame(siyi::FirmwareVersionRequest{}));
-    out.push_back(
-        frame(siyi::DataStreamRequest{siyi::StreamType::attitude, siyi::StreamRate::hz20}));
+    out.push_back(frame(attitude_stream()));
     // The laser stream goes at the rangefinder's own rate; a camera without one stays silent.
     out.push_back(
         frame(siyi::DataStreamRequest{siyi::StreamType::laser_range, siyi::StreamRate::hz10}));

@@ -1,9 +1,10 @@
 // The SIYI side of a gimbal session (docs/siyi.md): gimbald asks the camera who it is
-// (0x02, 0x01), for its attitude stream (0x25 at 20 Hz) and laser range stream, and polls its
-// zoom, zoom range, recording state and laser target; it steers with 0x0E/0x07, recomputed at
-// every vehicle-feed tick (steer) for a geopoint or path, and tells the camera the aircraft's
-// attitude (0x22) and position (0x3E) from the same ticks. One sender numbers every frame
-// (SEQ).
+// (0x02, 0x01), for its attitude stream (0x25 at 20 Hz) and laser range stream; it polls its
+// zoom, zoom range, recording state and laser target, and asks for the attitude stream again
+// while the attitude is late (a camera restarted behind a UDP link has forgotten it). It
+// steers with 0x0E/0x07, recomputed at every vehicle-feed tick (steer) for a geopoint or
+// path, and tells the camera the aircraft's attitude (0x22) and position (0x3E) from the same
+// ticks. One sender numbers every frame (SEQ).
 #pragma once
 
 #include <optional>

@@ -137,6 +137,38 @@ TEST_CASE("session: the vehicle feed and a geopoint", "[siyi][session]") {
     CHECK(loop.proto.state().data().laser_range_m);
 }
 
+TEST_CASE("session: a camera that restarts behind the link is asked for its stream again",
+          "[siyi][session]") {
+    SiyiOptions o;
+    o.geoid_undulation_m = 0;
+    SiyiProtocol proto(o);
+    vehicle::VehicleState vehicle(vehicle_fixtures::options(std::nullopt, 1e9));
+    vehicle_fixtures::fix_at(vehicle, 1.0);
+    double t = 1.0;
+    const auto run = [&](SiyiSim& camera, double seconds) {
+        for (const double end = t + seconds; t < end - 1e-9;) {
+            t += 0.05;
+            std::vector<std::uint8_t> up;
+            camera.advance(t, up);
+            std::vector<state::Event> events;
+            std::vector<session::Bytes> out;
+            proto.receive(up, t, events, out);
+            proto.steer(vehicle, t, t, out);
+            for (const auto& b : out) camera.receive(b, t);
+        }
+    };
+    SiyiSim first{SiyiSimOptions{}};
+    for (const auto& b : proto.on_connect()) first.receive(b, t);
+    run(first, 1.0);
+    const auto before = proto.telemetry_count();
+    CHECK(before > 10);
+    // A new camera on the same link: no connect, no stream until gimbald asks again.
+    SiyiSim second{SiyiSimOptions{}};
+    run(second, 2.0);
+    CHECK(proto.telemetry_count() > before + 10);
+    CHECK_FALSE(proto.stale(t));
+}
+
 TEST_CASE("entry: the registry's view of SIYI", "[siyi][session]") {
     const Entry& e = siyi_entry();
     CHECK(e.name == "siyi");
