@@ -106,8 +106,6 @@ command::Result<SiyiPlan> geopoint(JsonParams& p, const SiyiCommandContext& ctx)
         return command::Error{code::bad_request,
                               "joystick_range_m must be 0 for a SIYI camera: there is no "
                               "joystick on its link"};
-    if (stare)
-        return command::Error{code::unsupported, "stare is not supported for a SIYI camera yet"};
     if (ref == "terrain")
         return command::Error{code::unavailable,
                               "alt_ref 'terrain' needs gimbald's terrain section"};
@@ -116,6 +114,8 @@ command::Result<SiyiPlan> geopoint(JsonParams& p, const SiyiCommandContext& ctx)
     g.point = {*lat, *lon, ref == "msl" ? *alt + ctx.geoid_undulation_m : *alt};
     if (vel) g.vel_ned = {(*vel)[0], (*vel)[1], (*vel)[2]};
     g.since_s = ctx.now_s;
+    // stare: gimbald watches the camera's line of sight (siyi_stare.hpp).
+    g.stare = stare;
     SiyiPlan plan;
     plan.hold = g;
     return plan;

@@ -17,7 +17,9 @@ constexpr PlannedCommand commands[] = {
      "re-sent at 20 Hz"},
     {"rate", "0x07 gimbal rotation, speeds -100..100 of the model's top rate"},
     {"camera_zoom", "0x0F absolute zoom, one decimal, within the model's range"},
-    {"geopoint", "0x0E set gimbal attitude, recomputed at 20 Hz from the vehicle's position"},
+    {"geopoint",
+     "0x0E set gimbal attitude, recomputed at 20 Hz from the vehicle's position; `stare`: a "
+     "`stare_start` event once on the point"},
     {"path", "0x0E set gimbal attitude along the path, at 20 Hz; `down`: pitch -90"},
 };
 

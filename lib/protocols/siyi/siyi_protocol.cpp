@@ -3,6 +3,7 @@
 #include <numbers>
 
 #include "protocols/siyi/siyi_commands.hpp"
+#include "protocols/siyi/siyi_stare.hpp"
 
 namespace gimbal::protocols {
 
@@ -34,7 +35,8 @@ session::Bytes SiyiProtocol::frame(const siyi::ToGimbal& message) {
 }
 
 void SiyiProtocol::receive(std::span<const std::uint8_t> bytes, double now_s,
-                           std::vector<state::Event>&, std::vector<session::Bytes>& replies) {
+                           std::vector<state::Event>& events,
+                           std::vector<session::Bytes>& replies) {
     bool heard = false;
     framer_.push(bytes, [&](const siyi::Frame& f) {
         const auto decoded = siyi::decode_from_gimbal(f);
@@ -44,6 +46,7 @@ void SiyiProtocol::receive(std::span<const std::uint8_t> bytes, double now_s,
         }
         state_.apply(decoded.value, now_s);
         heard = true;
+        if (std::holds_alternative<siyi::GimbalAttitude>(decoded.value)) check_stare(now_s, events);
     });
     // Without a vehicle feed there are no steering ticks: the camera's own stream paces the
     // requests and a rate's impulse then.
@@ -70,6 +73,22 @@ void SiyiProtocol::housekeeping(double now_s, std::vector<session::Bytes>& out) 
         if (state_.model().has_laser) out.push_back(frame(siyi::LaserTargetRequest{}));
         last_poll_s_ = now_s;
     }
+}
+
+void SiyiProtocol::check_stare(double now_s, std::vector<state::Event>& events) {
+    auto* g = std::get_if<SiyiHoldGeopoint>(&steering_.held());
+    if (!g || !g->stare || g->stared) return;
+    const auto camera = state_.camera();
+    const auto los = state_.line_of_sight();
+    const auto& attitude = state_.data().attitude;
+    if (!camera || !los || !attitude) return;
+    const SiyiStareView view{*camera, *los, attitude->pan_deg, attitude->tilt_deg,
+                             static_cast<std::uint32_t>(now_s * 1000.0)};
+    auto fields = siyi_stare_start(siyi_geopoint_at(*g, now_s), view);
+    if (!fields) return;
+    g->stared = true;
+    stare_ = *fields;
+    events.push_back(state::Event{"stare_start", std::move(*fields)});
 }
 
 void SiyiProtocol::tick(double now_s, std::vector<state::Event>& events) {

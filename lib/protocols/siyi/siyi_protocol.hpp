@@ -36,6 +36,7 @@ class SiyiProtocol final : public session::Protocol {
     std::uint64_t telemetry_count() const override { return state_.telemetry_count(); }
     void write_state(state::JsonWriter& w, const session::StateContext& c) const override {
         state_.write(w, c.now_s);
+        w.json("stare", stare_);
     }
     session::FrameCounters counters() const override;
     bool supports(std::string_view cmd) const override;
@@ -53,6 +54,8 @@ class SiyiProtocol final : public session::Protocol {
     session::Bytes frame(const siyi::ToGimbal& message);
     // The requests due at now_s: who the camera is until it says, and the polled readings.
     void housekeeping(double now_s, std::vector<session::Bytes>& out);
+    // A held geopoint with stare: stare_start once the camera's line of sight is on it.
+    void check_stare(double now_s, std::vector<state::Event>& events);
     void feed_vehicle(const std::optional<SiyiFix>& fix, double vehicle_now_s,
                       std::vector<session::Bytes>& out);
 
@@ -63,6 +66,7 @@ class SiyiProtocol final : public session::Protocol {
     SiyiSteering steering_;
     std::uint16_t seq_ = 0;
     std::uint64_t decode_errors_ = 0;
+    nlohmann::json stare_ = nullptr;  // STATE `stare`: the latest stare_start's fields
     std::optional<double> last_identity_s_, last_poll_s_, last_gps_s_;
 };
 

@@ -36,6 +36,8 @@ struct SiyiHoldGeopoint {
     geo::Lla point;                   // above the ellipsoid
     std::array<double, 3> vel_ned{};  // m/s: the point moves
     double since_s = 0;               // when the point was where `point` says
+    bool stare = false;               // emit stare_start once the camera is on the point
+    bool stared = false;              // ... which it has, for this command
 };
 
 struct SiyiHoldPath {
@@ -57,6 +59,7 @@ class SiyiSteering {
   public:
     void hold(SiyiHold h) { hold_ = std::move(h); }
     const SiyiHold& held() const { return hold_; }
+    SiyiHold& held() { return hold_; }
 
     // The stop of a rate's impulse once it is over (0x07 0 0), else nullopt: due even without
     // a vehicle feed (the session asks at every frame from the camera).

@@ -25,7 +25,6 @@ struct Loop {
             t += 0.05;
             std::vector<std::uint8_t> up;
             sim.advance(t, up);
-            std::vector<state::Event> events;
             std::vector<session::Bytes> replies;
             proto.receive(up, t, events, replies);
             if (vehicle) fed += proto.steer(*vehicle, t, t, replies);
@@ -51,6 +50,7 @@ struct Loop {
     SiyiProtocol proto{options()};
     SiyiSim sim;
     std::vector<session::Bytes> sent;
+    std::vector<state::Event> events;
     std::size_t fed = 0;
 };
 
@@ -135,6 +135,20 @@ TEST_CASE("session: the vehicle feed and a geopoint", "[siyi][session]") {
     CHECK(t->target->lon == Approx(-121.49).margin(2e-4));
     REQUIRE(loop.proto.state().data().laser_target);
     CHECK(loop.proto.state().data().laser_range_m);
+    CHECK(loop.events.empty());  // no stare asked for
+
+    // stare: one stare_start once the camera is on the point, and STATE `stare`.
+    loop.command("position", {{"pan", 0}, {"tilt", 0}});
+    loop.run(3.0, &vehicle);
+    loop.command("geopoint", {{"lat", 45.7}, {"lon", -121.49}, {"alt", 0}, {"stare", true}});
+    loop.run(4.0, &vehicle);
+    REQUIRE(loop.events.size() == 1);
+    CHECK(loop.events[0].kind == "stare_start");
+    CHECK(loop.events[0].fields["lon"] == Approx(-121.49));
+    CHECK(loop.events[0].fields["gimbal_data_valid"] == true);
+    CHECK(loop.events[0].fields["slant_range"].get<double>() > 900);
+    CHECK(loop.proto.snapshot(loop.t)["stare"]["system_time_ms"] ==
+          loop.events[0].fields["system_time_ms"]);
 }
 
 TEST_CASE("session: a camera that restarts behind the link is asked for its stream again",
