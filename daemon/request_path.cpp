@@ -477,7 +477,7 @@ json RequestPath::dispatch(Outcome& o, const RequestSource& from) {
     if (cmd == "state") {
         std::vector<std::string> keys;
         if (const json* k = params.raw("keys")) {
-            auto read = gimbal::state::read_state_keys(*k);
+            auto read = gimbal::state::read_state_keys(*k, gimbal::protocols::is_state_key);
             if (!read) return o.fail(read.error());
             keys = std::move(read).value();
         }

@@ -1,6 +1,7 @@
 #include "stream_params.hpp"
 
 #include "command/result.hpp"
+#include "protocols/registry.hpp"
 #include "state/messages.hpp"
 
 namespace gimbald {
@@ -9,7 +10,7 @@ void read_stream_options(gimbal::command::JsonParams& params, gimbal::state::Str
     out.changes = params.boolean_or("changes", false);
     out.full_every_s = params.number_or("full_every_s", 10.0);
     if (const nlohmann::json* k = params.raw("keys")) {
-        auto keys = gimbal::state::read_state_keys(*k);
+        auto keys = gimbal::state::read_state_keys(*k, gimbal::protocols::is_state_key);
         if (keys)
             out.keys = std::move(keys).value();
         else

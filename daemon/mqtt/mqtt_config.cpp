@@ -8,6 +8,7 @@
 #include <variant>
 
 #include "mqtt/mqtt_url.hpp"
+#include "protocols/registry.hpp"
 #include "regular_file.hpp"
 #include "secret_file.hpp"
 #include "state/messages.hpp"
@@ -105,7 +106,7 @@ void check_tls_files(config::Fields& f, const MqttConfig& c) {
 void read_state_keys(config::Fields& f, MqttConfig& c) {
     const auto* keys = f.find("state_keys");
     if (keys == nullptr || keys->is_null()) return;
-    auto names = gimbal::state::read_state_keys(*keys);
+    auto names = gimbal::state::read_state_keys(*keys, gimbal::protocols::is_state_key);
     if (!names)
         f.problem("state_keys", names.error().message);
     else

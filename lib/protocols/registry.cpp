@@ -6,6 +6,7 @@
 #include "protocols/orion/orion_entry.hpp"
 #include "protocols/siyi/siyi_entry.hpp"
 #include "protocols/viewpro/viewpro_entry.hpp"
+#include "state/messages.hpp"
 
 namespace gimbal::protocols {
 
@@ -66,6 +67,15 @@ std::string names_text() {
     std::string out;
     for (const auto& name : names()) out += (out.empty() ? "" : ", ") + name;
     return out;
+}
+
+bool is_state_key(std::string_view key) {
+    if (state::is_shared_state_key(key)) return true;
+    for (const ProtocolId id : all_protocol_ids) {
+        const auto& keys = entry(id).state_keys;
+        if (std::find(keys.begin(), keys.end(), key) != keys.end()) return true;
+    }
+    return false;
 }
 
 std::vector<const Entry*> planners_of(std::string_view cmd) {

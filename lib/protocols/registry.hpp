@@ -69,6 +69,9 @@ struct Entry {
     // find_by_dissector maps a recording's frames back to their entry.
     std::string_view dissector;
     std::span<const PlannedCommand> commands;
+    // The top-level STATE keys this protocol's session writes besides the shared ones
+    // (state::is_shared_state_key): what a subscriber may name in `keys`.
+    std::span<const std::string_view> state_keys;
     // What every gimbal of the protocol can do (a session's capabilities say the same, bound
     // to its state: session::Protocol::capabilities()).
     session::Features features;
@@ -110,6 +113,9 @@ const Entry* find_by_dissector(std::string_view dissector);
 std::vector<std::string> names();
 // The names joined by ", " (for messages and help texts).
 std::string names_text();
+// True for a top-level STATE key of some gimbal: a shared key or a protocol's own
+// (Entry::state_keys). What `keys` of state, subscribe and mqtt.state_keys may name.
+bool is_state_key(std::string_view key);
 // The protocols that plan `cmd`, in order.
 std::vector<const Entry*> planners_of(std::string_view cmd);
 

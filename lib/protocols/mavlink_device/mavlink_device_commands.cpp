@@ -107,14 +107,19 @@ command::Result<Hold> path(JsonParams& p, const DeviceCommandContext& ctx) {
 }  // namespace
 
 bool is_device_command(std::string_view cmd) {
-    return cmd == "position" || cmd == "rate" || cmd == "geopoint" || cmd == "path" ||
-           cmd == "stare_ack";
+    return cmd == "position" || cmd == "center" || cmd == "rate" || cmd == "geopoint" ||
+           cmd == "path" || cmd == "stare_ack";
 }
 
 command::Result<Hold> plan_device_command(std::string_view cmd, const json& request,
                                           const DeviceCommandContext& context) {
     JsonParams p(request, cmd);
     if (cmd == "position") return position(p, context);
+    if (cmd == "center") {  // forward and level in the aircraft's frame, held
+        p.reject_unknown();
+        if (!p.ok()) return p.error();
+        return Hold{HoldAngles{0.0, 0.0}};
+    }
     if (cmd == "rate") return rate(p, context);
     if (cmd == "geopoint") return geopoint(p, context);
     if (cmd == "path") return path(p, context);

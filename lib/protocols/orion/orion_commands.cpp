@@ -141,6 +141,16 @@ void pan_tilt(Request& r, o::Mode mode, bool default_stabilized) {
     if (!add_packet(cmd, r.plan)) p.fail(code::internal, "cmd did not encode");
 }
 
+// The gimbal's home: OrionCmd position at 0, 0 in the aircraft's frame (not stabilized).
+void center(Request& r) {
+    if (!r.p.ok()) return;
+    o::Cmd cmd;
+    cmd.cmd.target = {0.0, 0.0};
+    cmd.cmd.mode = o::Mode::position;
+    cmd.cmd.stabilized = false;
+    if (!add_packet(cmd, r.plan)) r.p.fail(code::internal, "cmd did not encode");
+}
+
 void mode(Request& r) {
     const auto name = r.p.choice("mode", true);
     if (!r.p.ok()) return;
@@ -238,6 +248,7 @@ const std::map<std::string, Handler, std::less<>>& handlers() {
         {"laser", laser},
         {"position", [](Request& r) { pan_tilt(r, o::Mode::position, false); }},
         {"rate", [](Request& r) { pan_tilt(r, o::Mode::rate, true); }},
+        {"center", center},
         {"mode", mode},
         {"stare_ack", stare_ack},
         {"retract", retract},

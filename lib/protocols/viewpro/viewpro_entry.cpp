@@ -19,6 +19,9 @@ constexpr PlannedCommand commands[] = {
     {"vehicle", "IN2 (40 bytes) with `vel_ned`, else IN1 (34 bytes)"},
 };
 
+// STATE `output`: the Viewpro's latest OUTx frame (contract section 8).
+constexpr std::string_view state_keys[] = {"output"};
+
 std::size_t frame_size(const viewpro::OutputFrame& f) {
     return f.size;
 }
@@ -38,6 +41,7 @@ Entry make_entry() {
     e.display_name = "Viewpro";
     e.dissector = "viewpro";
     e.commands = commands;
+    e.state_keys = state_keys;
     e.features = viewpro_features();
     e.config_section = "viewpro";
     e.read_config = [](config::Fields& gimbal, const ConfigContext&) {

@@ -114,7 +114,26 @@ TEST_CASE("every protocol has one complete entry", "[registry]") {
     CHECK_FALSE(protocols::parse_protocol("gopro"));
     CHECK(protocols::find("gopro") == nullptr);
     CHECK(protocols::find_by_dissector("data") == nullptr);
-    CHECK(state::is_state_key("capabilities"));  // the key the daemon adds from the entry
+    CHECK(protocols::is_state_key("capabilities"));  // the key the daemon adds from the entry
+}
+
+TEST_CASE("STATE keys: the shared ones and each protocol's own, declared by its entry",
+          "[registry]") {
+    for (const auto* e : protocols::entries()) {
+        INFO(e->name);
+        for (const auto key : e->state_keys) {
+            INFO(key);
+            CHECK_FALSE(state::is_shared_state_key(key));  // a protocol's own, not a shared one
+            CHECK(protocols::is_state_key(key));
+            auto read = state::read_state_keys(json{key}, protocols::is_state_key);
+            CHECK(read);
+        }
+    }
+    CHECK(protocols::is_state_key("telemetry"));
+    CHECK_FALSE(protocols::is_state_key("telemtry"));
+    // Without the registry only the shared keys are known (lib/state sits beneath it).
+    CHECK_FALSE(state::read_state_keys(json{"ins"}));
+    CHECK(state::read_state_keys(json{"ins"}, protocols::is_state_key));
 }
 
 TEST_CASE("a protocol plans exactly the catalogue commands its entry lists", "[registry]") {
@@ -153,6 +172,16 @@ TEST_CASE("each entry's session, simulator, splitter and track decoder work toge
         CHECK(r.counters.bad_checksums == 0);
         CHECK(r.counters.dropped_bytes == 0);
         CHECK(r.state["protocol"] == e->name);
+        // Every key the session writes is one a subscriber may name, and every key the
+        // entry declares is written: the declaration is the session's.
+        for (const auto& [key, value] : r.state.items()) {
+            INFO(key);
+            CHECK(protocols::is_state_key(key));
+        }
+        for (const auto key : e->state_keys) {
+            INFO(key);
+            CHECK(r.state.contains(std::string(key)));
+        }
 
         // The recorder's splitter: the pieces are the stream, and the frames the session's.
         auto splitter = e->make_splitter();
