@@ -248,6 +248,15 @@ TEST_CASE("position, rate and mode write OrionCmd", "[command][cmd]") {
     CHECK(cmd.mode == orion::Mode::ffc_auto);
     CHECK(cmd.target == std::array<double, 2>{0, 0});
 
+    // center: position 0, 0 in the aircraft's frame, whatever was held before.
+    p = plan("center", json::object());
+    REQUIRE_FALSE(p.error);
+    cmd = only_packet<orion::Cmd>(p.plan).cmd;
+    CHECK(cmd.mode == orion::Mode::position);
+    CHECK(cmd.target == std::array<double, 2>{0, 0});
+    CHECK_FALSE(cmd.stabilized);
+    require_error(plan("center", {{"pan", 10}}), "bad_request", "pan");
+
     require_error(plan("mode", {{"mode", "geopoint"}}), "bad_request", "mode");
     require_error(plan("position", {{"pan", 181}, {"tilt", 0}}), "out_of_range", "pan");
     require_error(plan("rate", {{"pan", 0}, {"tilt", 5000}}), "out_of_range", "tilt");

@@ -44,6 +44,17 @@ TEST_CASE("position: the quaternion of common.xml's GIMBAL_DEVICE_SET_ATTITUDE")
     }
 }
 
+TEST_CASE("center: yaw 0 and pitch 0 from the vehicle's nose, held") {
+    MavlinkDeviceProtocol p(MavlinkDeviceOptions{});
+    (void)planned_attitude(p, "position", {{"pan", 40}, {"tilt", -30}});
+    const auto m = planned_attitude(p, "center", json::object());
+    CHECK(m.q[0] == Approx(1).margin(1e-6));  // the identity: forward and level
+    CHECK(m.q[1] == Approx(0).margin(1e-6));
+    CHECK(m.q[2] == Approx(0).margin(1e-6));
+    CHECK(m.q[3] == Approx(0).margin(1e-6));
+    CHECK(m.flags == (4 | 8 | 32));
+}
+
 TEST_CASE("rate: angular velocities with a NaN quaternion; an impulse stops") {
     MavlinkDeviceProtocol p(MavlinkDeviceOptions{});
     const auto m = planned_attitude(p, "rate", {{"pan", 20}, {"tilt", -10}, {"impulse_time_s", 1}});
