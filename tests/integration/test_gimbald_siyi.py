@@ -94,6 +94,15 @@ class SiyiTest(gt.GimbaldTestCase):
         self.assertEqual(s["siyi"]["model"], "ZR10")
         self.assertTrue(s["siyi"]["hardware_id"].startswith("6B"))
         self.assertIsNotNone(s["siyi"]["firmware"])
+        # Contract section 22's keys of STATE siyi, the attitude as the camera reports it.
+        for key in ("model", "firmware", "hardware_id", "attitude", "attitude_rate", "zoom",
+                    "zoom_max", "recording", "laser_range_m", "age_s"):
+            self.assertIn(key, s["siyi"])
+        self.assertEqual(set(s["siyi"]["firmware"]), {"camera", "gimbal", "zoom"})
+        self.assertEqual(set(s["siyi"]["attitude"]), {"yaw", "pitch", "roll"})
+        self.assertEqual(set(s["siyi"]["attitude_rate"]), {"yaw", "pitch", "roll"})
+        self.assertAlmostEqual(s["siyi"]["attitude"]["yaw"], -s["telemetry"]["pan"], delta=0.5)
+        self.assertIn(s["siyi"]["recording"], (True, False))
         self.assertFalse(s["stale"])
         self.assertEqual(s["vehicle"]["feed"]["kind"], "aircraft_attitude")
         t = s["telemetry"]
@@ -110,6 +119,21 @@ class SiyiTest(gt.GimbaldTestCase):
         self.assertAlmostEqual(entry["message"]["pitch"], -45, places=3)
         self.wait_state(client, lambda s: abs(s["telemetry"]["pan"] - 30) < 0.5 and
                         abs(s["telemetry"]["tilt"] + 45) < 0.5, "pan 30 tilt -45")
+
+        # center: 0x08 one-key centring, and the camera comes back to 0 0.
+        start = len(sim.rx())
+        self.assertOk(client.request("center", gimbal="cam"))
+        entry = sim.wait_rx(lambda e: e["kind"] == "center", start=start)
+        self.assertIsNotNone(entry, "no 0x08")
+        self.assertEqual(entry["message"]["position"], "one_key_center")
+        self.wait_state(client, lambda s: abs(s["telemetry"]["pan"]) < 0.5 and
+                        abs(s["telemetry"]["tilt"]) < 0.5, "centred")
+        self.assertError(client.request("center", gimbal="cam", pan=0), "bad_request")
+
+        # STATE restricted to the protocol's own key, which its registry entry declares.
+        reply = client.request("state", gimbal="cam", keys=["siyi"])
+        self.assertOk(reply)
+        self.assertEqual(set(reply["state"]), {"protocol", "link", "stale", "siyi"})
 
         # camera_zoom: 0x0F; beyond the ZR10's 30x it is out_of_range.
         self.assertOk(client.request("camera_zoom", gimbal="cam", zoom=2.5))

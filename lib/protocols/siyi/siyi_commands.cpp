@@ -50,6 +50,17 @@ command::Result<SiyiPlan> position(JsonParams& p, const SiyiCommandContext& ctx)
     return plan;
 }
 
+// 0x08 one-key centring: the camera returns to its nose-forward, level home by itself; any
+// held target is let go so that the next tick does not turn it away again.
+command::Result<SiyiPlan> center(JsonParams& p) {
+    p.reject_unknown();
+    if (!p.ok()) return p.error();
+    SiyiPlan plan;
+    plan.send.emplace_back(siyi::Center{siyi::CenterPosition::one_key_center});
+    plan.hold = SiyiHold{};
+    return plan;
+}
+
 // 0x07 speeds; the camera keeps turning until told 0 0. `stabilized` changes nothing: its
 // pitch is held in the earth frame in every mode, its yaw as its motion mode says.
 command::Result<SiyiPlan> rate(JsonParams& p, const SiyiCommandContext& ctx) {
@@ -146,14 +157,15 @@ command::Result<SiyiPlan> path(JsonParams& p, const SiyiCommandContext& ctx) {
 }  // namespace
 
 bool is_siyi_command(std::string_view cmd) {
-    return cmd == "position" || cmd == "rate" || cmd == "camera_zoom" || cmd == "geopoint" ||
-           cmd == "path";
+    return cmd == "position" || cmd == "center" || cmd == "rate" || cmd == "camera_zoom" ||
+           cmd == "geopoint" || cmd == "path";
 }
 
 command::Result<SiyiPlan> plan_siyi_command(std::string_view cmd, const json& request,
                                             const SiyiCommandContext& context) {
     JsonParams p(request, cmd);
     if (cmd == "position") return position(p, context);
+    if (cmd == "center") return center(p);
     if (cmd == "rate") return rate(p, context);
     if (cmd == "camera_zoom") return camera_zoom(p, context);
     if (cmd == "geopoint") return geopoint(p, context);

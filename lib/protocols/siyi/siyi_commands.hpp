@@ -1,5 +1,5 @@
-// The commands a SIYI camera takes - `position`, `rate`, `camera_zoom`, `geopoint` and
-// `path` - read with the catalogue's parameters (lib/command/catalogue.cpp) and turned into
+// The commands a SIYI camera takes - `position`, `center`, `rate`, `camera_zoom`,
+// `geopoint` and `path` - read with the catalogue's parameters (lib/command/catalogue.cpp) and turned into
 // what to send now and what gimbald holds the camera to (SiyiSteering). Pure: a refused
 // command changes nothing.
 #pragma once

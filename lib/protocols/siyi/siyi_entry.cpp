@@ -15,6 +15,7 @@ constexpr PlannedCommand commands[] = {
     {"position",
      "0x0E set gimbal attitude (yaw = -pan, pitch = tilt); `stabilized`: held from north, "
      "re-sent at 20 Hz"},
+    {"center", "0x08 one-key centring (`center_pos` 1): nose-forward and level"},
     {"rate", "0x07 gimbal rotation, speeds -100..100 of the model's top rate"},
     {"camera_zoom", "0x0F absolute zoom, one decimal, within the model's range"},
     {"geopoint",
@@ -22,6 +23,9 @@ constexpr PlannedCommand commands[] = {
      "`stare_start` event once on the point"},
     {"path", "0x0E set gimbal attitude along the path, at 20 Hz; `down`: pitch -90"},
 };
+
+// STATE `siyi`: the camera's own report (contract section 22).
+constexpr std::string_view state_keys[] = {"siyi"};
 
 std::unique_ptr<session::Protocol> make_session(const SessionSettings& s,
                                                 const nlohmann::json& gimbal) {
@@ -55,6 +59,7 @@ Entry make_entry() {
     e.display_name = "SIYI";
     e.dissector = "siyi";
     e.commands = commands;
+    e.state_keys = state_keys;
     e.features = siyi_features();
     e.config_section = "siyi";
     e.read_config = read_config;

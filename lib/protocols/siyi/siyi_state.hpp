@@ -56,14 +56,22 @@ struct SiyiData {
     std::optional<state::Telemetry> telemetry;
 };
 
+// STATE siyi.attitude and attitude_rate: as the camera reports them (0x0D), in SIYI's frame -
+// yaw from the nose, positive LEFT (telemetry.pan is its negation), pitch up positive.
+struct SiyiReportedAngles {
+    double yaw = 0, pitch = 0, roll = 0;
+};
+
 template <class V>
-void fields(V& v, const SiyiAttitude& a) {
-    v.angle("pan", a.pan_deg);
-    v.angle("tilt", a.tilt_deg);
-    v.angle("roll", a.roll_deg);
-    v.angle("pan_rate", a.pan_rate_dps);
-    v.angle("tilt_rate", a.tilt_rate_dps);
-    v.angle("roll_rate", a.roll_rate_dps);
+void fields(V& v, const SiyiReportedAngles& a) {
+    v.angle("yaw", a.yaw);
+    v.angle("pitch", a.pitch);
+    v.angle("roll", a.roll);
+}
+
+// SIYI's yaw from gimbald's pan (0 stays 0: a negated 0 would be written as -0.0).
+inline double siyi_yaw_of_pan(double pan_deg) {
+    return pan_deg == 0 ? 0.0 : -pan_deg;
 }
 
 template <class V>
@@ -86,10 +94,20 @@ void fields(V& v, const SiyiData& d) {
     v.string("model",
              d.model ? std::optional(std::string(siyi::model_info(*d.model).name)) : std::nullopt);
     v.object("firmware", d.firmware);
-    v.object("attitude", d.attitude);
+    std::optional<SiyiReportedAngles> attitude, rate;
+    if (const auto& a = d.attitude) {
+        attitude = SiyiReportedAngles{siyi_yaw_of_pan(a->pan_deg), a->tilt_deg, a->roll_deg};
+        rate = SiyiReportedAngles{siyi_yaw_of_pan(a->pan_rate_dps), a->tilt_rate_dps,
+                                  a->roll_rate_dps};
+    }
+    v.object("attitude", attitude);
+    v.object("attitude_rate", rate);
     v.decimals("zoom", d.zoom, 1);
     v.decimals("zoom_max", d.zoom_max, 1);
-    v.string("record",
+    v.boolean("recording", d.record ? std::optional(*d.record == siyi::RecordStatus::recording)
+                                    : std::nullopt);
+    // Why it is not recording: off, no_card, data_loss (0x0A record_sta).
+    v.string("record_status",
              d.record ? std::optional(std::string(siyi::enum_name(*d.record))) : std::nullopt);
     v.string("motion_mode", d.motion_mode
                                 ? std::optional(std::string(siyi::enum_name(*d.motion_mode)))

@@ -3,7 +3,9 @@
 // model's range, and geopoint/path aimed by gimbald from the vehicle's position.
 #include <catch2/catch.hpp>
 
+#include "protocols/siyi/codec/messages.hpp"
 #include "protocols/siyi/siyi_commands.hpp"
+#include "vectors.hpp"
 
 using namespace gimbal;
 using namespace gimbal::protocols;
@@ -46,6 +48,22 @@ TEST_CASE("planner: position sends 0x0E with SIYI's yaw", "[siyi][planner]") {
     CHECK(m.pitch == Approx(-45));
     REQUIRE(p->hold);
     CHECK(std::holds_alternative<std::monostate>(*p->hold));
+}
+
+TEST_CASE("planner: center is the SDK's one-key centering and lets go of a held target",
+          "[siyi][planner]") {
+    const auto p = plan_siyi_command("center", json::object(), context(true));
+    REQUIRE(p);
+    const auto m = only<siyi::Center>(*p);
+    CHECK(m.position == siyi::CenterPosition::one_key_center);
+    // The SDK's own example frame (CTRL 01, SEQ 0).
+    CHECK(siyi::encode(siyi::ToGimbal{m}, siyi::Header{}) ==
+          siyi_test::sdk_requests()[10].bytes);
+    REQUIRE(p->hold);
+    CHECK(std::holds_alternative<std::monostate>(*p->hold));
+    const auto refused = plan_siyi_command("center", {{"pan", 0}}, context());
+    REQUIRE_FALSE(refused);
+    CHECK(refused.error().code == command::ErrorCode::bad_request);
 }
 
 TEST_CASE("planner: stabilized position needs the heading and holds it", "[siyi][planner]") {

@@ -112,6 +112,21 @@ TEST_CASE("session: position, rate and zoom move the simulated camera", "[siyi][
     CHECK(turned < 10);  // stopped after the impulse (on the camera's next frame)
 }
 
+TEST_CASE("session: center brings the simulated camera home and ends a held heading",
+          "[siyi][session]") {
+    Loop loop;
+    loop.run(0.5);
+    loop.command("position", {{"pan", -60}, {"tilt", -30}});
+    loop.run(3.0);
+    REQUIRE(loop.sim.yaw_deg() == Approx(60).margin(0.5));
+    loop.command("center", json::object());
+    loop.run(4.0);
+    CHECK(loop.sim.yaw_deg() == Approx(0).margin(0.5));
+    CHECK(loop.sim.pitch_deg() == Approx(0).margin(0.5));
+    REQUIRE(loop.proto.telemetry());
+    CHECK(*loop.proto.telemetry()->pan == Approx(0).margin(0.5));
+}
+
 TEST_CASE("session: the vehicle feed and a geopoint", "[siyi][session]") {
     // The ZT30's laser hits flat ground 500 m below, where the target is: STATE's target is
     // the laser's point (0x17).
@@ -188,8 +203,8 @@ TEST_CASE("entry: the registry's view of SIYI", "[siyi][session]") {
     CHECK(e.name == "siyi");
     std::vector<std::string_view> planned;
     for (const auto& c : e.commands) planned.push_back(c.name);
-    CHECK(planned ==
-          std::vector<std::string_view>{"position", "rate", "camera_zoom", "geopoint", "path"});
+    CHECK(planned == std::vector<std::string_view>{"position", "center", "rate", "camera_zoom",
+                                                  "geopoint", "path"});
     const json gimbal = {{"name", "g"}, {"protocol", "siyi"}};
     auto session = e.make_session(SessionSettings{}, gimbal);
     CHECK(session->name() == "siyi");

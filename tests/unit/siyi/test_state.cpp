@@ -53,9 +53,10 @@ TEST_CASE("state: attitude in gimbald's frame, telemetry's pan/tilt and field of
     SiyiState s{SiyiOptions{}};
     s.apply(attitude(10, -20), 2.0);  // SIYI yaw 10: ten degrees LEFT
     const json j = snapshot(s, 2.5);
-    CHECK(j["siyi"]["attitude"]["pan"] == Approx(-10));
-    CHECK(j["siyi"]["attitude"]["tilt"] == Approx(-20));
-    CHECK(j["siyi"]["attitude"]["pan_rate"] == Approx(-5));
+    // STATE siyi: as the camera reports it (contract section 22), yaw left positive.
+    CHECK(j["siyi"]["attitude"]["yaw"] == Approx(10));
+    CHECK(j["siyi"]["attitude"]["pitch"] == Approx(-20));
+    CHECK(j["siyi"]["attitude_rate"]["yaw"] == Approx(5));
     CHECK(j["siyi"]["age_s"] == Approx(0.5));
     REQUIRE(s.telemetry());
     CHECK(*s.telemetry()->pan == Approx(-10));
@@ -101,13 +102,15 @@ TEST_CASE("state: firmware, recording and the laser", "[siyi][state]") {
     CHECK(j["siyi"]["firmware"]["camera"] == "3.2.3");
     CHECK(j["siyi"]["firmware"]["gimbal"] == "1.5.2");
     CHECK(j["siyi"]["firmware"]["zoom"].is_null());
-    CHECK(j["siyi"]["record"] == "recording");
+    CHECK(j["siyi"]["recording"] == true);
+    CHECK(j["siyi"]["record_status"] == "recording");
     CHECK(j["siyi"]["laser_range_m"].is_null());
     s.apply(siyi::LaserDistance{123.4}, 1.0);
     s.apply(siyi::FunctionFeedback{siyi::FeedbackInfo::record_stopped}, 1.0);
     j = snapshot(s, 1.0);
     CHECK(j["siyi"]["laser_range_m"] == Approx(123.4));
-    CHECK(j["siyi"]["record"] == "off");
+    CHECK(j["siyi"]["recording"] == false);
+    CHECK(j["siyi"]["record_status"] == "off");
 }
 
 TEST_CASE("state: with the vehicle's fix, the line of sight meets the flat ground",

@@ -38,6 +38,8 @@ class JsonWriter {
         } else if constexpr (std::is_floating_point_v<T>) {
             const double v = static_cast<double>(member);
             slot = unit == Unit::radians ? v * rad2deg : v;
+        } else if constexpr (std::is_unsigned_v<T>) {
+            slot = static_cast<unsigned long long>(member);  // a u64 above 2^63 stays positive
         } else {
             slot = static_cast<long long>(member);
         }
