@@ -14,10 +14,9 @@ namespace {
 // (telemetry, lasers, stare), and the daemon's own (vehicle, command, mavlink, mqtt, record,
 // capabilities, video). A protocol's own keys (Orion's ins, Viewpro's output, ...) are its
 // registry entry's (protocols::Entry::state_keys).
-constexpr std::string_view shared_keys[] = {"protocol", "link",    "stale", "telemetry",
-                                            "lasers",   "stare",   "vehicle", "command",
-                                            "mavlink",  "mqtt",    "record",  "capabilities",
-                                            "video"};
+constexpr std::string_view shared_keys[] = {
+    "protocol", "link",    "stale", "telemetry", "lasers",       "stare", "vehicle",
+    "command",  "mavlink", "mqtt",  "record",    "capabilities", "video"};
 
 bool always_kept(std::string_view key) {
     return key == "protocol" || key == "link" || key == "stale";
@@ -78,8 +77,7 @@ command::Result<std::vector<std::string>> read_state_keys(
         if (!k.is_string())
             return {code::bad_request, "'keys' must be an array of STATE key names"};
         const auto& name = k.get_ref<const std::string&>();
-        if (!is_known(name))
-            return {code::bad_request, "'keys': unknown STATE key '" + name + "'"};
+        if (!is_known(name)) return {code::bad_request, "'keys': unknown STATE key '" + name + "'"};
         if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
     }
     return names;

@@ -28,7 +28,23 @@ constexpr PlannedCommand commands[] = {
 };
 
 // STATE keys of an Orion's own packets (contract section 5), besides the shared ones.
-constexpr std::string_view state_keys[] = {"ins", "gps", "diagnostics", "performance", "software", "network_diagnostics", "vibration", "retract", "cameras", "limits", "network_settings", "network_video", "uart_config", "ins_options", "versions", "reset_source", "boards"};
+constexpr std::string_view state_keys[] = {"ins",
+                                           "gps",
+                                           "diagnostics",
+                                           "performance",
+                                           "software",
+                                           "network_diagnostics",
+                                           "vibration",
+                                           "retract",
+                                           "cameras",
+                                           "limits",
+                                           "network_settings",
+                                           "network_video",
+                                           "uart_config",
+                                           "ins_options",
+                                           "versions",
+                                           "reset_source",
+                                           "boards"};
 
 std::size_t frame_size(const orion::Frame& f) {
     return orion::header_size + f.payload.size + orion::checksum_size;
