@@ -64,8 +64,8 @@ struct Enums {
     int of() {
         std::string text = "{";
         for (const auto& e : enum_names(E{}))
-            text += " [" + std::to_string(static_cast<long long>(e.value)) + "] = " +
-                    lua_string(e.name) + ",";
+            text += " [" + std::to_string(static_cast<long long>(e.value)) +
+                    "] = " + lua_string(e.name) + ",";
         text += " }";
         const auto [it, added] = index.emplace(text, static_cast<int>(tables.size()) + 1);
         if (added) tables.push_back(text);
@@ -82,8 +82,8 @@ class SchemaVisitor {
     template <class T, class Raw>
     void field(std::string_view key, const T&, siyi::Enc<Raw>, double scale = 1.0,
                siyi::Unit unit = siyi::Unit::none) {
-        std::string row = "{ k = \"field\", key = " + lua_string(key) + ", enc = " +
-                          lua_string(enc_name<Raw>()) + ", scale = " + number(scale);
+        std::string row = "{ k = \"field\", key = " + lua_string(key) +
+                          ", enc = " + lua_string(enc_name<Raw>()) + ", scale = " + number(scale);
         if constexpr (std::is_enum_v<T>) {
             using U = std::underlying_type_t<T>;
             row += ", kind = \"enum\", enum = " + std::to_string(enums_.template of<T>()) +
@@ -96,7 +96,8 @@ class SchemaVisitor {
         } else if constexpr (std::is_floating_point_v<T>) {
             row += ", kind = \"double\"";
         } else {
-            row += ", kind = \"int\", min = " + number(static_cast<double>(std::numeric_limits<T>::lowest())) +
+            row += ", kind = \"int\", min = " +
+                   number(static_cast<double>(std::numeric_limits<T>::lowest())) +
                    ", max = " + number(static_cast<double>(std::numeric_limits<T>::max()));
         }
         if (unit == siyi::Unit::radians) row += ", degrees = true";
@@ -206,8 +207,8 @@ void random_vectors(List list, siyi::Direction direction, std::mt19937& rng, int
             m.fields(d);
             if (d.error() != siyi::DecodeError::none) continue;
             siyi::Header h;
-            h.ctrl = direction == siyi::Direction::to_gimbal ? siyi::ctrl_need_ack
-                                                            : siyi::ctrl_ack_pack;
+            h.ctrl =
+                direction == siyi::Direction::to_gimbal ? siyi::ctrl_need_ack : siyi::ctrl_ack_pack;
             h.seq = static_cast<std::uint16_t>(rng());
             print_vector(siyi::encode(m, h), direction);
         }
@@ -219,9 +220,9 @@ int vectors(std::uint32_t seed) {
         print_vector(g.bytes, siyi::Direction::to_gimbal);
     for (const auto& g : siyi_test::sdk_undeclared())
         print_vector(g.bytes, siyi::Direction::to_gimbal);
-    for (const auto* reply : {&siyi_test::mk15_hardware_id_reply,
-                              &siyi_test::captured_attitude_reply,
-                              &siyi_test::captured_attitude_reply2})
+    for (const auto* reply :
+         {&siyi_test::mk15_hardware_id_reply, &siyi_test::captured_attitude_reply,
+          &siyi_test::captured_attitude_reply2})
         print_vector(*reply, siyi::Direction::from_gimbal);
     std::mt19937 rng(seed);
     random_vectors(siyi::ToGimbalList{}, siyi::Direction::to_gimbal, rng, 4);
@@ -244,7 +245,8 @@ int main(int argc, char** argv) {
         std::cout << schema();
         return 0;
     }
-    if (mode == "--vectors") return vectors(argc > 2 ? static_cast<std::uint32_t>(std::stoul(argv[2])) : 1u);
+    if (mode == "--vectors")
+        return vectors(argc > 2 ? static_cast<std::uint32_t>(std::stoul(argv[2])) : 1u);
     if ((mode == "--check" || mode == "--write") && argc == 3) {
         const std::string text = read_file(argv[2]);
         const std::string updated = with_block(text, schema());

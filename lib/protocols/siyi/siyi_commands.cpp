@@ -19,6 +19,10 @@ using nlohmann::json;
 
 constexpr double deg = std::numbers::pi / 180.0;
 
+std::shared_ptr<const SiyiHold> holding(SiyiHold hold) {
+    return std::make_shared<const SiyiHold>(std::move(hold));
+}
+
 command::Error no_fix(std::string_view cmd) {
     return {code::unavailable, std::string(cmd) +
                                    " needs the vehicle's position and attitude: gimbald aims a "
@@ -37,7 +41,7 @@ command::Result<SiyiPlan> position(JsonParams& p, const SiyiCommandContext& ctx)
     SiyiPlan plan;
     if (!stabilized) {
         plan.send.emplace_back(siyi_angles(*pan, *tilt));
-        plan.hold = SiyiHold{};
+        plan.hold = holding(SiyiHold{});
         return plan;
     }
     if (!ctx.vehicle_yaw_deg)
@@ -46,7 +50,7 @@ command::Result<SiyiPlan> position(JsonParams& p, const SiyiCommandContext& ctx)
                               "pan is held from north): configure `vehicle`, or send "
                               "stabilized false"};
     plan.send.emplace_back(siyi_angles(*pan, *tilt));
-    plan.hold = SiyiHoldHeading{session::wrap180(*ctx.vehicle_yaw_deg + *pan), *tilt};
+    plan.hold = holding(SiyiHoldHeading{session::wrap180(*ctx.vehicle_yaw_deg + *pan), *tilt});
     return plan;
 }
 
@@ -57,7 +61,7 @@ command::Result<SiyiPlan> center(JsonParams& p) {
     if (!p.ok()) return p.error();
     SiyiPlan plan;
     plan.send.emplace_back(siyi::Center{siyi::CenterPosition::one_key_center});
-    plan.hold = SiyiHold{};
+    plan.hold = holding(SiyiHold{});
     return plan;
 }
 
@@ -72,7 +76,7 @@ command::Result<SiyiPlan> rate(JsonParams& p, const SiyiCommandContext& ctx) {
     if (!p.ok()) return p.error();
     SiyiPlan plan;
     plan.send.emplace_back(siyi_speeds(*pan, *tilt, *ctx.model));
-    plan.hold = impulse > 0 ? SiyiHold{SiyiHoldRates{ctx.now_s + impulse}} : SiyiHold{};
+    plan.hold = holding(impulse > 0 ? SiyiHold{SiyiHoldRates{ctx.now_s + impulse}} : SiyiHold{});
     return plan;
 }
 
@@ -128,7 +132,7 @@ command::Result<SiyiPlan> geopoint(JsonParams& p, const SiyiCommandContext& ctx)
     // stare: gimbald watches the camera's line of sight (siyi_stare.hpp).
     g.stare = stare;
     SiyiPlan plan;
-    plan.hold = g;
+    plan.hold = holding(g);
     return plan;
 }
 
@@ -138,7 +142,7 @@ command::Result<SiyiPlan> path(JsonParams& p, const SiyiCommandContext& ctx) {
     SiyiPlan plan;
     if (read->down) {
         plan.send.emplace_back(siyi_angles(0, -90));
-        plan.hold = SiyiHold{};
+        plan.hold = holding(SiyiHold{});
         return plan;
     }
     if (!ctx.has_vehicle_fix) return no_fix("path");
@@ -150,7 +154,7 @@ command::Result<SiyiPlan> path(JsonParams& p, const SiyiCommandContext& ctx) {
     h.follower =
         std::make_shared<sim::PathFollower>(std::move(read->ecef), step, sim::PathOptions{});
     h.last_s = ctx.now_s;
-    plan.hold = h;
+    plan.hold = holding(h);
     return plan;
 }
 

@@ -1,9 +1,10 @@
 // The commands a SIYI camera takes - `position`, `center`, `rate`, `camera_zoom`,
-// `geopoint` and `path` - read with the catalogue's parameters (lib/command/catalogue.cpp) and turned into
-// what to send now and what gimbald holds the camera to (SiyiSteering). Pure: a refused
+// `geopoint` and `path` - read with the catalogue's parameters (lib/command/catalogue.cpp) and
+// turned into what to send now and what gimbald holds the camera to (SiyiSteering). Pure: a refused
 // command changes nothing.
 #pragma once
 
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string_view>
@@ -24,7 +25,9 @@ struct SiyiCommandContext {
 
 struct SiyiPlan {
     std::vector<siyi::ToGimbal> send;  // at once
-    std::optional<SiyiHold> hold;      // replaces the held target (nullopt: keeps it)
+    // Replaces the held target (nullptr: keeps it). Shared rather than optional: GCC 12 at
+    // -O2 warns falsely (-Wmaybe-uninitialized) when an optional<SiyiHold> is moved.
+    std::shared_ptr<const SiyiHold> hold;
 };
 
 bool is_siyi_command(std::string_view cmd);

@@ -175,7 +175,7 @@ std::optional<command::Error> SiyiProtocol::plan(std::string_view cmd,
     };
     for (const auto& m : planned->send) add(m);
     if (planned->hold) {
-        steering_.hold(std::move(*planned->hold));
+        steering_.hold(*planned->hold);
         // A location is aimed at once, not at the next tick.
         if (const auto m = steering_.command(state_.vehicle(), state_.camera(),
                                              state_.line_of_sight(), now.mono_s);

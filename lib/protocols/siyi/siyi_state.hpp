@@ -104,8 +104,8 @@ void fields(V& v, const SiyiData& d) {
     v.object("attitude_rate", rate);
     v.decimals("zoom", d.zoom, 1);
     v.decimals("zoom_max", d.zoom_max, 1);
-    v.boolean("recording", d.record ? std::optional(*d.record == siyi::RecordStatus::recording)
-                                    : std::nullopt);
+    v.boolean("recording",
+              d.record ? std::optional(*d.record == siyi::RecordStatus::recording) : std::nullopt);
     // Why it is not recording: off, no_card, data_loss (0x0A record_sta).
     v.string("record_status",
              d.record ? std::optional(std::string(siyi::enum_name(*d.record))) : std::nullopt);

@@ -57,8 +57,7 @@ TEST_CASE("planner: center is the SDK's one-key centering and lets go of a held 
     const auto m = only<siyi::Center>(*p);
     CHECK(m.position == siyi::CenterPosition::one_key_center);
     // The SDK's own example frame (CTRL 01, SEQ 0).
-    CHECK(siyi::encode(siyi::ToGimbal{m}, siyi::Header{}) ==
-          siyi_test::sdk_requests()[10].bytes);
+    CHECK(siyi::encode(siyi::ToGimbal{m}, siyi::Header{}) == siyi_test::sdk_requests()[10].bytes);
     REQUIRE(p->hold);
     CHECK(std::holds_alternative<std::monostate>(*p->hold));
     const auto refused = plan_siyi_command("center", {{"pan", 0}}, context());

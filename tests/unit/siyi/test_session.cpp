@@ -204,7 +204,7 @@ TEST_CASE("entry: the registry's view of SIYI", "[siyi][session]") {
     std::vector<std::string_view> planned;
     for (const auto& c : e.commands) planned.push_back(c.name);
     CHECK(planned == std::vector<std::string_view>{"position", "center", "rate", "camera_zoom",
-                                                  "geopoint", "path"});
+                                                   "geopoint", "path"});
     const json gimbal = {{"name", "g"}, {"protocol", "siyi"}};
     auto session = e.make_session(SessionSettings{}, gimbal);
     CHECK(session->name() == "siyi");
