@@ -4,6 +4,7 @@
 
 #include "protocols/mavlink_device/mavlink_device_entry.hpp"
 #include "protocols/orion/orion_entry.hpp"
+#include "protocols/siyi/siyi_entry.hpp"
 #include "protocols/viewpro/viewpro_entry.hpp"
 #include "state/messages.hpp"
 
@@ -17,6 +18,8 @@ const Entry& entry(ProtocolId id) {
             return viewpro_entry();
         case ProtocolId::mavlink:
             return mavlink_device_entry();
+        case ProtocolId::siyi:
+            return siyi_entry();
     }
     __builtin_unreachable();  // every enumerator returns above; -Wswitch names a missing one
 }

@@ -76,6 +76,10 @@ done
 # The operator console (contract section 11), served from here by default.
 [ -f "$src/web/index.html" ] && expect -rw-r--r-- usr/share/gimbald/web/index.html
 [ -f "$src/dissectors/gimbald.lua" ] && expect -rw-r--r-- "usr/lib/.*/wireshark/plugins/gimbald.lua"
+# A protocol's own dissector, from its home (docs/architecture.md).
+for lua in "$src"/lib/protocols/*/dissector/*.lua; do
+  [ -f "$lua" ] && expect -rw-r--r-- "usr/lib/.*/wireshark/plugins/$(basename "$lua")"
+done
 
 # --- run from the unpacked package (only where the package's architecture runs here)
 dpkg-deb -x "$deb" "$scratch"

@@ -362,7 +362,7 @@ TEST_CASE("each invalid value is reported with its path and message", "[config]"
         {"missing name", [](json& c) { c["gimbals"][0].erase("name"); },
          "gimbals[0].name: required"},
         {"protocol", [](json& c) { c["gimbals"][0]["protocol"] = "trillium"; },
-         "gimbals[0].protocol: must be one of \"orion\", \"viewpro\", \"mavlink\""},
+         "gimbals[0].protocol: must be one of \"orion\", \"viewpro\", \"mavlink\", \"siyi\""},
         {"missing link", [](json& c) { c["gimbals"][0].erase("link"); },
          "gimbals[0].link: required"},
         {"link not an object", [](json& c) { c["gimbals"][0]["link"] = "tcp"; },

@@ -201,7 +201,8 @@ TEST_CASE("each entry's session, simulator, splitter and track decoder work toge
         CHECK(frames == r.counters.rx_packets);
 
         // The export hook: one track point per telemetry frame, each with the aircraft when
-        // the gimbal's link carries its position (a MAVLink device's does not).
+        // the gimbal's link carries its position (a MAVLink device's and a SIYI camera's do
+        // not).
         auto decoder = e->make_track_decoder();
         std::vector<protocols::TrackPoint> points;
         decoder->push(r.stream, 1'790'000'000'000'000, points);
@@ -209,7 +210,8 @@ TEST_CASE("each entry's session, simulator, splitter and track decoder work toge
         CHECK(decoder->decode_errors() == 0);
         CHECK(points.size() == r.telemetry);
         REQUIRE_FALSE(points.empty());
-        CHECK(points.back().aircraft.has_value() == (e->id != protocols::ProtocolId::mavlink));
+        CHECK(points.back().aircraft.has_value() ==
+              (e->id != protocols::ProtocolId::mavlink && e->id != protocols::ProtocolId::siyi));
 
         // The capabilities read that state.
         const auto& caps = r.session->capabilities();
