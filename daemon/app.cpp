@@ -1,5 +1,6 @@
 #include "app.hpp"
 
+#include <atomic>
 #include <chrono>
 #include <csignal>
 #include <cstdlib>
@@ -21,6 +22,7 @@
 #include "record/recording_link.hpp"
 #include "secret_file.hpp"
 #include "signing_state.hpp"
+#include "video/url.hpp"
 
 namespace gimbald {
 
@@ -36,7 +38,8 @@ namespace {
 nlohmann::json capabilities_key(const protocols::Entry& protocol) {
     nlohmann::json commands = nlohmann::json::array();
     for (const auto& c : protocol.commands) commands.push_back(c.name);
-    return {{"features", protocol.capabilities->names()}, {"commands", std::move(commands)}};
+    return {{"features", gimbal::session::feature_names(protocol.features)},
+            {"commands", std::move(commands)}};
 }
 
 }  // namespace
@@ -45,7 +48,9 @@ App::App(const cfg::Config& config, std::unique_ptr<gimbal::terrain::ElevationMo
     : config_(config),
       signals_(io_, SIGINT, SIGTERM, SIGHUP),
       watchdog_timer_(io_),
-      terrain_(std::move(terrain)) {
+      log_timer_(io_),
+      terrain_(std::move(terrain)),
+      terrain_loader_(terrain_ ? std::make_unique<TerrainLoader>(io_, *terrain_) : nullptr) {
     if (config_.record) start_recorder();
     // Each protocol reads its own keys (feed, options) from its gimbal's configuration object.
     const nlohmann::json gimbal_objects = cfg::to_json(config_)["gimbals"];
@@ -103,7 +108,9 @@ App::App(const cfg::Config& config, std::unique_ptr<gimbal::terrain::ElevationMo
             return nlohmann::json{{"requests", c.requests},
                                   {"rejected", c.rejected},
                                   {"rate_limited", c.rate_limited},
-                                  {"dropped_source", server_->dropped_sources()}};
+                                  {"dropped_source", server_->dropped_sources()},
+                                  {"send_failed", server_->send_counters().failed},
+                                  {"push_too_large", server_->send_counters().pushes_too_large}};
         });
     events_.add([this](const std::string& gimbal, const gimbal::state::Event& e) {
         server_->publish_event(gimbal, e);
@@ -165,9 +172,8 @@ void App::start_video() {
         const auto& g = config_.gimbals[i];
         videos_.push_back(nullptr);
         if (!g.video) {
-            session.add_state_key("video", [] { return nlohmann::json(nullptr); });
             session.add_command("klv", [name = g.name](const nlohmann::json& request) {
-                gimbal::command::Params params(request);
+                gimbal::command::JsonParams params(request, "klv");
                 params.reject_unknown();
                 if (!params.ok()) return gimbal::command::Result<nlohmann::json>(params.error());
                 return gimbal::command::Result<nlohmann::json>(
@@ -179,8 +185,7 @@ void App::start_video() {
         video::GimbalVideoOptions o;
         o.gimbal = g.name;
         o.config = *g.video;
-        o.capabilities = protocols::entry(g.protocol).capabilities;
-        o.state = [&session] { return session.snapshot(); };
+        o.view = [&session] { return session.view(); };
         if (recorder_) {
             const auto interface = static_cast<std::uint32_t>(first_interface + recorded++);
             o.record = [this, interface](std::span<const std::uint8_t> bytes, bool generated) {
@@ -190,9 +195,9 @@ void App::start_video() {
             };
         }
         auto& v = *(videos_.back() = std::make_unique<video::GimbalVideo>(io_, std::move(o)));
-        session.add_state_key("video", [&v] { return v.snapshot(); });
+        session.set_video([&v] { return std::optional(v.video_state()); });
         session.add_command("klv", [&v](const nlohmann::json& request) {
-            gimbal::command::Params params(request);
+            gimbal::command::JsonParams params(request, "klv");
             params.reject_unknown();
             if (!params.ok()) return gimbal::command::Result<nlohmann::json>(params.error());
             return v.klv_reply();
@@ -221,6 +226,8 @@ void App::start_http() {
     view.path = request_path_.get();
     view.udp_subscribers = [this] { return server_->subscribers(); };
     view.udp_dropped_sources = [this] { return server_->dropped_sources(); };
+    view.udp_send_failed = [this] { return server_->send_counters().failed; };
+    view.udp_pushes_too_large = [this] { return server_->send_counters().pushes_too_large; };
     view.vehicle_up = [this] {
         return config_.vehicle && vehicle_->vehicle_state().fresh(vehicle_->monotonic_s());
     };
@@ -289,7 +296,32 @@ void App::tap_recorder() {
     }
 }
 
-App::~App() = default;
+namespace {
+std::atomic<bool> terrain_read_left{false};
+}
+
+bool App::left_a_terrain_read_running() {
+    return terrain_read_left;
+}
+
+// A read GDAL cannot interrupt (docs/terrain.md "Reads off the io thread") may take seconds;
+// a stopping daemon gives it a moment and then leaves it running: ~App leaves the loader and
+// the model (whose GDAL handles it reads) to the process's end, and main ends the process
+// without tearing GDAL down under it.
+void App::stop_terrain_reads() {
+    constexpr std::chrono::milliseconds grace(300);
+    if (!terrain_loader_ || terrain_loader_->stop(grace)) return;
+    terrain_read_left = true;
+    log::warn("terrain_read_left", "a terrain read was still running at stop: not waited for",
+              {{"waited_s", std::chrono::duration<double>(grace).count()}});
+}
+
+App::~App() {
+    if (!terrain_read_left) return;
+    // The sessions, destroyed after this body, keep pointers to the model: it stays valid.
+    static_cast<void>(terrain_loader_.release());
+    static_cast<void>(terrain_.release());
+}
 
 // Once, before the sessions: the geoid grid when a gimbal's protocol asks for the undulation
 // where the aircraft flies; without one those sessions use 0, which is said once here.
@@ -334,7 +366,9 @@ std::unique_ptr<gimbal::session::Protocol> App::make_protocol(const protocols::E
 
 std::unique_ptr<Link> App::make_link(const cfg::GimbalConfig& g) {
     if (const auto* tcp = std::get_if<cfg::TcpLink>(&g.link)) {
-        return std::make_unique<TcpLink>(io_, TcpLinkOptions(*tcp));
+        TcpLinkOptions options(*tcp);
+        options.discovery = protocols::entry(g.protocol).discovery;
+        return std::make_unique<TcpLink>(io_, std::move(options));
     }
     if (const auto* serial = std::get_if<cfg::SerialLink>(&g.link)) {
         return std::make_unique<SerialLink>(io_, SerialLinkOptions(*serial));
@@ -356,7 +390,8 @@ std::unique_ptr<Link> App::make_link(const cfg::GimbalConfig& g) {
 // simulated camera's video to that video's input, as a real gimbal would.
 void App::add_sim_video(SimLink& link, const cfg::GimbalConfig& g) {
     const auto camera = protocols::entry(g.protocol).simulator.camera;
-    const nlohmann::json fields = {{"gimbal", g.name}, {"input", g.video->input}};
+    const nlohmann::json fields = {{"gimbal", g.name},
+                                   {"input", gimbal::video::redact_userinfo(g.video->input)}};
     if (camera == nullptr) {
         log::warn("sim_video_off", "this protocol's simulated gimbal has no camera: no video",
                   fields);
@@ -392,8 +427,8 @@ void App::on_signal(const boost::system::error_code& ec, int signo) {
         signals_.async_wait([this](const boost::system::error_code& e, int s) { on_signal(e, s); });
         return;
     }
-    log::info("stop", signo == SIGTERM ? "SIGTERM: stopping" : "SIGINT: stopping",
-              {{"signal", signo == SIGTERM ? "SIGTERM" : "SIGINT"}});
+    stop_signal_ = signo == SIGTERM ? "SIGTERM" : "SIGINT";
+    log::info("stop", stop_signal_ + ": stopping", {{"signal", stop_signal_}});
     shutdown();
 }
 
@@ -415,6 +450,8 @@ void App::shutdown() {
     if (recorder_) recorder_->stop();
     signals_.cancel();
     watchdog_timer_.cancel();
+    log_timer_.cancel();
+    log::poll(true);  // every line the roll-up still owes a count of
 }
 
 void App::update_status() {
@@ -426,6 +463,15 @@ void App::update_status() {
     }
     notify::status(std::to_string(up) + "/" + std::to_string(sessions_.size()) +
                    " gimbals connected: " + status);
+}
+
+void App::poll_logs() {
+    log_timer_.expires_after(std::chrono::seconds(1));
+    log_timer_.async_wait([this](const boost::system::error_code& ec) {
+        if (ec || stopping_) return;
+        log::poll();
+        poll_logs();
+    });
 }
 
 void App::arm_watchdog() {
@@ -468,8 +514,13 @@ int App::run() {
     notify::ready();
     update_status();
     arm_watchdog();
+    poll_logs();
     io_.run();
-    log::info("stop", "gimbald stopped");
+    stop_terrain_reads();
+    // Both `stop` lines name the signal, so either one answers "why did it stop".
+    log::info("stop", "gimbald stopped",
+              {{"signal",
+                stop_signal_.empty() ? nlohmann::json(nullptr) : nlohmann::json(stop_signal_)}});
     return 0;
 }
 

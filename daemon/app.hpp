@@ -8,6 +8,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "command_server.hpp"
@@ -22,6 +23,7 @@
 #include "record/recorder.hpp"
 #include "request_path.hpp"
 #include "terrain/elevation_model.hpp"
+#include "terrain_loader.hpp"
 #include "vehicle_feed.hpp"
 #include "video/gimbal_video.hpp"
 #include "video/sim_video_sender.hpp"
@@ -38,6 +40,9 @@ class App {
 
     // Runs until SIGTERM/SIGINT; returns the process exit code.
     int run();
+    // A terrain read was still running when run() returned (stop_terrain_reads): the process
+    // must end with std::_Exit, so that nothing tears GDAL down under that read.
+    static bool left_a_terrain_read_running();
 
   private:
     std::unique_ptr<gimbal::session::Protocol> make_protocol(
@@ -48,7 +53,9 @@ class App {
     void tap_recorder();
     void on_signal(const boost::system::error_code& ec, int signo);
     void shutdown();
+    void stop_terrain_reads();
     void arm_watchdog();
+    void poll_logs();  // once a second: the log roll-up's summaries of stopped bursts
     void start_http();
     void start_video();
     void update_status();
@@ -58,9 +65,12 @@ class App {
     boost::asio::io_context io_;
     boost::asio::signal_set signals_;
     boost::asio::steady_timer watchdog_timer_;
+    boost::asio::steady_timer log_timer_;  // the log roll-up's summaries (log::poll)
     // Contract section 15: one model shared by every gimbal; declared before them so it
-    // outlives them.
+    // outlives them. Its blocks are read on the loader's thread (section 14 v4), which stops
+    // before the model goes and after the sessions that look blocks up.
     std::unique_ptr<gimbal::terrain::ElevationModel> terrain_;
+    std::unique_ptr<TerrainLoader> terrain_loader_;
     // The EGM96 undulation for sessions that ask (open_geoid), after terrain_ it may use.
     std::function<std::optional<double>(double, double)> geoid_;
     // Declared before everything that records into it, so it outlives them.
@@ -78,6 +88,7 @@ class App {
     std::unique_ptr<mqtt::Bridge> mqtt_;      // contract section 9; null unless `mqtt` is set
     std::unique_ptr<http::HttpServer> http_;  // contract section 11; null unless `http` is set
     bool stopping_ = false;
+    std::string stop_signal_;  // "SIGTERM" or "SIGINT", once one asked gimbald to stop
 };
 
 }  // namespace gimbald

@@ -36,7 +36,11 @@ CommandServer::CommandServer(boost::asio::io_context& io, CommandServerOptions o
       socket_(io),
       publish_timer_(io),
       subscriptions_(options_.max_subscribers, options_.max_subscribers_per_host),
-      dropped_(log::Level::warn, "dropped_source", "datagrams from sources not in command.allow") {
+      dropped_(log::Level::warn, "dropped_source", "datagrams from sources not in command.allow"),
+      send_failed_(log::Level::warn, "send_failed",
+                   "replies and pushes the command socket could not send"),
+      too_large_(log::Level::warn, "push_too_large",
+                 "pushes too large for one datagram, replaced by a too_large event") {
     const Endpoint local(boost::asio::ip::make_address(options_.bind), options_.port);
     socket_.open(local.protocol());
     // No SO_REUSEADDR: on UDP it would let a second daemon bind the same port and steal
@@ -73,14 +77,14 @@ void CommandServer::on_receive(const boost::system::error_code& ec, std::size_t 
             dropped_.hit("datagram from a source not in command.allow dropped",
                          {{"src", to_string(from)}});
         } else {
-            const RequestSource source{"udp", to_string(from), from};
+            const RequestSource source{"udp", to_string(from), from, max_datagram_bytes};
             auto reply = path_.handle(std::string_view(buffer_.data(), n), source);
             // Posted after the link's write of whatever the request queued for the gimbal (the
             // link posts its writes too), so the packet goes out first: the reply is not part
             // of the command's latency, and `ok: true` then follows the write.
             if (reply)
                 boost::asio::post(io_, [this, from, reply = std::move(*reply)]() mutable {
-                    send(from, std::move(reply));
+                    send(from, std::make_shared<const std::string>(std::move(reply)), Kind::reply);
                 });
         }
     } else {
@@ -90,15 +94,51 @@ void CommandServer::on_receive(const boost::system::error_code& ec, std::size_t 
     do_receive();
 }
 
-void CommandServer::send(const Endpoint& to, std::string payload) {
-    send(to, std::make_shared<const std::string>(std::move(payload)));
+void CommandServer::send(const Endpoint& to, std::shared_ptr<const std::string> payload,
+                         Kind kind) {
+    const auto& bytes = *payload;
+    socket_.async_send_to(boost::asio::buffer(bytes), to,
+                          [this, to, kind, payload = std::move(payload)](
+                              const boost::system::error_code& ec, std::size_t) {
+                              if (ec) send_failed(to, kind, payload->size(), ec);
+                          });
 }
 
-void CommandServer::send(const Endpoint& to, std::shared_ptr<const std::string> payload) {
-    const auto& bytes = *payload;
-    socket_.async_send_to(
-        boost::asio::buffer(bytes), to,
-        [payload = std::move(payload)](const boost::system::error_code&, std::size_t) {});
+void CommandServer::send_failed(const Endpoint& to, Kind kind, std::size_t bytes,
+                                const boost::system::error_code& ec) {
+    if (ec == boost::asio::error::operation_aborted || stopped_) return;
+    ++sent_.failed;
+    const std::string what = kind == Kind::reply ? "reply" : "push";
+    send_failed_.hit(
+        "a " + what + " could not be sent: " + ec.message(),
+        {{"src", to_string(to)}, {"what", what}, {"bytes", bytes}, {"error", ec.message()}});
+}
+
+bool CommandServer::push(const Endpoint& to, std::shared_ptr<const std::string> payload,
+                         const std::string& gimbal, const std::function<json()>& carried,
+                         Notices& notices) {
+    if (payload->size() <= max_datagram_bytes) {
+        send(to, std::move(payload), Kind::push);
+        return true;
+    }
+    ++sent_.pushes_too_large;
+    too_large_.hit("a push of " + std::to_string(payload->size()) +
+                       " bytes is over one datagram; the subscriber got a too_large event",
+                   {{"src", to_string(to)}, {"gimbal", gimbal}, {"bytes", payload->size()}});
+    const auto event = [&] {
+        return gimbal::state::too_large_event(gimbal, payload->size(), max_datagram_bytes,
+                                              carried());
+    };
+    const Subscription* s = subscriptions_.find(to);
+    if (s && s->key_id && options_.sign) {
+        send(to, std::make_shared<const std::string>(options_.sign(*s->key_id, event())),
+             Kind::push);
+        return false;
+    }
+    auto& shared = notices[payload.get()];
+    if (!shared) shared = std::make_shared<const std::string>(dump(event()));
+    send(to, shared, Kind::push);
+    return false;
 }
 
 std::string CommandServer::payload_for(const Endpoint& to, const json& message) const {
@@ -111,21 +151,27 @@ void CommandServer::publish_event(const std::string& gimbal, const gimbal::state
     const auto targets = subscriptions_.event_targets(gimbal);
     if (targets.empty()) return;
     const json msg = gimbal::state::event_message(gimbal, event);
-    std::optional<std::string> plain;
+    const auto carried = [&msg] { return msg; };
+    std::shared_ptr<const std::string> plain;
+    Notices notices;
     for (const auto& to : targets) {
         const Subscription* s = subscriptions_.find(to);
         if (s && s->key_id) {
-            send(to, payload_for(to, msg));
+            push(to, std::make_shared<const std::string>(payload_for(to, msg)), gimbal, carried,
+                 notices);
             continue;
         }
-        if (!plain) plain = dump(msg);
-        send(to, *plain);
+        if (!plain) plain = std::make_shared<const std::string>(dump(msg));
+        push(to, plain, gimbal, carried, notices);
     }
 }
 
 void CommandServer::publish_states() {
     const double now = steady_seconds();
-    dropped_.poll();  // a burst of dropped datagrams that stopped still gets its summary
+    // A burst that stopped still gets its summary.
+    dropped_.poll();
+    send_failed_.poll();
+    too_large_.poll();
     for (const auto& gone : subscriptions_.expire(now))
         log::info("subscriber", "subscriber expired (no renewal within ttl_s)",
                   {{"src", to_string(gone)}});
@@ -140,15 +186,28 @@ void CommandServer::publish_states() {
         // selection and kind, and per previous push for delta streams, shared by every plain
         // subscriber due now (state_push.hpp); signed subscribers get their own signature.
         gimbal::state::PushBatch batch(session->name(), session->snapshot());
+        Notices notices;
         for (const auto& to : due) {
             Subscription* s = subscriptions_.find(to);
             if (!s) continue;
-            const auto& message = batch.next(s->stream, s->cursors[session->name()], horizon);
-            if (s->key_id && options_.sign) {
-                send(to, options_.sign(*s->key_id, message.json()));
-                continue;
+            auto& cursor = s->cursors[session->name()];
+            // A patch over one Ethernet payload goes as several that fit, back to back.
+            const auto& parts = batch.split(batch.next(s->stream, cursor, horizon),
+                                            gimbal::state::patch_budget_bytes);
+            // Every part ready before the first goes, so the parts leave back to back.
+            std::vector<std::shared_ptr<const std::string>> payloads;
+            for (const auto& message : parts)
+                payloads.push_back(s->key_id && options_.sign
+                                       ? std::make_shared<const std::string>(
+                                             options_.sign(*s->key_id, message.json()))
+                                       : message.text());
+            for (std::size_t i = 0; i < parts.size(); ++i) {
+                // Only a push too large needs its content as JSON (to name its largest keys).
+                const auto carried = [&parts, i] { return *parts[i].body(); };
+                // A patch that did not go out breaks the chain: the next push is full.
+                if (!push(to, std::move(payloads[i]), session->name(), carried, notices))
+                    cursor.restart();
             }
-            send(to, message.text());
         }
     }
     subscriptions_.mark_sent(horizon);

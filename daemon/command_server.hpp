@@ -8,6 +8,7 @@
 #include <boost/asio/ip/udp.hpp>
 #include <boost/asio/steady_timer.hpp>
 #include <functional>
+#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -20,6 +21,15 @@
 #include "subscriptions.hpp"
 
 namespace gimbald {
+
+// The largest UDP payload over IPv4 (65,535 - 20 - 8): a reply or push over it cannot be sent.
+inline constexpr std::size_t max_datagram_bytes = 65507;
+
+// What the socket could not deliver (STATE `command`, contract section 14 v4).
+struct SendCounters {
+    std::uint64_t failed = 0;            // replies and pushes the socket refused
+    std::uint64_t pushes_too_large = 0;  // pushes over one datagram, replaced by a notice
+};
 
 struct CommandServerOptions {
     std::string bind = "127.0.0.1";
@@ -46,13 +56,27 @@ class CommandServer {
     void publish_event(const std::string& gimbal, const gimbal::state::Event& event);
     std::size_t subscribers() const { return subscriptions_.size(); }
     std::uint64_t dropped_sources() const { return dropped_sources_; }
+    const SendCounters& send_counters() const { return sent_; }
 
   private:
+    enum class Kind { reply, push };
+    // Notices already made this tick, per message: shared by its plain subscribers.
+    using Notices = std::map<const void*, std::shared_ptr<const std::string>>;
+
     void do_receive();
     void on_receive(const boost::system::error_code& ec, std::size_t n);
-    void send(const Endpoint& to, std::string payload);
-    // A datagram shared by several subscribers: sent without a copy.
-    void send(const Endpoint& to, std::shared_ptr<const std::string> payload);
+    // A datagram shared by several subscribers is sent without a copy. A send that fails is
+    // logged (rolled up) and counted.
+    void send(const Endpoint& to, std::shared_ptr<const std::string> payload, Kind kind);
+    void send_failed(const Endpoint& to, Kind kind, std::size_t bytes,
+                     const boost::system::error_code& ec);
+    // A push to `to`: sent as it is when it fits one datagram, else replaced by a too_large
+    // event naming its size and largest keys (docs/json-api.md), logged and counted.
+    // `carried` gives what the push carries (a STATE, a patch, an event), for the notice.
+    // Returns false when the push was replaced.
+    bool push(const Endpoint& to, std::shared_ptr<const std::string> payload,
+              const std::string& gimbal, const std::function<nlohmann::json()>& carried,
+              Notices& notices);
     void schedule_publish();
     void publish_states();
     std::string payload_for(const Endpoint& to, const nlohmann::json& message) const;
@@ -66,7 +90,10 @@ class CommandServer {
     Endpoint sender_;
     Subscriptions subscriptions_;
     gimbal::log::RateLimitedLog dropped_;
+    gimbal::log::RateLimitedLog send_failed_;
+    gimbal::log::RateLimitedLog too_large_;
     std::uint64_t dropped_sources_ = 0;
+    SendCounters sent_;
     bool stopped_ = false;
 };
 

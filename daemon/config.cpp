@@ -1,13 +1,13 @@
 #include "config.hpp"
 
+#include "command/request_limits.hpp"
+#include "mavlink/signing.hpp"
 #include "protocols/registry.hpp"
+#include "regular_file.hpp"
 #include "secret_file.hpp"
 
 #include <fmt/format.h>
 #include <algorithm>
-#include <cerrno>
-#include <cstdio>
-#include <cstring>
 #include <map>
 #include <regex>
 #include <set>
@@ -122,6 +122,14 @@ std::string quoted_protocols() {
     return config::quoted_list(views);
 }
 
+// The protocols a TCP link may find by broadcast discovery (host "discover").
+std::string quoted_discovering_protocols() {
+    std::vector<std::string_view> names;
+    for (const auto* entry : gimbal::protocols::entries())
+        if (entry->discovery) names.push_back(entry->name);
+    return config::quoted_list(names);
+}
+
 GimbalConfig read_gimbal(Fields& f, const ProtocolConfigContext& context) {
     static const std::regex name_pattern("[a-z0-9_-]{1,32}");
     GimbalConfig gimbal;
@@ -150,6 +158,10 @@ GimbalConfig read_gimbal(Fields& f, const ProtocolConfigContext& context) {
         return gimbal;
     }
     const auto& own = gimbal::protocols::entry(gimbal.protocol);
+    if (const auto* tcp = std::get_if<TcpLink>(&gimbal.link);
+        tcp != nullptr && tcp->discover() && !own.discovery)
+        f.problem("link.host", "\"discover\" only for a protocol with broadcast discovery (" +
+                                   quoted_discovering_protocols() + ")");
     gimbal.protocol_config = own.read_config(f, context);
     for (const auto* other : gimbal::protocols::entries()) {
         if (other == &own || other->config_section.empty()) continue;
@@ -252,11 +264,48 @@ std::string syntax_problem(std::string_view text, const json::parse_error& e) {
     return fmt::format("line {}, column {}: {}", line, column, what);
 }
 
+// Contract section 14 (v4): every key file is checked here, as the per-gimbal one is, so a
+// bad key is exit 1 of --check-config, not a failure (and restarts) at start.
+void check_signing_key(const MavlinkConfig& mavlink, Problems& problems) {
+    if (!mavlink.signing_key_file) return;
+    const auto text = read_secret_file(*mavlink.signing_key_file);
+    if (!text)
+        problems.add("mavlink.signing_key_file", text.error().message);
+    else if (!gimbal::mavlink::parse_signing_key(*text))
+        problems.add("mavlink.signing_key_file",
+                     *mavlink.signing_key_file + ": must hold 32 bytes, or 64 hex digits");
+}
+
+// What makes a text no configuration before any parsing: its size, a NUL byte (JSON text has
+// none, and a parser might stop there and take what follows for nothing), its nesting depth
+// (each level costs memory while parsing: a 5 MB unclosed array took 1.1 GB).
+std::optional<std::string> text_problem(std::string_view text) {
+    if (text.size() > max_config_bytes)
+        return fmt::format("larger than {}: not a gimbald configuration",
+                           size_text(max_config_bytes));
+    if (const auto nul = text.find('\0'); nul != std::string_view::npos) {
+        const auto before = text.substr(0, nul);
+        const std::size_t line =
+            1 + static_cast<std::size_t>(std::count(before.begin(), before.end(), '\n'));
+        const auto last_newline = before.rfind('\n');
+        const std::size_t column =
+            last_newline == std::string_view::npos ? nul + 1 : nul - last_newline;
+        return fmt::format("line {}, column {}: a NUL byte: not a JSON text file", line, column);
+    }
+    if (command::nested_deeper_than(text, command::max_json_depth))
+        return fmt::format("JSON nested deeper than {} levels", command::max_json_depth);
+    return std::nullopt;
+}
+
 }  // namespace
 
 ConfigResult parse_config(std::string_view text, GimbalsSection gimbals) {
     ConfigResult result;
     Problems problems(result.problems);
+    if (const auto problem = text_problem(text)) {
+        result.problems.push_back({"", *problem});
+        return result;
+    }
     json document;
     try {
         document = parse_rejecting_duplicates(text, problems);
@@ -306,6 +355,7 @@ ConfigResult parse_config(std::string_view text, GimbalsSection gimbals) {
     if (config.mavlink.gimbal_manager && !config.vehicle)
         problems.add("mavlink.gimbal_manager",
                      "needs a vehicle section: the gimbal manager talks on vehicle.source");
+    check_signing_key(config.mavlink, problems);
     // Contract section 14: signed requests everywhere means signed MAVLink commands too.
     if (config.command.auth == AuthMode::signed_requests && config.mavlink.gimbal_manager &&
         config.mavlink.commands && !config.mavlink.signing_key_file)
@@ -325,27 +375,15 @@ ConfigResult parse_config(std::string_view text, GimbalsSection gimbals) {
 }
 
 ConfigResult load_config_file(const std::string& path, GimbalsSection gimbals) {
-    std::FILE* file = std::fopen(path.c_str(), "rbe");
-    if (file == nullptr) {
-        const std::string reason = std::strerror(errno);  // before anything resets errno
+    // A regular file of at most 1 MiB (contract section 14, v4): /dev/zero or a FIFO named as
+    // the configuration must not hang or exhaust the daemon, nor --check-config.
+    const auto text = read_regular_file(path, max_config_bytes);
+    if (!text) {
         ConfigResult result;
-        result.problems.push_back({"", fmt::format("cannot read {}: {}", path, reason)});
+        result.problems.push_back({"", "cannot read " + text.error().message});
         return result;
     }
-    std::string text;
-    char buffer[4096];
-    for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, file)) > 0;)
-        text.append(buffer, n);
-    const bool failed = std::ferror(file) != 0;
-    const int error = errno;
-    std::fclose(file);
-    if (failed) {
-        const std::string reason = std::strerror(error);
-        ConfigResult result;
-        result.problems.push_back({"", fmt::format("cannot read {}: {}", path, reason)});
-        return result;
-    }
-    return parse_config(text, gimbals);
+    return parse_config(*text, gimbals);
 }
 
 json protocol_defaults(Protocol protocol) {

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <span>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -79,9 +80,20 @@ enum class GimbalsSection {
     ignored,   // --sim replaces them: the `gimbals` key may be absent and is not read
 };
 
-// Parses and validates JSON text. Never throws.
+// A configuration problem found only at start, e.g. a key file that changed after
+// --check-config passed: exit 1 (exit_config_error) like any configuration problem (contract
+// section 14, v4), so systemd does not restart into it (RestartPreventExitStatus=1).
+struct ConfigError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+// The largest configuration read (contract section 14, v4).
+inline constexpr std::size_t max_config_bytes = 1024 * 1024;
+
+// Parses and validates JSON text (at most max_config_bytes, no NUL byte). Never throws.
 ConfigResult parse_config(std::string_view text, GimbalsSection gimbals = GimbalsSection::required);
-// Reads and parses a file; an unreadable file is one problem. Never throws.
+// Reads and parses a file; a file that cannot be read, is not a regular file or is larger
+// than max_config_bytes is one problem. Never throws.
 ConfigResult load_config_file(const std::string& path,
                               GimbalsSection gimbals = GimbalsSection::required);
 

@@ -24,11 +24,11 @@ OpenedGeoid open_geoid(const gimbal::terrain::ElevationModel* terrain) {
         return out;
     }
     auto opened = Geoid::open(*path);
-    if (!opened.geoid) {
-        out.problem = opened.error;
+    if (!opened) {
+        out.problem = opened.error().message;
         return out;
     }
-    const auto geoid = std::make_shared<const Geoid>(std::move(*opened.geoid));
+    const auto geoid = std::make_shared<const Geoid>(std::move(opened).value());
     out.undulation = [geoid](double lat, double lon) -> std::optional<double> {
         return geoid->undulation(lat, lon);
     };

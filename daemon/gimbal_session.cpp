@@ -4,6 +4,7 @@
 
 #include "logging.hpp"
 #include "state/precision.hpp"
+#include "state/writer.hpp"
 
 namespace gimbald {
 
@@ -152,11 +153,15 @@ void GimbalSession::schedule_tick() {
     });
 }
 
-void GimbalSession::steer(const gimbal::vehicle::VehicleState& vehicle, double vehicle_now_s) {
+std::uint64_t GimbalSession::steer(const gimbal::vehicle::VehicleState& vehicle,
+                                   double vehicle_now_s) {
     std::vector<gimbal::session::Bytes> out;
-    protocol_->steer(vehicle, vehicle_now_s, now_s(), out);
-    if (!link_->connected()) return;
-    for (auto& bytes : out) link_->send(std::move(bytes));
+    const std::size_t feed = protocol_->steer(vehicle, vehicle_now_s, now_s(), out);
+    if (!link_->connected()) return 0;
+    std::uint64_t fed = 0;
+    for (std::size_t i = 0; i < out.size(); ++i)
+        if (link_->send(std::move(out[i])) && i < feed) ++fed;
+    return fed;
 }
 
 GimbalSession::Outcome GimbalSession::execute(std::string_view cmd, const nlohmann::json& request) {
@@ -285,51 +290,48 @@ void GimbalSession::report_waiting_ceases() {
                    {"displaced", link_->stats().tx_displaced}});
 }
 
-nlohmann::json GimbalSession::snapshot() const {
-    const double now = now_s();
+gimbal::state::LinkState GimbalSession::link_state() const {
     const auto& s = link_->stats();
     const auto c = protocol_->counters();
-    nlohmann::json link = {
-        {"type", link_->type()},
-        {"endpoint", link_->endpoint()},
-        {"connected", link_->connected()},
-        {"rx_bytes", s.rx_bytes},
-        {"tx_bytes", s.tx_bytes},
-        {"rx_packets", c.rx_packets},
-        {"tx_packets", s.tx_packets},
-        {"bad_checksums", c.bad_checksums},
-        {"dropped_bytes", c.dropped_bytes},
-        {"reconnects", s.reconnects},
-        {"last_rx_age_s",
-         s.last_rx
-             ? nlohmann::json(gimbal::state::seconds(
-                   std::chrono::duration<double>(std::chrono::steady_clock::now() - *s.last_rx)
-                       .count()))
-             : nlohmann::json(nullptr)},
-    };
+    gimbal::state::LinkState l;
+    l.type = link_->type();
+    l.endpoint = link_->endpoint();
+    l.connected = link_->connected();
+    l.rx_bytes = s.rx_bytes;
+    l.tx_bytes = s.tx_bytes;
+    l.rx_packets = c.rx_packets;
+    l.tx_packets = s.tx_packets;
+    l.bad_checksums = c.bad_checksums;
+    l.dropped_bytes = c.dropped_bytes;
+    l.reconnects = s.reconnects;
+    if (s.last_rx)
+        l.last_rx_age_s =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - *s.last_rx).count();
+    return l;
+}
+
+bool GimbalSession::stale() const {
+    return protocol_->stale(now_s());
+}
+
+nlohmann::json GimbalSession::snapshot() const {
+    const double now = now_s();
     nlohmann::json state = {{"protocol", std::string(protocol_->name())},
-                            {"link", std::move(link)},
+                            {"link", gimbal::state::write(link_state())},
                             {"stale", protocol_->stale(now)}};
-    nlohmann::json keys = protocol_->snapshot(now);  // named: items() of a temporary dangles
-    for (auto& [key, value] : keys.items()) state[key] = std::move(value);
     // Contract section 14: lasers[i].firing is the daemon's own record (as the metric
     // gimbald_laser_firing): true from a fire command until its cease-fire was written.
-    if (auto it = state.find("lasers"); it != state.end() && it->is_array())
-        for (std::size_t i = 0; i < it->size(); ++i)
-            if ((*it)[i].is_object())
-                (*it)[i]["firing"] = lasers_.firing(static_cast<std::uint8_t>(i));
+    gimbal::state::JsonWriter w(state);
+    protocol_->write_state(w, {now, &lasers_});
     state["vehicle"] = vehicle_snapshot_ ? vehicle_snapshot_() : nlohmann::json(nullptr);
+    w.object("video", video_ ? video_() : std::nullopt);
     for (const auto& [key, fill] : state_keys_) state[key] = fill();
     return state;
 }
 
-nlohmann::json GimbalSession::gimbal_state() const {
-    const double now = now_s();
-    nlohmann::json state = protocol_->snapshot(now);
-    state["protocol"] = std::string(protocol_->name());
-    state["stale"] = protocol_->stale(now);
-    state["link"] = {{"connected", link_->connected()}};
-    return state;
+gimbal::session::GimbalView GimbalSession::view() const {
+    return {&protocol_->capabilities(), protocol_->telemetry(), link_->connected(), stale(),
+            video_};
 }
 
 bool GimbalSession::send_feed(std::vector<std::uint8_t> bytes) {

@@ -16,9 +16,11 @@
 
 #include "link/link.hpp"
 #include "logging.hpp"
+#include "session/gimbal_view.hpp"
 #include "session/laser_guard.hpp"
 #include "session/protocol.hpp"
 #include "state/event.hpp"
+#include "state/link_state.hpp"
 
 namespace gimbald {
 
@@ -48,8 +50,12 @@ class GimbalSession {
     bool supports(std::string_view cmd) const {
         return protocol_->supports(cmd) || commands_.count(std::string(cmd)) != 0;
     }
-    // What the gimbal can do and how its camera sees (session/capabilities.hpp).
+    // What the gimbal can do and how its camera sees (session/capabilities.hpp), bound to its
+    // live state.
     const gimbal::session::Capabilities& capabilities() const { return protocol_->capabilities(); }
+    // The gimbal as the daemon's consumers read it (typed STATE: capabilities, telemetry,
+    // health, video), for the MAVLink endpoint, KLV and the image commands.
+    gimbal::session::GimbalView view() const;
     // Runs a gimbal command: validate, refuse (nothing sent) or write its packets.
     // Returns the reply results (with "sent") or the error.
     struct Outcome {
@@ -58,20 +64,29 @@ class GimbalSession {
     };
     Outcome execute(std::string_view cmd, const nlohmann::json& request);
 
-    // STATE (contract section 5).
+    // STATE `link`: the link's and the framer's counters now.
+    gimbal::state::LinkState link_state() const;
+    // No telemetry within telemetry.stale_after_s (STATE `stale`).
+    bool stale() const;
+    // Seconds since the gimbal's latest position telemetry; nullopt before the first.
+    std::optional<double> telemetry_age_s() const { return protocol_->telemetry_age_s(now_s()); }
+    // STATE (contract section 5) as JSON: for the edges (replies, pushes, MQTT, HTTP,
+    // recordings); consumers inside the daemon read the typed parts.
     nlohmann::json snapshot() const;
-    // What the gimbal reported (the protocol's keys), `stale` and `link.connected` only: the
-    // MAVLink streams read it ten times a second, where the whole STATE would cost ~5x more.
-    nlohmann::json gimbal_state() const;
     // The vehicle feed: writes one feed packet when the link is up (false otherwise), beside
     // the commands on the same ordered queue.
     bool send_feed(std::vector<std::uint8_t> bytes);
     // The vehicle feed's tick: what the protocol sends from the vehicle's state itself
     // (session::Protocol::steer), written like the feed when the link is up.
-    void steer(const gimbal::vehicle::VehicleState& vehicle, double vehicle_now_s);
+    // Returns how many of the vehicle feed's own frames were sent (STATE vehicle.feed.sent).
+    std::uint64_t steer(const gimbal::vehicle::VehicleState& vehicle, double vehicle_now_s);
     // Fills STATE's top-level `vehicle` key.
     void set_vehicle_snapshot(std::function<nlohmann::json()> vehicle_snapshot) {
         vehicle_snapshot_ = std::move(vehicle_snapshot);
+    }
+    // STATE `video` (null until set, and for a gimbal without a video section).
+    void set_video(std::function<std::optional<gimbal::state::VideoState>()> video) {
+        video_ = std::move(video);
     }
     // A daemon-level top-level STATE key (`command`, `mavlink`, `mqtt`, `record`), filled at
     // every snapshot.
@@ -124,6 +139,7 @@ class GimbalSession {
     std::uint64_t reported_bad_checksums_ = 0;
     std::uint64_t reported_decode_errors_ = 0;
     std::function<nlohmann::json()> vehicle_snapshot_;
+    std::function<std::optional<gimbal::state::VideoState>()> video_;
     std::vector<std::pair<std::string, std::function<nlohmann::json()>>> state_keys_;
     std::vector<std::function<void()>> receive_listeners_;
     std::map<std::string, LocalCommand> commands_;

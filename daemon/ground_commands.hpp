@@ -3,9 +3,12 @@
 // terrain's altitudes in `geopoint` and `path` before the gimbal's protocol plans them. The
 // request path hands them here after authentication and routing; the pure parts live in
 // lib/session (image_commands, ground_altitude) and lib/geo (ground). No protocol is named:
-// a gimbal's image and geopoint come from its typed capabilities.
+// a gimbal's image and geopoint come from its typed capabilities. A computation that meets
+// terrain still being read (terrain_loader.hpp) is `unavailable` ("still being read ...
+// retry"), never the flat world's guess.
 #pragma once
 
+#include <cstdint>
 #include <nlohmann/json.hpp>
 #include <string_view>
 
@@ -36,6 +39,8 @@ class GroundCommands {
                                                     const nlohmann::json& request);
 
   private:
+    // Lookups so far that met a terrain block not read yet (terrain_loader.hpp).
+    std::uint64_t misses() const;
     gimbal::command::Result<nlohmann::json> elevation(const nlohmann::json& request);
     GimbalSession::Outcome locate(GimbalSession& session, const nlohmann::json& request,
                                   bool point);

@@ -15,8 +15,10 @@
 #include <mutex>
 #include <stdexcept>
 #include <utility>
+#include <vector>
 
 #include "journal.hpp"
+#include "log_rollup.hpp"
 
 namespace gimbal::log {
 
@@ -251,13 +253,17 @@ struct Logger::Impl {
     mutable std::mutex mutex;
     Settings settings;
     Clock clock;
+    SteadyClock steady;
+    LineRollUp rollup;
+    std::vector<LineRollUp::Summary> due;  // reused: no allocation per line
     spdlog::sink_ptr console;
     bool journal = false;  // standard output is the journal: records go to it natively
     std::shared_ptr<ReopenableFileSink> file;
     std::shared_ptr<spdlog::logger> transport;
 
-    Impl(spdlog::sink_ptr console_sink, Clock c)
+    Impl(spdlog::sink_ptr console_sink, Clock c, SteadyClock s)
         : clock(c ? std::move(c) : Clock(&std::chrono::system_clock::now)),
+          steady(s ? std::move(s) : SteadyClock(&std::chrono::steady_clock::now)),
           console(std::move(console_sink)) {
         console->set_pattern("%v");  // lines are formatted by format_record()
         rebuild_transport();
@@ -297,19 +303,25 @@ struct Logger::Impl {
         }
         transport->log(to_spdlog(level), text);
     }
+
+    void write_due() {
+        for (const auto& s : due) write_locked(s.level, s.event, s.msg, s.fields);
+        due.clear();
+    }
 };
 
 Logger::Logger(const Settings& settings)
-    : Logger(settings, std::make_shared<spdlog::sinks::stdout_sink_st>(), Clock{}) {
+    : Logger(settings, std::make_shared<spdlog::sinks::stdout_sink_st>(), Clock{}, SteadyClock{}) {
     impl_->journal = stdout_is_journal();
 }
 
-Logger::Logger(const Settings& settings, std::ostream& console, Clock clock)
+Logger::Logger(const Settings& settings, std::ostream& console, Clock clock, SteadyClock steady)
     : Logger(settings, std::make_shared<spdlog::sinks::ostream_sink_st>(console, true),
-             std::move(clock)) {}
+             std::move(clock), std::move(steady)) {}
 
-Logger::Logger(const Settings& settings, std::shared_ptr<spdlog::sinks::sink> console, Clock clock)
-    : impl_(std::make_unique<Impl>(std::move(console), std::move(clock))) {
+Logger::Logger(const Settings& settings, std::shared_ptr<spdlog::sinks::sink> console, Clock clock,
+               SteadyClock steady)
+    : impl_(std::make_unique<Impl>(std::move(console), std::move(clock), std::move(steady))) {
     configure(settings);
 }
 
@@ -353,7 +365,24 @@ bool Logger::enabled(Level level) const {
 void Logger::write(Level level, std::string_view event, std::string_view msg, const json& fields) {
     std::lock_guard lock(impl_->mutex);
     if (level < impl_->settings.level) return;
-    impl_->write_locked(level, event, msg, fields);
+    const bool admitted =
+        impl_->rollup.admit(level, event, msg, fields, impl_->steady(), impl_->due);
+    impl_->write_due();
+    if (admitted) impl_->write_locked(level, event, msg, fields);
+}
+
+void Logger::poll(bool everything) {
+    std::lock_guard lock(impl_->mutex);
+    if (everything)
+        impl_->rollup.flush(impl_->steady(), impl_->due);
+    else
+        impl_->rollup.poll(impl_->steady(), impl_->due);
+    impl_->write_due();
+}
+
+std::uint64_t Logger::suppressed() const {
+    std::lock_guard lock(impl_->mutex);
+    return impl_->rollup.suppressed_total();
 }
 
 Logger& logger() {
@@ -369,6 +398,9 @@ bool reopen() {
 }
 bool enabled(Level level) {
     return logger().enabled(level);
+}
+void poll(bool everything) {
+    logger().poll(everything);
 }
 
 std::optional<RollUp::Report> RollUp::hit(TimePoint now) {

@@ -56,15 +56,21 @@ struct Settings {
     std::optional<std::string> file;  // also written here when set
 };
 
+// Every line but `audit`, `laser_fire`, `laser_deadman` and `command` goes through the roll-up
+// of repeated lines (log_rollup.hpp): at most 10 a second per event and source, then one
+// summary line with `suppressed` per 10 s.
 class Logger {
   public:
     using Clock = std::function<SystemTime()>;
+    using SteadyClock = std::function<std::chrono::steady_clock::time_point()>;
 
     // Lines go to standard output (and the settings' file); when standard output is the
     // systemd journal, records go to it natively instead (journal.hpp).
     explicit Logger(const Settings& settings = {});
-    // Lines go to `console` instead of standard output; `clock` stamps them (tests).
-    Logger(const Settings& settings, std::ostream& console, Clock clock = {});
+    // Lines go to `console` instead of standard output; `clock` stamps them and `steady`
+    // times the roll-up (tests).
+    Logger(const Settings& settings, std::ostream& console, Clock clock = {},
+           SteadyClock steady = {});
     ~Logger();
     Logger(const Logger&) = delete;
     Logger& operator=(const Logger&) = delete;
@@ -83,9 +89,15 @@ class Logger {
 
     void write(Level level, std::string_view event, std::string_view msg,
                const nlohmann::json& fields = {});
+    // Writes the roll-up's summaries of bursts that stopped; call about once a second. With
+    // `everything` (at shutdown), every count not yet reported.
+    void poll(bool everything = false);
+    // Lines the roll-up did not write, since the start.
+    std::uint64_t suppressed() const;
 
   private:
-    Logger(const Settings& settings, std::shared_ptr<spdlog::sinks::sink> console, Clock clock);
+    Logger(const Settings& settings, std::shared_ptr<spdlog::sinks::sink> console, Clock clock,
+           SteadyClock steady);
 
     struct Impl;
     std::unique_ptr<Impl> impl_;
@@ -97,6 +109,7 @@ Logger& logger();
 void configure(const Settings& settings);
 bool reopen();
 bool enabled(Level level);
+void poll(bool everything = false);  // logger().poll()
 
 inline void write(Level level, std::string_view event, std::string_view msg,
                   const nlohmann::json& fields = {}) {

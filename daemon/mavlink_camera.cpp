@@ -13,8 +13,8 @@ std::vector<gp::CameraStream> camera_streams(const std::string& gimbal,
     std::vector<gp::CameraStream> out;
     for (const auto& output : video.outputs) {
         const auto parsed = gimbal::video::parse_video_url(output);
-        if (!parsed.url || parsed.url->scheme != gimbal::video::UrlScheme::udp) continue;
-        const auto& url = *parsed.url;
+        if (!parsed || parsed->scheme != gimbal::video::UrlScheme::udp) continue;
+        const auto& url = *parsed;
         boost::system::error_code ec;
         const auto address = boost::asio::ip::make_address(url.host, ec);
         const bool multicast = !ec && address.is_multicast();

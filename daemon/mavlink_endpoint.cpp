@@ -30,7 +30,11 @@ std::vector<gp::ExposedGimbal> exposed(const std::vector<GimbalSession*>& sessio
                                        std::uint8_t first_component) {
     std::vector<std::pair<std::string, std::string>> list;
     for (const auto* s : sessions) list.emplace_back(s->name(), std::string(s->protocol()));
-    return gp::expose(list, first_component);
+    auto gimbals = gp::expose(list, first_component);
+    // Every exposed gimbal is also a camera component (expose_cameras): the camera answers
+    // CAMERA_INFORMATION, its manager does not (contract v4, section 8).
+    for (auto& g : gimbals) g.camera_component = gp::camera_component(g.device_id);
+    return gimbals;
 }
 
 // The commands that only ask for reports: answered even with mavlink.commands false.
@@ -44,11 +48,12 @@ std::string source_address(const gp::MavId& id) {
 
 mav::SigningKey load_signing_key(const std::string& path) {
     const auto read = gimbal::daemon::read_secret_file(path);
-    if (!read) throw std::runtime_error("mavlink.signing_key_file: " + read.error().message);
+    if (!read)
+        throw gimbal::daemon::ConfigError("mavlink.signing_key_file: " + read.error().message);
     const auto key = mav::parse_signing_key(*read);
     if (!key)
-        throw std::runtime_error("mavlink.signing_key_file: " + path +
-                                 " must hold 32 bytes, or 64 hex digits");
+        throw gimbal::daemon::ConfigError("mavlink.signing_key_file: " + path +
+                                          ": must hold 32 bytes, or 64 hex digits");
     return *key;
 }
 
@@ -66,7 +71,8 @@ MavlinkEndpoint::MavlinkEndpoint(boost::asio::io_context& io,
       cameras_(expose_cameras(manager_.gimbals(), sessions, videos)),
       timer_(io),
       epoch_(std::chrono::steady_clock::now()) {
-    if (!feed_.source()) throw std::runtime_error("mavlink.gimbal_manager needs vehicle.source");
+    if (!feed_.source())
+        throw gimbal::daemon::ConfigError("mavlink.gimbal_manager needs vehicle.source");
     std::vector<boost::asio::ip::udp::endpoint> targets;
     boost::asio::ip::udp::resolver resolver(io);
     for (const auto& t : config_.targets) {
@@ -183,35 +189,36 @@ gp::VehicleView MavlinkEndpoint::vehicle_view() const {
     return v;
 }
 
-nlohmann::json MavlinkEndpoint::state_of(const std::string& gimbal) const {
-    // The gimbal's own keys are all the MAVLink mapping and streams read (lib/gimbal_protocol).
+gimbal::session::GimbalView MavlinkEndpoint::state_of(const std::string& gimbal) const {
     for (const auto* s : sessions_)
-        if (s->name() == gimbal) return s->gimbal_state();
-    return nlohmann::json::object();
+        if (s->name() == gimbal) return s->view();
+    return {};
 }
 
-nlohmann::json MavlinkEndpoint::camera_state_of(const std::string& gimbal) const {
-    // The camera also reports the video (STATE `video`, a key the daemon adds).
-    for (const auto* s : sessions_)
-        if (s->name() == gimbal) return s->snapshot();
-    return nlohmann::json::object();
-}
-
-bool MavlinkEndpoint::signature_ok(const mav::Message& m) {
+bool MavlinkEndpoint::authentic(const mav::Message& m) {
     if (!key_) return true;
+    // Checked once per message: accepting records the stream's timestamp, so a second look
+    // at the same frame would call it a replay.
     if (!m.signature || !m.signature->verified ||
         !streams_.accept(m.sysid, m.compid, m.signature->link_id, m.signature->timestamp,
-                         signing_now())) {
-        ++counters_.unsigned_ignored;
+                         signing_now()))
         return false;
-    }
     clock_.raise_to(m.signature->timestamp);
     signing_dirty_ = true;  // saved within a second (on_tick) and on stop()
     return true;
 }
 
+bool MavlinkEndpoint::obeyed(bool authentic) {
+    if (!authentic) ++counters_.unsigned_ignored;
+    return authentic;
+}
+
 void MavlinkEndpoint::on_message(const mav::Message& m) {
     if (stopped_) return;
+    // A frame that parsed (and, with signing, is signed and fresh): its sender takes a peer
+    // slot. Junk and unsigned frames under signing never evict a ground station (section 14).
+    const bool is_authentic = authentic(m);
+    if (is_authentic) feed_.source()->admit_peer();
     const auto sysid = system_id();
     if (!sysid) return;  // nothing is answered before our system id is known
     const gp::MavId from{m.sysid, m.compid};
@@ -230,7 +237,7 @@ void MavlinkEndpoint::on_message(const mav::Message& m) {
     // the gimbal managers' to answer.
     if (command && command->target_system == *sysid) {
         if (const auto* camera = cameras_.find(command->target_component)) {
-            if (!signature_ok(m)) return;
+            if (!obeyed(is_authentic)) return;
             on_camera_command(*command, *camera, from);
             return;
         }
@@ -238,7 +245,7 @@ void MavlinkEndpoint::on_message(const mav::Message& m) {
     if (command && !addressed(command->target_system, command->target_component)) command.reset();
     const gp::StateLookup lookup = [this](const std::string& g) { return state_of(g); };
     if (command) {
-        if (!signature_ok(m)) return;
+        if (!obeyed(is_authentic)) return;
         ++counters_.commands;
         // The ACK comes from the component addressed (for 0: the first gimbal's manager).
         const std::uint8_t answering =
@@ -266,7 +273,7 @@ void MavlinkEndpoint::on_message(const mav::Message& m) {
         if (addressed(d->target_system, d->target_component))
             setpoint_component = d->target_component;
     }
-    if (!setpoint_component || !signature_ok(m)) return;
+    if (!setpoint_component || !obeyed(is_authentic)) return;
     ++counters_.commands;
     const std::uint8_t answering =
         *setpoint_component != 0 ? *setpoint_component : first_component();
@@ -301,7 +308,7 @@ void MavlinkEndpoint::on_camera_command(const gp::CommandView& command,
             camera.component_id);
         return;
     }
-    const gp::StateLookup lookup = [this](const std::string& g) { return camera_state_of(g); };
+    const gp::StateLookup lookup = [this](const std::string& g) { return state_of(g); };
     // Zoom is the gimbal manager's mapping, for this camera's gimbal only.
     if (command.command == mav::mav_cmd::set_camera_zoom) {
         gp::CommandView as_manager = command;
@@ -341,12 +348,8 @@ void MavlinkEndpoint::hold(const gp::ExposedCamera& camera, const nlohmann::json
     h.point.lon = *lon;
     h.point.alt = *alt;
     h.point.radius = radius;
-    const nlohmann::json state = state_of(camera.gimbal.name);
-    const auto* t =
-        state.is_object() && state.contains("telemetry") ? &state["telemetry"] : nullptr;
-    if (t && t->is_object() && t->contains("geoid_undulation") &&
-        (*t)["geoid_undulation"].is_number())
-        h.point.alt_msl = *alt - (*t)["geoid_undulation"].get<double>();
+    const auto* t = state_of(camera.gimbal.name).telemetry;
+    if (t && t->geoid_undulation) h.point.alt_msl = *alt - *t->geoid_undulation;
     h.since_tick = h.next_geo_tick = h.next_image_tick = ticks_ + 1;
     held_[camera.gimbal.device_id] = h;
     log::info("mavlink_track", "click-to-track: holding a point",
@@ -366,7 +369,7 @@ void MavlinkEndpoint::release(std::uint8_t device_id, const char* why) {
         log::info("mavlink_track", std::string("click-to-track ended: ") + why,
                   {{"gimbal", c.gimbal.name}, {"component", c.component_id}});
         // One IDLE status, so a ground station stops drawing the point.
-        send(gp::tracking_geo_status(std::nullopt, nlohmann::json()), c.component_id);
+        send(gp::tracking_geo_status(std::nullopt, {}), c.component_id);
         if (cameras_.intervals(c.component_id).image_ms != 0)
             send(gp::tracking_image_status(std::nullopt, std::nullopt), c.component_id);
     }
@@ -379,12 +382,9 @@ void MavlinkEndpoint::check_held() {
         if (ticks_ < h.since_tick + settle_ticks) continue;
         for (const auto& c : cameras_.cameras()) {
             if (c.gimbal.device_id != device_id) continue;
-            const nlohmann::json state = state_of(c.gimbal.name);
-            const auto* t =
-                state.is_object() && state.contains("telemetry") ? &state["telemetry"] : nullptr;
-            if (t && t->is_object() && t->contains("mode") && (*t)["mode"].is_string() &&
-                (*t)["mode"] != "geopoint")
-                ended.push_back(device_id);
+            // A gimbal that reports its pointing mode and has left geopoint.
+            const auto* caps = state_of(c.gimbal.name).capabilities;
+            if (caps && caps->holds_geopoint() == false) ended.push_back(device_id);
         }
     }
     for (const auto id : ended) release(id, "the gimbal left geopoint mode");
@@ -394,7 +394,7 @@ std::optional<gp::ImageAt> MavlinkEndpoint::image_at(const std::string& gimbal,
                                                      const gp::HeldPoint& held) const {
     for (const auto* s : sessions_) {
         if (s->name() != gimbal) continue;
-        const auto view = s->capabilities().image(s->gimbal_state());
+        const auto view = s->capabilities().image();
         if (!view) return std::nullopt;
         const nlohmann::json p = gimbal::session::project_reply(
             *view, gimbal::geo::Lla{held.lat, held.lon, held.alt}, nullptr);
@@ -503,7 +503,7 @@ void MavlinkEndpoint::on_tick() {
         if (ticks_ % 10 == 1) send(gp::heartbeat(), g.component_id);
         const bool status = ticks_ % 2 == 0;
         const bool fov = ticks_ % 5 == 0;
-        const nlohmann::json state = state_of(g.name);
+        const gimbal::session::GimbalView state = state_of(g.name);
         send(gp::attitude_status(g, state, t), g.component_id);
         if (status) send(gp::manager_status(g, manager_.control(g.device_id), t), g.component_id);
         if (fov) send(gp::fov_status(g, state, t), g.component_id);
@@ -514,7 +514,7 @@ void MavlinkEndpoint::on_tick() {
         if (ticks_ % 10 == 1) send(gp::camera_heartbeat(), c.component_id);
         const auto it = held_.find(c.gimbal.device_id);
         if (ticks_ % 5 != 0 && it == held_.end()) continue;
-        const nlohmann::json state = state_of(c.gimbal.name);
+        const gimbal::session::GimbalView state = state_of(c.gimbal.name);
         if (ticks_ % 5 == 0) send(gp::camera_fov_status(c, state, t), c.component_id);
         if (it == held_.end()) continue;
         Held& h = it->second;

@@ -60,7 +60,11 @@ class MavlinkEndpoint {
 
   private:
     void on_message(const gimbal::mavlink::Message& m);
-    bool signature_ok(const gimbal::mavlink::Message& m);
+    // Signing off: true. On: a verified signature that is not a replay (the stream's timestamp
+    // is recorded, so call it once per message).
+    bool authentic(const gimbal::mavlink::Message& m);
+    // A command or set-point addressed to us is obeyed only when authentic; counted if not.
+    bool obeyed(bool authentic);
     // Executes or answers one command (ack_command set) or set-point message (msgid), as
     // `component`; a refusal is logged (mavlink_refused).
     // Returns the answer, and the first request's results when it succeeded.
@@ -100,8 +104,9 @@ class MavlinkEndpoint {
     std::uint64_t signing_now() const;
     void restore_signing_state();
     void save_signing_state_now();
-    nlohmann::json state_of(const std::string& gimbal) const;
-    nlohmann::json camera_state_of(const std::string& gimbal) const;
+    // The gimbal's typed state (capabilities, telemetry, health, video); an empty view for a
+    // name no session has.
+    gimbal::session::GimbalView state_of(const std::string& gimbal) const;
 
     gimbal::daemon::MavlinkConfig config_;
     std::optional<gimbal::mavlink::SigningKey> key_;
@@ -131,7 +136,7 @@ class MavlinkEndpoint {
 };
 
 // A MAVLink signing key file: 32 raw bytes, or 64 hex digits (surrounding white space
-// ignored). Throws std::runtime_error naming the problem.
+// ignored). Throws gimbal::daemon::ConfigError naming the problem.
 gimbal::mavlink::SigningKey load_signing_key(const std::string& path);
 
 }  // namespace gimbald

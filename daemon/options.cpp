@@ -85,7 +85,8 @@ FILES
   /etc/gimbald/gimbald.json  default configuration, see gimbald.json(5)
 
 SEE ALSO
-  gimbalctl(1), gimbal-sim(1), gimbald.json(5), /usr/share/doc/gimbald/
+  gimbalctl(1), gimbal-sim(1), gimbal-replay(1), gimbal-export(1),
+  gimbald.json(5), /usr/share/doc/gimbald/
 )";
 
 constexpr std::size_t help_width = 80;
@@ -195,7 +196,8 @@ CommandLine parse_command_line(int argc, const char* const* argv, std::ostream& 
                     ->type_name("[PROTOCOLS]");
     app.add_flag("--check-config", options.check_config,
                  "Validate the configuration, print every problem with its JSON path, exit 0 if "
-                 "valid, 1 if not. Opens every terrain file, no device. Default: off.");
+                 "valid, 1 if not. Reads every key file and opens every terrain file, no "
+                 "device. Default: off.");
     app.add_option("--log-level", log_level,
                    "trace, debug, info, warn or error; overrides log.level. "
                    "Default: the file's (info).")

@@ -8,6 +8,7 @@
 #include "command/catalogue.hpp"
 #include "command/envelope.hpp"
 #include "command/params.hpp"
+#include "command/request.hpp"
 #include "command/request_limits.hpp"
 #include "logging.hpp"
 #include "protocols/registry.hpp"
@@ -23,10 +24,6 @@ namespace code = gimbal::command::code;
 using nlohmann::json;
 
 namespace {
-
-bool known_command(std::string_view cmd) {
-    return cmdns::is_known_command(cmd);
-}
 
 json or_null(const std::optional<std::string>& s) {
     return s ? json(*s) : json(nullptr);
@@ -63,7 +60,9 @@ std::string rate_key(const RequestSource& from) {
 
 // One request on its way through the path: what was read of it, and what it came to.
 struct RequestPath::Outcome {
-    cmdns::Envelope env;
+    json doc;                // the request object, parsed once (a signed request's payload)
+    cmdns::Envelope env;     // read from doc: the command, gimbal, token
+    std::optional<json> id;  // what the reply echoes
     std::optional<std::string> cmd;
     std::optional<std::string> gimbal;  // the gimbal the reply names
     std::optional<Error> error;
@@ -82,19 +81,21 @@ struct RequestPath::Outcome {
         return json::object();
     }
 
+    void echo(const json& request) {
+        auto e = cmdns::echo_of(request);
+        id = std::move(e.id);
+        cmd = std::move(e.cmd);
+    }
     // For a refusal decided before the request is read (rate limit, bad signature): the id
-    // and cmd of `text`, if it has them, so the client can still match the reply.
-    // parse_envelope() refuses an oversize or too deeply nested text unread: then nothing
-    // is echoed.
-    void echo_id_and_cmd(std::string_view text) {
-        cmdns::Envelope read_back;
-        if (auto bad = cmdns::parse_envelope(text, known_command, read_back)) {
-            env.id = bad->id;
-            cmd = bad->cmd;
-        } else {
-            env.id = read_back.id;
-            cmd = read_back.cmd;
+    // and cmd of `text`, if it has them, so the client can still match the reply. Text over
+    // the request limits is not parsed: nothing is echoed (a too_large reply's id is null).
+    // This is the text's one parse: the request is not read further.
+    void echo_text(std::string_view text) {
+        if (auto refused = cmdns::check_request_limits(text)) {
+            if (refused->code == code::too_large) id = json(nullptr);
+            return;
         }
+        if (auto parsed = cmdns::parse_object(text)) echo(*parsed);
     }
 };
 
@@ -121,6 +122,16 @@ GimbalSession* RequestPath::find(const std::string& name) const {
 }
 
 std::optional<std::string> RequestPath::handle(std::string_view bytes, const RequestSource& from) {
+    return handle(bytes, std::nullopt, from);
+}
+
+std::optional<std::string> RequestPath::handle_parsed(json request, std::string_view bytes,
+                                                      const RequestSource& from) {
+    return handle(bytes, std::move(request), from);
+}
+
+std::optional<std::string> RequestPath::handle(std::string_view bytes, std::optional<json> parsed,
+                                               const RequestSource& from) {
     ++counters_.requests;
     Outcome o;
     // MQTT has no trustworthy source address: a signed request's bucket is its key, once
@@ -130,7 +141,7 @@ std::optional<std::string> RequestPath::handle(std::string_view bytes, const Req
     // bytes, 32 levels). Other transports are limited by address before anything is read.
     const bool bucket_per_key = from.transport == "mqtt";
     if (bucket_per_key) {
-        read(o, bytes);
+        read(o, bytes, parsed);
         if (!o.error) accept(o);
     }
     const std::string bucket = bucket_per_key && o.key ? "key:" + o.key->id : rate_key(from);
@@ -145,10 +156,12 @@ std::optional<std::string> RequestPath::handle(std::string_view bytes, const Req
             // Once a second per bucket: parsing the id is affordable at that rate.
             Outcome refused;
             if (o.read) {
-                refused.env.id = o.env.id;
+                refused.id = o.id;
                 refused.cmd = o.cmd;
+            } else if (parsed) {
+                refused.echo(*parsed);
             } else {
-                refused.echo_id_and_cmd(bytes);
+                refused.echo_text(bytes);
             }
             refused.error = Error{code::rate_limited,
                                   "more than command.rate_limit allows from " + bucket +
@@ -158,7 +171,7 @@ std::optional<std::string> RequestPath::handle(std::string_view bytes, const Req
         }
     }
 
-    if (!o.read) read(o, bytes);
+    if (!o.read) read(o, bytes, parsed);
     if (!o.error) accept(o);
     if (!o.error) authorize(o);
     if (!o.error) run(o, from);
@@ -178,7 +191,7 @@ std::optional<std::string> RequestPath::refuse_too_large(std::optional<std::size
             return std::nullopt;
     }
     Outcome o;
-    o.env.id = json(nullptr);
+    o.id = json(nullptr);
     const std::string limit = std::to_string(cmdns::max_request_bytes);
     o.error = Error{code::too_large, size ? "the request is " + std::to_string(*size) +
                                                 " bytes, the limit is " + limit
@@ -186,114 +199,108 @@ std::optional<std::string> RequestPath::refuse_too_large(std::optional<std::size
     return finish(o, from, {});
 }
 
-void RequestPath::read(Outcome& o, std::string_view bytes) {
+void RequestPath::read(Outcome& o, std::string_view bytes, std::optional<json>& parsed) {
     o.read = true;
-    // Size and nesting first, on the raw bytes: an oversize request is never parsed.
-    if (auto refused = cmdns::check_request_limits(bytes)) {
-        if (refused->code == code::too_large) o.env.id = json(nullptr);
-        o.error = std::move(refused);
-        return;
+    if (!parsed) {
+        // Size and nesting first, on the raw bytes: an oversize request is never parsed.
+        if (auto refused = cmdns::check_request_limits(bytes)) {
+            if (refused->code == code::too_large) o.id = json(nullptr);
+            o.error = std::move(refused);
+            return;
+        }
+        parsed = cmdns::parse_object(bytes);  // the request's one parse
+        if (!parsed) {
+            o.error = Error{code::bad_json, "the datagram is not a JSON object"};
+            return;
+        }
     }
-    const json doc = json::parse(bytes, nullptr, false);
+    json doc = std::move(*parsed);
+    parsed.reset();
     auto signed_request = gimbal::auth::parse_signed(doc);
     if (!signed_request) {
         o.error = signed_request.error();
         return;
     }
-    if (!signed_request->has_value()) {
-        if (auto bad = cmdns::parse_envelope(bytes, known_command, o.env)) {
-            o.error = bad->error;
-            o.cmd = bad->cmd;
-            o.env.id = bad->id;
-            return;
-        }
-        o.cmd = o.env.cmd;
-        return;
-    }
+    if (!signed_request->has_value()) return take(o, std::move(doc));
     auto& envelope = **signed_request;
     auto key = verifier_.authenticate(envelope);
-    if (const auto* rejected = std::get_if<gimbal::auth::Rejected>(&key)) {
-        o.error = Error{code::forbidden, rejected->reason};
+    if (!key) {
+        o.error = key.error();
         // The unsigned refusal still echoes id and cmd, so the client can match it;
         // nothing else of an unverified payload is used.
-        o.echo_id_and_cmd(envelope.payload);
+        o.echo_text(envelope.payload);
         return;
     }
-    o.authentic = std::get<const gimbal::auth::Key*>(key);
+    o.authentic = *key;
     o.envelope = std::move(envelope);
 }
 
 void RequestPath::accept(Outcome& o) {
     if (!o.authentic || o.key) return;  // not signed, or accepted already
-    auto result = verifier_.accept(*o.authentic, *o.envelope, options_.unix_ms());
-    if (const auto* rejected = std::get_if<gimbal::auth::Rejected>(&result)) {
-        using Kind = gimbal::auth::Rejected::Kind;
-        o.error = Error{rejected->kind == Kind::bad_json    ? code::bad_json
-                        : rejected->kind == Kind::too_large ? code::too_large
-                                                            : code::forbidden,
-                        rejected->reason};
-        o.echo_id_and_cmd(o.envelope->payload);
+    // The payload's one parse; the request is read from it.
+    auto payload = gimbal::auth::read_signed_payload(o.envelope->payload);
+    if (!payload) {
+        o.error = payload.error();
+        if (o.error->code == code::too_large) o.id = json(nullptr);
         return;
     }
-    auto& verified = std::get<gimbal::auth::Verified>(result);
-    o.key = verified.key;
-    o.nonce = std::move(verified.nonce);
-    if (auto bad = cmdns::parse_envelope(o.envelope->payload, known_command, o.env)) {
-        o.error = bad->error;
-        o.cmd = bad->cmd;
-        o.env.id = bad->id;
+    const auto echo = cmdns::echo_of(*payload);
+    auto verified = verifier_.accept(*o.authentic, std::move(payload).value(), options_.unix_ms());
+    if (!verified) {
+        o.error = verified.error();
+        o.id = echo.id;
+        o.cmd = echo.cmd;
         return;
     }
-    o.cmd = o.env.cmd;
+    o.key = verified->key;
+    o.nonce = std::move(verified->nonce);
+    take(o, std::move(verified->request));
+}
+
+void RequestPath::take(Outcome& o, json request) {
+    o.echo(request);
+    auto env = cmdns::read_envelope(request);
+    if (env)
+        o.env = std::move(env).value();
+    else
+        o.error = env.error();
+    o.doc = std::move(request);
 }
 
 void RequestPath::authorize(Outcome& o) {
-    const auto role = gimbal::auth::required_role(o.env.cmd, o.env.request);
+    const auto role = gimbal::auth::required_role(o.env.cmd(), o.doc);
     if (!role) return;  // ping, version, list: open to every allowed source
     if (o.key) {
         if (!o.key->roles.has(*role))
-            o.error = Error{code::forbidden, "key '" + o.key->id + "' lacks the '" +
-                                                 std::string(gimbal::auth::to_string(*role)) +
-                                                 "' role that '" + o.env.cmd + "' needs"};
+            o.error =
+                Error{code::forbidden, "key '" + o.key->id + "' lacks the '" +
+                                           std::string(gimbal::auth::to_string(*role)) +
+                                           "' role that '" + std::string(o.env.cmd()) + "' needs"};
         return;
     }
     if (options_.signed_only) {
-        o.error = Error{code::forbidden,
-                        "command.auth is \"signed\": '" + o.env.cmd + "' must be signed by a key"};
+        o.error =
+            Error{code::forbidden, "command.auth is \"signed\": '" + std::string(o.env.cmd()) +
+                                       "' must be signed by a key"};
         return;
     }
-    if (options_.token && !cmdns::is_open_command(o.env.cmd) &&
+    if (options_.token && o.env.spec->needs_token &&
         !(o.env.token && gimbal::auth::token_matches(*o.env.token, *options_.token)))
         o.error =
             Error{code::forbidden, o.env.token ? "wrong token" : "this command needs 'token'"};
 }
 
-std::string RequestPath::execute_object(const json& request, const RequestSource& from, Outcome& o,
-                                        json* results) {
-    ++counters_.requests;
-    const std::string text = request.dump(-1, ' ', false, json::error_handler_t::replace);
-    if (auto bad = cmdns::parse_envelope(text, known_command, o.env)) {
-        o.error = bad->error;
-        o.cmd = bad->cmd;
-        o.env.id = bad->id;
-    } else {
-        o.cmd = o.env.cmd;
-        run(o, from);
-    }
-    if (results && !o.error) *results = o.results;  // finish() may consume them
-    return finish(o, from, text);
-}
-
-json RequestPath::execute(const json& request, const RequestSource& from) {
-    Outcome o;
-    return json::parse(execute_object(request, from, o), nullptr, false);
-}
-
 RequestPath::Executed RequestPath::execute_request(const json& request, const RequestSource& from) {
+    ++counters_.requests;
     Outcome o;
-    nlohmann::json results;
-    execute_object(request, from, o, &results);
-    return {o.error, std::move(results)};
+    take(o, request);  // an object already: no text, no parse
+    if (!o.error) run(o, from);
+    Executed out{o.error, o.error ? json() : o.results};  // finish() may consume the results
+    // A recording shows the request as the JSON text it would have been.
+    finish(o, from,
+           taps_.empty() ? std::string()
+                         : request.dump(-1, ' ', false, json::error_handler_t::replace));
+    return out;
 }
 
 void RequestPath::run(Outcome& o, const RequestSource& from) {
@@ -301,26 +308,39 @@ void RequestPath::run(Outcome& o, const RequestSource& from) {
         o.results = dispatch(o, from);
     } catch (const std::exception& e) {
         // A bug must not take the daemon (or the next client) down.
-        log::error("internal_error", e.what(), {{"cmd", o.env.cmd}});
+        log::error("internal_error", e.what(), {{"cmd", o.env.cmd()}});
         o.error = Error{code::internal, "internal error, see the daemon log"};
     }
 }
 
+std::string RequestPath::render(Outcome& o) {
+    json reply = o.error ? cmdns::error_reply(o.id, o.cmd, *o.error)
+                         : cmdns::ok_reply(o.id, *o.cmd, o.gimbal, std::move(o.results));
+    if (!o.key) return reply.dump(-1, ' ', false, json::error_handler_t::replace);
+    // The reply to a signed request is signed with the same key and carries its nonce.
+    reply["nonce"] = o.nonce;
+    reply["ts"] = options_.unix_ms();
+    return gimbal::auth::sign(o.key->id, o.key->secret,
+                              reply.dump(-1, ' ', false, json::error_handler_t::replace));
+}
+
 std::string RequestPath::finish(Outcome& o, const RequestSource& from,
                                 std::string_view request_bytes) {
-    json reply = o.error ? cmdns::error_reply(o.env.id, o.cmd, *o.error)
-                         : cmdns::ok_reply(o.env.id, *o.cmd, o.gimbal, std::move(o.results));
-    if (o.error && o.error->code != code::rate_limited) ++counters_.rejected;
-    std::string text;
-    if (o.key) {
-        // The reply to a signed request is signed with the same key and carries its nonce.
-        reply["nonce"] = o.nonce;
-        reply["ts"] = options_.unix_ms();
-        text = gimbal::auth::sign(o.key->id, o.key->secret,
-                                  reply.dump(-1, ' ', false, json::error_handler_t::replace));
-    } else {
-        text = reply.dump(-1, ' ', false, json::error_handler_t::replace);
+    std::string text = render(o);
+    if (from.max_reply_bytes && text.size() > *from.max_reply_bytes) {
+        // Never silence (contract section 14, v4): the client learns why and what to ask for.
+        std::string message = "the reply is " + std::to_string(text.size()) +
+                              " bytes, over the limit of one datagram (" +
+                              std::to_string(*from.max_reply_bytes) + " bytes)";
+        if (o.cmd == "state")
+            message += "; ask for fewer STATE keys with 'keys', e.g. [\"telemetry\"]";
+        else if (!o.error && o.cmd && reaches_gimbal(*o.cmd))
+            message += "; the command itself was carried out";
+        o.error = Error{code::too_large, std::move(message)};
+        o.results = json::object();
+        text = render(o);
     }
+    if (o.error && o.error->code != code::rate_limited) ++counters_.rejected;
     if (o.cmd && reaches_gimbal(*o.cmd)) audit(o, from);
 
     const CompletedRequest done{
@@ -332,7 +352,7 @@ std::string RequestPath::finish(Outcome& o, const RequestSource& from,
     // Logged from a posted handler, after the link's write of the packets queued above: the
     // log line (formatted, then written and flushed) is not part of the command's latency.
     json fields = {
-        {"src", from.address},   {"id", o.env.id ? *o.env.id : json(nullptr)},
+        {"src", from.address},   {"id", o.id ? *o.id : json(nullptr)},
         {"cmd", or_null(o.cmd)}, {"gimbal", or_null(o.gimbal)},
         {"ok", !o.error},        {"error", o.error ? json(o.error->code) : json(nullptr)}};
     if (from.transport != "udp") fields["transport"] = from.transport;
@@ -340,6 +360,21 @@ std::string RequestPath::finish(Outcome& o, const RequestSource& from,
                             fields = std::move(fields)] { log::info("command", msg, fields); });
     return text;
 }
+
+namespace {
+
+// The laser a `laser` request fired: its `index`, or the catalogue's default when it has none
+// (the audit line keeps what the client sent; `laser_fire` says which laser fired).
+json laser_index_used(const json& request) {
+    if (const auto it = request.find("index"); it != request.end() && it->is_number_integer())
+        return *it;
+    const auto* spec = gimbal::command::find_command("laser");
+    const auto* param = spec ? gimbal::command::find_param(*spec, "index") : nullptr;
+    if (param && !param->default_text.empty()) return std::stoi(std::string(param->default_text));
+    return nullptr;
+}
+
+}  // namespace
 
 void RequestPath::audit(const Outcome& o, const RequestSource& from) const {
     json fields = {{"src", from.address},
@@ -349,11 +384,11 @@ void RequestPath::audit(const Outcome& o, const RequestSource& from) const {
                    {"gimbal", o.gimbal ? json(*o.gimbal) : or_null(o.env.gimbal)},
                    {"ok", !o.error},
                    {"error", o.error ? json(o.error->code) : json(nullptr)}};
-    if (o.cmd == "laser" && o.env.request.is_object()) {
+    if (o.cmd == "laser" && o.doc.is_object()) {
         // Every laser flag as the client sent it (absent ones as null).
         for (const char* flag : {"index", "enable", "arm", "fire", "safety_bypass"}) {
-            const auto it = o.env.request.find(flag);
-            fields[flag] = it == o.env.request.end() ? json(nullptr) : *it;
+            const auto it = o.doc.find(flag);
+            fields[flag] = it == o.doc.end() ? json(nullptr) : *it;
         }
     }
     const bool fire = fields.contains("fire") && fields["fire"] == true;
@@ -365,7 +400,7 @@ void RequestPath::audit(const Outcome& o, const RequestSource& from) const {
                      {"transport", from.transport},
                      {"key", fields["key"]},
                      {"gimbal", fields["gimbal"]},
-                     {"index", fields["index"]}};
+                     {"index", laser_index_used(o.doc)}};
     boost::asio::post(
         io_, [fire, fired = std::move(fired), msg = o.error ? o.error->message : std::string("ok"),
               fields = std::move(fields)] {
@@ -392,10 +427,10 @@ std::string RequestPath::sign_message(const std::string& key_id, const json& mes
 }
 
 json RequestPath::dispatch(Outcome& o, const RequestSource& from) {
-    const std::string& cmd = o.env.cmd;
-    const json& request = o.env.request;
+    const std::string cmd(o.env.cmd());
+    const json& request = o.doc;
     json results = json::object();
-    cmdns::Params params(request);
+    cmdns::JsonParams params(request, cmd);
 
     if (cmd == "ping" || cmd == "version" || cmd == "list") {
         params.reject_unknown();
@@ -442,7 +477,7 @@ json RequestPath::dispatch(Outcome& o, const RequestSource& from) {
     if (cmd == "state") {
         std::vector<std::string> keys;
         if (const json* k = params.raw("keys")) {
-            auto read = gimbal::state::read_state_keys(*k);
+            auto read = gimbal::state::read_state_keys(*k, gimbal::protocols::is_state_key);
             if (!read) return o.fail(read.error());
             keys = std::move(read).value();
         }
@@ -469,8 +504,8 @@ json RequestPath::dispatch(Outcome& o, const RequestSource& from) {
 }
 
 json RequestPath::subscription(Outcome& o, const RequestSource& from) {
-    const std::string& cmd = o.env.cmd;
-    cmdns::Params params(o.env.request);
+    const std::string cmd(o.env.cmd());
+    cmdns::JsonParams params(o.doc, cmd);
     json results = json::object();
     if (!from.udp || !subscriptions_)
         return o.fail(Error{code::unsupported,
@@ -493,8 +528,8 @@ json RequestPath::subscription(Outcome& o, const RequestSource& from) {
     Subscription s;
     s.gimbal = o.env.gimbal;
     if (o.key) s.key_id = o.key->id;
-    s.rate_hz = params.number_or("rate_hz", 0.1, 50.0, 10.0);
-    s.ttl_s = params.number_or("ttl_s", 1.0, 3600.0, 60.0);
+    s.rate_hz = params.number_or("rate_hz", 10.0);
+    s.ttl_s = params.number_or("ttl_s", 60.0);
     s.events = params.boolean_or("events", true);
     read_stream_options(params, s.stream);
     params.reject_unknown();

@@ -29,6 +29,9 @@ struct RequestSource {
     // "http:127.0.0.1:5555", "mavlink:255/190".
     std::string address;
     std::optional<boost::asio::ip::udp::endpoint> udp;  // UDP only: subscriptions need it
+    // The largest reply the transport can carry (UDP: one datagram). A reply that would be
+    // larger becomes a too_large error reply naming its size (contract section 14, v4).
+    std::optional<std::size_t> max_reply_bytes = std::nullopt;
 };
 
 // Handed to observers after every request (metrics).
@@ -71,8 +74,15 @@ class RequestPath {
                 std::vector<GimbalSession*> sessions);
 
     // One request exactly as received (a JSON object, plain or signed envelope). Returns the
-    // reply text to send back, or nullopt when nothing must be sent.
+    // reply text to send back, or nullopt when nothing must be sent. The bytes are parsed
+    // once (command::parse_object), a signed request's payload once more, and the request
+    // is read from that parse.
     std::optional<std::string> handle(std::string_view bytes, const RequestSource& from);
+    // The same for a transport that had to look inside first (the WebSocket stream routes
+    // subscribe itself): `request` is its parse of `bytes`, which were within the request
+    // limits; the path does not parse them again.
+    std::optional<std::string> handle_parsed(nlohmann::json request, std::string_view bytes,
+                                             const RequestSource& from);
 
     // A request a transport refused for its size before it had read all of it (an HTTP body
     // or a WebSocket message over the limit; `size` when known): answered too_large, as
@@ -82,10 +92,8 @@ class RequestPath {
 
     // A request object built by an adapter that authenticates by its own means (MAVLink
     // signing): no token or signature check; the same validation, laser rules, logging and
-    // audit. Returns the reply object.
-    nlohmann::json execute(const nlohmann::json& request, const RequestSource& from);
-    // The same for an adapter that needs only the outcome (MAVLink answers with a MAV_RESULT):
-    // the reply is not parsed back into an object.
+    // audit. Read as the object it is: no JSON text, no parse. The adapter needs only the
+    // outcome (MAVLink answers with a MAV_RESULT).
     struct Executed {
         std::optional<gimbal::command::Error> error;
         nlohmann::json results;  // the reply's results on success (e.g. `point`'s located point)
@@ -107,18 +115,21 @@ class RequestPath {
 
   private:
     struct Outcome;
+    std::optional<std::string> handle(std::string_view bytes, std::optional<nlohmann::json> parsed,
+                                      const RequestSource& from);
     void run(Outcome& o, const RequestSource& from);
-    // execute()'s work: the envelope check, run and finish; returns the reply text and,
-    // when `results` is given, copies a success's results there.
-    std::string execute_object(const nlohmann::json& request, const RequestSource& from, Outcome& o,
-                               nlohmann::json* results = nullptr);
     nlohmann::json dispatch(Outcome& o, const RequestSource& from);
     nlohmann::json subscription(Outcome& o, const RequestSource& from);
     std::string finish(Outcome& o, const RequestSource& from, std::string_view request_bytes);
-    // Size and nesting limits, parse, and for a signed request its MAC (no state changes).
-    void read(Outcome& o, std::string_view bytes);
-    // A signed request's ts and nonce (the nonce is spent here), then its payload.
+    // The reply's text: signed with the request's key when it was signed.
+    std::string render(Outcome& o);
+    // Size and nesting limits and the one parse (unless `parsed` holds the transport's), and
+    // for a signed request its MAC (no state changes).
+    void read(Outcome& o, std::string_view bytes, std::optional<nlohmann::json>& parsed);
+    // A signed request's payload (its one parse), ts and nonce (the nonce is spent here).
     void accept(Outcome& o);
+    // The request object itself: what the reply echoes and the envelope.
+    void take(Outcome& o, nlohmann::json request);
     void authorize(Outcome& o);
     void audit(const Outcome& o, const RequestSource& from) const;
     std::string random_nonce();

@@ -1,52 +1,31 @@
 #include "secret_file.hpp"
 
-#include <fcntl.h>
 #include <fmt/format.h>
 #include <sys/stat.h>
-#include <unistd.h>
 
 #include <cerrno>
 #include <cstring>
 
+#include "regular_file.hpp"
+
 namespace gimbal::daemon {
 
 command::Result<std::string> read_secret_file(const std::string& path) {
-    namespace code = command::code;
-    auto problem = [&path](command::ErrorCode c, std::string reason) {
-        return command::Result<std::string>{c, fmt::format("{}: {}", path, reason)};
+    constexpr std::size_t max_bytes = 64 * 1024;  // a key, a password: never this much
+    const FileCheck owner_only = [&path](const struct stat& st) -> std::optional<command::Error> {
+        if ((st.st_mode & 077) == 0) return std::nullopt;
+        return command::Error{
+            command::code::forbidden,
+            fmt::format("{}: readable by group or others (mode {:04o}); chmod 600 it", path,
+                        st.st_mode & 07777)};
     };
-    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOCTTY);
-    if (fd < 0)
-        return problem(code::unavailable, errno == ENOENT ? "missing" : std::strerror(errno));
-    struct stat st {};
-    if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
-        ::close(fd);
-        return problem(code::bad_request, "not a regular file");
-    }
-    if ((st.st_mode & 077) != 0) {
-        ::close(fd);
-        return problem(code::forbidden,
-                       fmt::format("readable by group or others (mode {:04o}); chmod 600 it",
-                                   st.st_mode & 07777));
-    }
-    std::string text;
-    char buffer[4096];
-    for (;;) {
-        const ssize_t n = ::read(fd, buffer, sizeof buffer);
-        if (n < 0 && errno == EINTR) continue;
-        if (n < 0) {
-            const std::string reason = std::strerror(errno);
-            ::close(fd);
-            return problem(code::unavailable, reason);
-        }
-        if (n == 0) break;
-        text.append(buffer, static_cast<std::size_t>(n));
-        if (text.size() > 65536) {
-            ::close(fd);
-            return problem(code::bad_request, "larger than 64 KiB: not a secret file");
-        }
-    }
-    ::close(fd);
+    auto text = read_regular_file(path, max_bytes, owner_only);
+    if (text) return text;
+    const auto& e = text.error();
+    if (e.message == path + ": " + std::strerror(ENOENT))
+        return command::Error{e.code, path + ": missing"};  // what a key file lacks, plainly
+    if (e.message.ends_with("larger than 64 KiB"))
+        return command::Error{e.code, e.message + ": not a secret file"};
     return text;
 }
 

@@ -1,14 +1,15 @@
 #include "signing_state.hpp"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <cstring>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
+
 #include <stdexcept>
+#include "regular_file.hpp"
 
 namespace gimbald {
 
@@ -25,14 +26,13 @@ std::optional<std::string> signing_state_path(const std::optional<std::string>& 
 }
 
 SigningState load_signing_state(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) {
-        if (errno == ENOENT) return {};
-        throw std::runtime_error(path + ": " + std::strerror(errno));
-    }
-    std::stringstream text;
-    text << in.rdbuf();
-    const json j = json::parse(text.str(), nullptr, false);
+    // At most 256 streams of a few dozen bytes: 1 MiB is far more than a real file; a FIFO or
+    // a device in its place is refused instead of hanging the start.
+    struct stat st {};
+    if (::stat(path.c_str(), &st) != 0 && errno == ENOENT) return {};  // nothing saved yet
+    const auto text = gimbal::daemon::read_regular_file(path, 1024 * 1024);
+    if (!text) throw std::runtime_error(text.error().message);
+    const json j = json::parse(*text, nullptr, false);
     const auto bad = [&path](const std::string& what) {
         return std::runtime_error(path + ": not a MAVLink signing state (" + what + ")");
     };

@@ -1,15 +1,16 @@
 #include "stream_params.hpp"
 
 #include "command/result.hpp"
+#include "protocols/registry.hpp"
 #include "state/messages.hpp"
 
 namespace gimbald {
 
-void read_stream_options(gimbal::command::Params& params, gimbal::state::StreamOptions& out) {
+void read_stream_options(gimbal::command::JsonParams& params, gimbal::state::StreamOptions& out) {
     out.changes = params.boolean_or("changes", false);
-    out.full_every_s = params.number_or("full_every_s", 1.0, 3600.0, 10.0);
+    out.full_every_s = params.number_or("full_every_s", 10.0);
     if (const nlohmann::json* k = params.raw("keys")) {
-        auto keys = gimbal::state::read_state_keys(*k);
+        auto keys = gimbal::state::read_state_keys(*k, gimbal::protocols::is_state_key);
         if (keys)
             out.keys = std::move(keys).value();
         else

@@ -11,7 +11,7 @@ namespace gimbald {
 
 // Reads the parameters into `out`; a problem is left in `params` (bad_request or
 // out_of_range naming the key).
-void read_stream_options(gimbal::command::Params& params, gimbal::state::StreamOptions& out);
+void read_stream_options(gimbal::command::JsonParams& params, gimbal::state::StreamOptions& out);
 
 // Adds what the subscriber got to a subscribe reply: `keys` when restricted, `changes` and
 // `full_every_s` when changes are on.

@@ -7,10 +7,10 @@ OpenedTerrain open_terrain(const Config& config) {
     if (!config.terrain) return out;
     const terrain::TerrainOptions options(*config.terrain);
     auto opened = terrain::ElevationModel::open(options);
-    if (!opened.model)
-        out.problem = Problem{"terrain.files", opened.error};
+    if (!opened)
+        out.problem = Problem{"terrain.files", opened.error().message};
     else
-        out.model = std::move(opened.model);
+        out.model = std::move(opened).value();
     return out;
 }
 

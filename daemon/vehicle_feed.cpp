@@ -132,7 +132,7 @@ void VehicleFeed::on_tick() {
     for (auto& target : targets_) {
         target.feeder->tick(state_, t, packets);
         send(target, packets);
-        target.session->steer(state_, now);
+        target.sent += target.session->steer(state_, now);  // a device's own feed frames
     }
 }
 

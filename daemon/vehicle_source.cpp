@@ -76,10 +76,7 @@ void VehicleSource::do_receive() {
         boost::asio::buffer(buffer_), sender_,
         [this](const boost::system::error_code& ec, std::size_t n) {
             if (stopped_ || ec == boost::asio::error::operation_aborted) return;
-            if (!ec) {
-                remember_peer();
-                on_datagram(std::span<const std::uint8_t>(buffer_.data(), n));
-            }
+            if (!ec) on_datagram(std::span<const std::uint8_t>(buffer_.data(), n));
             do_receive();
         });
 }
@@ -93,9 +90,13 @@ std::string endpoint_text(const boost::asio::ip::udp::endpoint& e) {
 
 }  // namespace
 
-void VehicleSource::remember_peer() {
-    if (std::find(peers_.begin(), peers_.end(), sender_) != peers_.end()) return;
-    if (peers_.size() == max_peers) peers_.erase(peers_.begin());
+void VehicleSource::admit_peer() {
+    if (!socket_) return;
+    if (!peers_.empty() && peers_.back() == sender_) return;  // the usual case: no change
+    if (const auto it = std::find(peers_.begin(), peers_.end(), sender_); it != peers_.end())
+        peers_.erase(it);
+    else if (peers_.size() == max_peers)
+        peers_.erase(peers_.begin());
     peers_.push_back(sender_);
 }
 

@@ -47,7 +47,12 @@ class VehicleSource {
     // Inside a MessageHandler call: where the message came from ("udp 127.0.0.1:14551",
     // "serial /dev/ttyACM0").
     std::string current_peer() const;
-    // Every UDP peer heard (at most max_peers, the oldest forgotten first).
+    // Inside a MessageHandler call: the message passed its listener's checks (a frame that
+    // parsed, signed when signing is on), so its UDP sender takes a peer slot, or refreshes
+    // its own. Only admitted peers are sent to: junk cannot evict a ground station (contract
+    // section 14, v4). No-op on serial.
+    void admit_peer();
+    // Every admitted UDP peer (at most max_peers; a new one replaces the one silent longest).
     std::vector<std::string> peers() const;
     static constexpr std::size_t max_peers = 16;
 
@@ -56,14 +61,13 @@ class VehicleSource {
     void on_bytes(std::span<const std::uint8_t> bytes);     // serial: one byte stream
     void on_datagram(std::span<const std::uint8_t> bytes);  // UDP: whole frames per datagram
     bool send_frame(std::span<const std::uint8_t> frame);
-    void remember_peer();
 
     MessageHandler on_message_;
     gimbal::mavlink::Framer framer_;
     std::unique_ptr<boost::asio::ip::udp::socket> socket_;  // udp source
     boost::asio::ip::udp::endpoint sender_;
     std::array<std::uint8_t, 65536> buffer_{};
-    std::vector<boost::asio::ip::udp::endpoint> peers_;
+    std::vector<boost::asio::ip::udp::endpoint> peers_;  // least recently admitted first
     std::vector<boost::asio::ip::udp::endpoint> targets_;
     std::unique_ptr<Link> serial_;  // serial source
     std::string description_;

@@ -14,10 +14,11 @@
 --   orion-tcp     OrionPublic in live TCP captures (port 8747, or Decode As), reassembled.
 --
 -- The Orion part interprets a schema table generated from the codec's packet declarations
--- (lib/orion/packets_*.hpp) by tools/gen-dissector; the block between the GENERATED markers
--- must not be edited by hand: `cmake --build build/debug --target update-dissector`.
+-- (lib/protocols/orion/codec/packets_*.hpp) by tools/gen-dissector; the block between the
+-- GENERATED markers must not be edited by hand: `cmake --build build/debug --target
+-- update-dissector`.
 
--- BEGIN GENERATED ORION SCHEMA (tools/gen-dissector from lib/orion/packets_*.hpp; do not edit by hand:
+-- BEGIN GENERATED ORION SCHEMA (tools/gen-dissector from lib/protocols/orion/codec/packets_*.hpp; do not edit by hand:
 -- cmake --build build/debug --target update-dissector)
 local orion_enums = {
   [1] = { [0] = "disabled", [1] = "fault", [16] = "rate", [17] = "geo_rate", [32] = "ffc_auto", [33] = "ffc_manual", [48] = "scene", [49] = "track", [64] = "calibration", [80] = "position", [81] = "position_no_limits", [96] = "geopoint", [112] = "path", [113] = "down", [255] = "unknown", },
@@ -749,7 +750,7 @@ local function short_text(value, raw, e)
     return string.format("%.17g", value)
 end
 
--- Decoder state over one packet's data, mirroring lib/orion/codec.hpp's Decoder: whole-byte
+-- Decoder state over one packet's data, mirroring lib/protocols/orion/codec/codec.hpp's Decoder: whole-byte
 -- fields start on a new byte after a bitfield; running out in the optional tail ends the
 -- packet quietly, elsewhere it is an error.
 local function new_state(tvb, offset, len)
@@ -826,7 +827,7 @@ local function add_value(tree, abbr, e, raw, range, label)
     end
 end
 
--- Printable ASCII kept, anything else '?' (lib/orion printable()).
+-- Printable ASCII kept, anything else '?' (the Orion codec's printable()).
 local function printable(bytes)
     return (bytes:gsub("[^\32-\126]", "?"))
 end
@@ -1020,9 +1021,10 @@ do
 end
 
 ------------------------------------------------------------------------------------------------
--- Viewpro (lib/viewpro; contract section 7 errata: OUT3/OUT4 share FD and 60 bytes, IN2/IN3
--- share FC and 40 bytes, byte 3 = FF marks OUT4 / IN3). Little-endian; the checksum is the sum
--- of all previous bytes mod 256; the 5-byte commands AA 55 id xx FF have none.
+-- Viewpro (lib/protocols/viewpro/codec; contract section 7 errata: OUT3/OUT4 share FD and 60
+-- bytes, IN2/IN3 share FC and 40 bytes, byte 3 = FF marks OUT4 / IN3). Little-endian; the
+-- checksum is the sum of all previous bytes mod 256; the 5-byte commands AA 55 id xx FF have
+-- none.
 ------------------------------------------------------------------------------------------------
 
 local viewpro_proto = Proto("viewpro", "Viewpro target GPS protocol")

@@ -7,7 +7,7 @@ packages=(
   build-essential cmake pkg-config
   libboost-dev libspdlog-dev libfmt-dev nlohmann-json3-dev libcli11-dev catch2
   libsystemd-dev libgeographiclib-dev libssl-dev
-  libbenchmark-dev clang libclang-rt-14-dev
+  libbenchmark-dev clang libclang-rt-14-dev lld
   socat python3 systemd curl jq
   libmosquitto-dev mosquitto mosquitto-clients python3-paho-mqtt openssl
   dpkg-dev lintian

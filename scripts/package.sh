@@ -46,6 +46,7 @@ export SOURCE_DATE_EPOCH
 
 build=build/package-$arch
 jobs=${JOBS:-$(nproc 2>/dev/null || echo 2)}
+# A Release build with GCC: no precompiled headers (cmake/precompiled_headers.cmake says why).
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DGIMBAL_WERROR=ON -DGIMBAL_TESTS=OFF \
       -DGIMBAL_BENCH=OFF -DGIMBAL_PACKAGE=ON -DCMAKE_INSTALL_PREFIX=/usr "${cross[@]}" >/dev/null
 cmake --build "$build" -j "$jobs"

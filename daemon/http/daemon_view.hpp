@@ -20,8 +20,10 @@ struct DaemonView {
     RequestPath* path = nullptr;
     std::function<std::size_t()> udp_subscribers;
     std::function<std::uint64_t()> udp_dropped_sources;
-    std::function<bool()> vehicle_up;  // false without a vehicle section
-    std::function<bool()> mqtt_up;     // false without an mqtt section
+    std::function<std::uint64_t()> udp_send_failed;       // replies and pushes not sent
+    std::function<std::uint64_t()> udp_pushes_too_large;  // replaced by a too_large event
+    std::function<bool()> vehicle_up;                     // false without a vehicle section
+    std::function<bool()> mqtt_up;                        // false without an mqtt section
     // Contract section 18: a gimbal's video, null for no such gimbal or one without video.
     std::function<video::VideoTap*(const std::string& gimbal)> video;
 };
@@ -35,6 +37,7 @@ struct HttpStats {
     std::size_t open_connections = 0;       // HTTP (WebSocket clients not included)
     std::size_t websocket_clients = 0;
     std::uint64_t websocket_dropped_total = 0;          // send queue full
+    std::uint64_t websocket_send_failed_total = 0;      // a write failed (peer gone)
     std::map<unsigned, std::uint64_t> responses_total;  // by HTTP status
     std::size_t video_viewers = 0;                      // GET /api/video/{gimbal} streams
     std::uint64_t video_dropped_total = 0;              // viewers that stopped reading

@@ -10,8 +10,7 @@ Health check_health(const std::vector<GimbalSession*>& sessions) {
     json problems = json::array();
     for (const auto* session : sessions) {
         const bool connected = session->connected();
-        const json state = session->snapshot();
-        const bool stale = state.value("stale", true);
+        const bool stale = session->stale();
         if (!connected) problems.push_back(session->name() + ": link down");
         if (stale) problems.push_back(session->name() + ": telemetry stale");
         gimbals[session->name()] = {

@@ -3,33 +3,22 @@
 #include <limits>
 
 #include "metrics/exposition.hpp"
+#include "state/precision.hpp"
 
 namespace gimbald::http {
 
 using gimbal::metrics::Exposition;
 using gimbal::metrics::Labels;
 using gimbal::metrics::Type;
-using nlohmann::json;
 
 namespace {
 
-double number_at(const json& object, const char* key) {
-    const auto it = object.find(key);
-    return it != object.end() && it->is_number() ? it->get<double>() : 0.0;
-}
-
-// The age of the gimbal's latest position telemetry: Orion `telemetry`, Viewpro `output`.
+// The age of the gimbal's latest position telemetry, to the millisecond as STATE shows ages.
 // +Inf until the first one arrives, so an alert on "age > N" fires for a gimbal that never
 // sent any.
-double telemetry_age_s(const json& state) {
-    for (const char* key : {"telemetry", "output"}) {
-        const auto it = state.find(key);
-        if (it != state.end() && it->is_object()) {
-            const auto age = it->find("age_s");
-            if (age != it->end() && age->is_number()) return age->get<double>();
-        }
-    }
-    return std::numeric_limits<double>::infinity();
+double telemetry_age_s(const GimbalSession& session) {
+    const auto age = session.telemetry_age_s();
+    return age ? gimbal::state::seconds(*age) : std::numeric_limits<double>::infinity();
 }
 
 }  // namespace
@@ -40,39 +29,45 @@ std::string render_metrics(const DaemonView& daemon, const CommandMetrics& comma
     e.family("gimbald_build_info", Type::gauge, "Always 1; the version is a label.");
     e.sample({{"version", GIMBALD_VERSION}}, 1);
 
-    // One snapshot per gimbal: every link metric comes from the same instant.
+    // The link read once per gimbal: every link metric comes from the same instant.
     struct Gimbal {
         GimbalSession* session;
-        json state;
+        gimbal::state::LinkState link;
     };
     std::vector<Gimbal> gimbals;
-    for (auto* session : daemon.path->sessions()) gimbals.push_back({session, session->snapshot()});
+    for (auto* session : daemon.path->sessions())
+        gimbals.push_back({session, session->link_state()});
     auto per_gimbal = [&](const char* name, Type type, const char* help, auto value) {
         e.family(name, type, help);
         for (const auto& g : gimbals) e.sample({{"gimbal", g.session->name()}}, value(g));
     };
-    auto link_counter = [&](const char* name, const char* key, const char* help) {
+    using Counter = std::uint64_t gimbal::state::LinkState::*;
+    auto link_counter = [&](const char* name, Counter counter, const char* help) {
         per_gimbal(name, Type::counter, help,
-                   [key](const Gimbal& g) { return number_at(g.state.at("link"), key); });
+                   [counter](const Gimbal& g) { return static_cast<double>(g.link.*counter); });
     };
+    using gimbal::state::LinkState;
     per_gimbal("gimbald_link_up", Type::gauge, "1 when the gimbal's link is connected.",
                [](const Gimbal& g) { return g.session->connected() ? 1.0 : 0.0; });
-    link_counter("gimbald_link_rx_bytes_total", "rx_bytes", "Bytes received from the gimbal.");
-    link_counter("gimbald_link_tx_bytes_total", "tx_bytes", "Bytes written to the gimbal.");
-    link_counter("gimbald_link_rx_packets_total", "rx_packets",
+    link_counter("gimbald_link_rx_bytes_total", &LinkState::rx_bytes,
+                 "Bytes received from the gimbal.");
+    link_counter("gimbald_link_tx_bytes_total", &LinkState::tx_bytes,
+                 "Bytes written to the gimbal.");
+    link_counter("gimbald_link_rx_packets_total", &LinkState::rx_packets,
                  "Valid packets received from the gimbal.");
-    link_counter("gimbald_link_tx_packets_total", "tx_packets", "Packets written to the gimbal.");
-    link_counter("gimbald_link_bad_checksums_total", "bad_checksums",
+    link_counter("gimbald_link_tx_packets_total", &LinkState::tx_packets,
+                 "Packets written to the gimbal.");
+    link_counter("gimbald_link_bad_checksums_total", &LinkState::bad_checksums,
                  "Frames from the gimbal dropped for a bad checksum.");
-    link_counter("gimbald_link_dropped_bytes_total", "dropped_bytes",
+    link_counter("gimbald_link_dropped_bytes_total", &LinkState::dropped_bytes,
                  "Bytes from the gimbal skipped while looking for a frame.");
-    link_counter("gimbald_link_reconnects_total", "reconnects", "Link reconnections.");
+    link_counter("gimbald_link_reconnects_total", &LinkState::reconnects, "Link reconnections.");
     per_gimbal("gimbald_telemetry_age_seconds", Type::gauge,
                "Age of the gimbal's latest position telemetry; +Inf before the first.",
-               [](const Gimbal& g) { return telemetry_age_s(g.state); });
+               [](const Gimbal& g) { return telemetry_age_s(*g.session); });
     per_gimbal("gimbald_telemetry_stale", Type::gauge,
                "1 when no telemetry arrived within telemetry.stale_after_s.",
-               [](const Gimbal& g) { return g.state.value("stale", true) ? 1.0 : 0.0; });
+               [](const Gimbal& g) { return g.session->stale() ? 1.0 : 0.0; });
 
     e.family("gimbald_laser_firing", Type::gauge,
              "1 while the daemon last commanded this laser to fire (dead-man pending).");
@@ -133,6 +128,17 @@ std::string render_metrics(const DaemonView& daemon, const CommandMetrics& comma
     e.family("gimbald_websocket_dropped_total", Type::counter,
              "WebSocket clients dropped because their send queue was full.");
     e.sample({}, static_cast<double>(http.websocket_dropped_total));
+    e.family("gimbald_send_failures_total", Type::counter,
+             "Replies and pushes that could not be sent: the UDP command socket's (reply or "
+             "push) and WebSocket messages.");
+    const auto count = [](const std::function<std::uint64_t()>& f) {
+        return static_cast<double>(f ? f() : 0);
+    };
+    e.sample({{"transport", "udp"}}, count(daemon.udp_send_failed));
+    e.sample({{"transport", "websocket"}}, static_cast<double>(http.websocket_send_failed_total));
+    e.family("gimbald_pushes_too_large_total", Type::counter,
+             "UDP subscription pushes over one datagram, replaced by a too_large event.");
+    e.sample({}, count(daemon.udp_pushes_too_large));
     e.family("gimbald_video_viewers", Type::gauge, "Open video WebSockets (/api/video/{gimbal}).");
     e.sample({}, static_cast<double>(http.video_viewers));
     e.family("gimbald_video_viewers_dropped_total", Type::counter,

@@ -6,6 +6,7 @@
 #include "command/catalogue.hpp"
 #include "command/envelope.hpp"
 #include "command/params.hpp"
+#include "command/request.hpp"
 #include "command/request_limits.hpp"
 #include "logging.hpp"
 #include "state/messages.hpp"
@@ -30,10 +31,6 @@ std::string dump(const json& j) {
     return j.dump(-1, ' ', false, json::error_handler_t::replace);
 }
 
-bool known_command(std::string_view cmd) {
-    return cmdns::is_known_command(cmd);
-}
-
 bool covers(const StreamSubscription& s, const std::string& gimbal) {
     return !s.gimbal || *s.gimbal == gimbal;
 }
@@ -46,7 +43,9 @@ StreamHub::StreamHub(boost::asio::io_context& io, RequestPath& path, HttpStats& 
       stats_(stats),
       queue_max_(queue_max),
       idle_timeout_s_(idle_timeout_s),
-      timer_(io) {}
+      timer_(io),
+      send_failed_(log::Level::info, "websocket_send_failed",
+                   "WebSocket messages that could not be sent") {}
 
 void StreamHub::track(WsClient& client) {
     clients_.push_back(&client);
@@ -82,6 +81,13 @@ void StreamHub::dropped(WsClient& client, std::size_t queued) {
     log::warn("websocket_dropped",
               "WebSocket client dropped: it does not read and its send queue is full",
               {{"src", client.address()}, {"queued", queued}, {"queue_max", queue_max_}});
+}
+
+void StreamHub::send_failed(WsClient& client, std::size_t bytes,
+                            const boost::system::error_code& ec) {
+    ++stats_.websocket_send_failed_total;
+    send_failed_.hit("a WebSocket message could not be sent: " + ec.message(),
+                     {{"src", client.address()}, {"bytes", bytes}, {"error", ec.message()}});
 }
 
 void StreamHub::stop() {
@@ -121,6 +127,7 @@ void StreamHub::schedule() {
 }
 
 void StreamHub::tick() {
+    send_failed_.poll();  // a burst that stopped still gets its summary
     const double now = steady_seconds();
     const double horizon = now + batch_s;
     const auto clients = clients_;  // a send may drop a client
@@ -151,15 +158,17 @@ StreamHub::Answer StreamHub::on_message(WsClient& client, std::string_view text)
     const RequestSource source{"http", client.address(), std::nullopt};
     // Over the request limits: the request path answers (too_large, bad_json) unparsed.
     if (cmdns::check_request_limits(text)) return {path_.handle(text, source), std::nullopt, {}};
-    const json request = json::parse(text, nullptr, false);
-    if (request.is_discarded() || !request.is_object())
+    // The message's one parse: subscribe is routed here, anything else goes to the request
+    // path with it.
+    auto request = cmdns::parse_object(text);
+    if (!request)
         return {std::nullopt, boost::beast::websocket::close_code::policy_error,
                 "not a JSON object"};
-    const auto cmd = request.find("cmd");
-    if (cmd != request.end() && cmd->is_string() &&
-        (*cmd == "subscribe" || *cmd == "unsubscribe") && !request.contains("signed"))
-        return {subscribe(client, request, *cmd == "unsubscribe"), std::nullopt, {}};
-    return {path_.handle(text, source), std::nullopt, {}};
+    const auto cmd = request->find("cmd");
+    if (cmd != request->end() && cmd->is_string() &&
+        (*cmd == "subscribe" || *cmd == "unsubscribe") && !request->contains("signed"))
+        return {subscribe(client, *request, *cmd == "unsubscribe"), std::nullopt, {}};
+    return {path_.handle_parsed(std::move(*request), text, source), std::nullopt, {}};
 }
 
 std::optional<std::string> StreamHub::too_large(WsClient& client) {
@@ -169,15 +178,19 @@ std::optional<std::string> StreamHub::too_large(WsClient& client) {
 // The UDP `subscribe` parameters with the UDP validation; ttl_s is accepted and ignored (the
 // stream lasts as long as the connection).
 std::string StreamHub::subscribe(WsClient& client, const json& request, bool unsubscribe) {
-    cmdns::Envelope env;
-    if (auto bad = cmdns::parse_envelope(dump(request), known_command, env))
-        return dump(cmdns::error_reply(bad->id, bad->cmd, bad->error));
+    const auto read = cmdns::read_envelope(request);
+    if (!read) {
+        const auto echo = cmdns::echo_of(request);
+        return dump(cmdns::error_reply(echo.id, echo.cmd, read.error()));
+    }
+    const cmdns::Envelope& env = *read;
+    const std::optional<std::string> cmd(std::string(env.cmd()));
     auto fail = [&](const cmdns::Error& error) {
-        return dump(cmdns::error_reply(env.id, env.cmd, error));
+        return dump(cmdns::error_reply(env.id, cmd, error));
     };
     if (env.gimbal && !path_.find(*env.gimbal))
         return fail({code::unknown_gimbal, "no gimbal named '" + *env.gimbal + "'"});
-    cmdns::Params params(env.request);
+    cmdns::JsonParams params(request, env.cmd());
     json results = json::object();
     auto& s = client.subscription();
     if (unsubscribe) {
@@ -186,12 +199,12 @@ std::string StreamHub::subscribe(WsClient& client, const json& request, bool uns
         s.state = false;
         s.events = false;
         results["subscribed"] = false;
-        return dump(cmdns::ok_reply(env.id, env.cmd, env.gimbal, std::move(results)));
+        return dump(cmdns::ok_reply(env.id, env.cmd(), env.gimbal, std::move(results)));
     }
     StreamSubscription next;
     next.gimbal = env.gimbal;
-    next.rate_hz = params.number_or("rate_hz", 0.1, 50.0, 2.0);
-    params.number_or("ttl_s", 1.0, 3600.0, 60.0);
+    next.rate_hz = params.number_or("rate_hz", 2.0);
+    params.number_or("ttl_s", 60.0);
     next.events = params.boolean_or("events", true);
     read_stream_options(params, next.stream);
     params.reject_unknown();
@@ -203,7 +216,7 @@ std::string StreamHub::subscribe(WsClient& client, const json& request, bool uns
     results["events"] = s.events;
     describe_stream_options(s.stream, results);
     schedule();
-    return dump(cmdns::ok_reply(env.id, env.cmd, env.gimbal, std::move(results)));
+    return dump(cmdns::ok_reply(env.id, env.cmd(), env.gimbal, std::move(results)));
 }
 
 }  // namespace gimbald::http

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "daemon_view.hpp"
+#include "logging.hpp"
 #include "request_path.hpp"
 #include "state/event.hpp"
 
@@ -35,6 +36,9 @@ class StreamHub {
     void publish_event(const std::string& gimbal, const gimbal::state::Event& event);
     // A client's queue overflowed: counted and logged; the client closes itself.
     void dropped(WsClient& client, std::size_t queued);
+    // A message to a client could not be written: counted and logged (rolled up); the
+    // client closes itself.
+    void send_failed(WsClient& client, std::size_t bytes, const boost::system::error_code& ec);
     void stop();  // closes every client
 
     struct Answer {
@@ -62,6 +66,7 @@ class StreamHub {
     double idle_timeout_s_;
     boost::asio::steady_timer timer_;
     std::vector<WsClient*> clients_;
+    gimbal::log::RateLimitedLog send_failed_;
     bool stopped_ = false;
 };
 

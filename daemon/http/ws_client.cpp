@@ -163,7 +163,11 @@ void WsClient::fail(const boost::system::error_code& ec, const char* what) {
         close();
         return;
     }
-    log::debug("websocket_error", std::string(what) + ": " + ec.message(), {{"src", address_}});
+    // A message that could not be sent is counted and logged (contract section 14, v4).
+    if (std::string_view(what) == "write")
+        hub_.send_failed(*this, queue_.empty() ? 0 : queue_.front()->size(), ec);
+    else
+        log::debug("websocket_error", std::string(what) + ": " + ec.message(), {{"src", address_}});
     close();
 }
 

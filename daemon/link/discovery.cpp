@@ -4,8 +4,6 @@
 #include <boost/asio/post.hpp>
 
 #include "link/seconds.hpp"
-#include "orion/enums.hpp"
-#include "orion/framing.hpp"
 
 namespace gimbald {
 
@@ -15,7 +13,7 @@ using asio::ip::udp;
 Discovery::Discovery(asio::io_context& io, DiscoveryOptions options)
     : io_(io),
       options_(std::move(options)),
-      request_(gimbal::orion::request_bytes(gimbal::orion::pkt::crown_version)),
+      request_(options_.protocol ? options_.protocol.request() : std::vector<std::uint8_t>{}),
       socket_(io),
       timer_(io) {}
 
@@ -28,6 +26,7 @@ void Discovery::start(Done done) {
     auto fail_later = [this](std::string error) {
         asio::post(io_, lifetime_.wrap([this, error] { finish(std::nullopt, error); }));
     };
+    if (!options_.protocol) return fail_later("this protocol has no broadcast discovery");
     boost::system::error_code ec;
     const asio::ip::address address = asio::ip::make_address(options_.address, ec);
     if (ec) return fail_later("bad discover_address \"" + options_.address + "\"");
@@ -58,10 +57,8 @@ void Discovery::do_receive() {
         asio::buffer(reply_), sender_,
         lifetime_.wrap([this](const boost::system::error_code& ec, std::size_t n) {
             if (ec) return finish(std::nullopt, "udp receive: " + ec.message());
-            // Anything that is not an Orion frame (a stray datagram) is ignored.
-            const bool orion_frame =
-                n >= 2 && reply_[0] == gimbal::orion::sync0 && reply_[1] == gimbal::orion::sync1;
-            if (!orion_frame) return do_receive();
+            // Anything that is not the protocol's answer (a stray datagram) is ignored.
+            if (!options_.protocol.is_reply({reply_.data(), n})) return do_receive();
             finish(sender_.address(), {});
         }));
 }

@@ -1,6 +1,7 @@
-// The Orion SDK's gimbal discovery: broadcast a zero-length CROWN_VERSION request by UDP and
-// take the source address of the first reply. One round per start(); the TcpLink repeats
-// rounds with its backoff and re-discovers after every lost connection.
+// A gimbal's UDP broadcast discovery, as its protocol's registry entry says (the Orion SDK's:
+// a zero-length CROWN_VERSION request): broadcast the request and take the source address of
+// the first reply. One round per start(); the TcpLink repeats rounds with its backoff and
+// re-discovers after every lost connection.
 #pragma once
 
 #include <array>
@@ -16,6 +17,7 @@
 #include <boost/asio/steady_timer.hpp>
 
 #include "link/lifetime.hpp"
+#include "protocols/discovery.hpp"
 
 namespace gimbald {
 
@@ -24,6 +26,8 @@ struct DiscoveryOptions {
     std::uint16_t port = 8745;                // the gimbal listens here
     std::uint16_t reply_port = 8746;  // we listen here; 0 = any free port (replies to source)
     double timeout_s = 1.5;           // a round without a reply fails after this long
+    // What is asked and what answers: the gimbal's protocol's (empty: every round fails).
+    gimbal::protocols::Discovery protocol;
 };
 
 class Discovery {

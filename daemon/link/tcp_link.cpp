@@ -32,9 +32,9 @@ TcpLink::TcpLink(asio::io_context& io, TcpLinkOptions options, Backoff backoff)
       resolver_(io),
       connect_timer_(io) {
     if (options_.discover()) {
-        discovery_.emplace(
-            io, DiscoveryOptions{options_.discover_address, options_.discover_port,
-                                 options_.discover_reply_port, options_.discover_timeout_s});
+        discovery_.emplace(io, DiscoveryOptions{options_.discover_address, options_.discover_port,
+                                                options_.discover_reply_port,
+                                                options_.discover_timeout_s, options_.discovery});
     } else {
         target_host_ = options_.host;
     }

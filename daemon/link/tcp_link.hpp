@@ -1,6 +1,6 @@
-// TCP link to an Orion gimbal (or gimbal-sim): non-blocking resolve + connect with a timeout,
+// TCP link to a gimbal (or gimbal-sim): non-blocking resolve + connect with a timeout,
 // TCP_NODELAY and SO_KEEPALIVE, reconnect forever with backoff, silence watchdog. With host
-// "discover" every connection attempt starts with the Orion SDK's UDP broadcast discovery.
+// "discover" every connection attempt starts with the protocol's UDP broadcast discovery.
 #pragma once
 
 #include <cstdint>
@@ -25,6 +25,8 @@ struct TcpLinkOptions : gimbal::daemon::TcpLink {
     explicit TcpLinkOptions(gimbal::daemon::TcpLink config = {}) : TcpLink(std::move(config)) {}
 
     double discover_timeout_s = 1.5;  // a discovery round without a reply fails
+    // What discovery asks and what answers: the gimbal's protocol's (registry entry).
+    gimbal::protocols::Discovery discovery;
     SendQueueLimits queue;
     double send_now_timeout_s = 0.25;
     // SO_SNDBUF of the connection. The kernel would otherwise grow it to megabytes while the

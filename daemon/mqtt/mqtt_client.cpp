@@ -58,7 +58,8 @@ Client::Client(asio::io_context& io, ClientOptions options, MessageHandler on_me
       backoff_(options_.backoff),
       queue_(options_.queue_max),
       failures_(log::Level::warn, "mqtt_down", "failed broker connection attempts",
-                std::chrono::seconds(60)) {
+                std::chrono::seconds(60)),
+      refused_log_(log::Level::warn, "mqtt_publish", "messages the MQTT library refused") {
     init_library_once();
 }
 
@@ -226,6 +227,7 @@ void Client::on_tick() {
         }
     }
     failures_.poll();
+    refused_log_.poll();
     if (stopped_) return;
     tick_timer_.expires_after(tick);
     tick_timer_.async_wait(lifetime_.wrap([this](const boost::system::error_code& ec) {
@@ -307,7 +309,8 @@ bool Client::hand_over(Message& m) {
     }
     // Too large for the broker, bad topic: this message can never go.
     ++refused_;
-    log::warn("mqtt_publish", "message not published: " + error_text(rc), {{"topic", m.topic}});
+    refused_log_.hit("message not published: " + error_text(rc),
+                     {{"topic", m.topic}, {"bytes", m.payload.size()}});
     return true;
 }
 

@@ -142,6 +142,9 @@ class Client {
     std::chrono::steady_clock::time_point attempt_started_;
     std::string last_error_;
     gimbal::log::RateLimitedLog failures_;
+    // Messages libmosquitto refused (too large for the broker, bad topic): counted in
+    // `dropped`, logged rolled up.
+    gimbal::log::RateLimitedLog refused_log_;
 };
 
 }  // namespace gimbald::mqtt

@@ -4,13 +4,12 @@
 
 #include <fmt/format.h>
 #include <cctype>
-#include <cerrno>
-#include <cstdio>
-#include <cstring>
 #include <regex>
 #include <variant>
 
 #include "mqtt/mqtt_url.hpp"
+#include "protocols/registry.hpp"
+#include "regular_file.hpp"
 #include "secret_file.hpp"
 #include "state/messages.hpp"
 
@@ -38,25 +37,21 @@ std::string default_station() {
 void check_readable(config::Fields& f, std::string_view key,
                     const std::optional<std::string>& path) {
     if (!path) return;
-    std::FILE* file = std::fopen(path->c_str(), "rbe");
-    if (file == nullptr) {
-        f.problem(key, fmt::format("{}: {}", *path, std::strerror(errno)));
-        return;
-    }
-    std::fclose(file);
+    // Opened without blocking and regular only: a FIFO here would hang --check-config.
+    if (const auto problem = check_regular_file(*path)) f.problem(key, problem->message);
 }
 
 }  // namespace
 
 void read_url(config::Fields& f, MqttConfig& c) {
     if (!f.string("url", c.url)) return;
-    auto url = parse_mqtt_url(c.url);
-    if (auto* parsed = std::get_if<MqttUrl>(&url)) {
-        c.tls = parsed->tls;
-        c.host = parsed->host;
-        c.port = parsed->port;
+    const auto url = parse_mqtt_url(c.url);
+    if (url) {
+        c.tls = url->tls;
+        c.host = url->host;
+        c.port = url->port;
     } else {
-        f.problem("url", std::get<std::string>(url));
+        f.problem("url", url.error().message);
     }
 }
 
@@ -111,7 +106,7 @@ void check_tls_files(config::Fields& f, const MqttConfig& c) {
 void read_state_keys(config::Fields& f, MqttConfig& c) {
     const auto* keys = f.find("state_keys");
     if (keys == nullptr || keys->is_null()) return;
-    auto names = gimbal::state::read_state_keys(*keys);
+    auto names = gimbal::state::read_state_keys(*keys, gimbal::protocols::is_state_key);
     if (!names)
         f.problem("state_keys", names.error().message);
     else

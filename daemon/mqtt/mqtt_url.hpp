@@ -4,7 +4,8 @@
 #include <cstdint>
 #include <string>
 #include <string_view>
-#include <variant>
+
+#include "result/result.hpp"
 
 namespace gimbal::daemon {
 
@@ -14,9 +15,9 @@ struct MqttUrl {
     std::uint16_t port = 1883;
 };
 
-// The URL, or a message saying what is wrong with it. The port defaults to 1883 (mqtt) and
+// The URL, or bad_request saying what is wrong with it. The port defaults to 1883 (mqtt) and
 // 8883 (mqtts); IPv6 hosts are written in brackets ("mqtt://[::1]:1883"). No user
 // information, path or query: credentials go in `username`/`password_file`.
-std::variant<MqttUrl, std::string> parse_mqtt_url(std::string_view text);
+Result<MqttUrl> parse_mqtt_url(std::string_view text);
 
 }  // namespace gimbal::daemon

@@ -7,6 +7,7 @@
 #include "klv/local_set.hpp"
 #include "klv_state/sensor_frame.hpp"
 #include "state/precision.hpp"
+#include "state/writer.hpp"
 #include "video/url.hpp"
 
 namespace gimbald::video {
@@ -20,8 +21,8 @@ namespace {
 
 gv::VideoUrl parse(const std::string& text) {
     auto parsed = gv::parse_video_url(text);
-    if (!parsed.url) throw std::invalid_argument(text + ": " + parsed.error);
-    return *parsed.url;
+    if (!parsed) throw std::invalid_argument(text + ": " + parsed.error().message);
+    return *parsed;
 }
 
 std::uint64_t unix_us_now() {
@@ -44,14 +45,18 @@ GimbalVideo::GimbalVideo(boost::asio::io_context& io, GimbalVideoOptions options
       options_(std::move(options)),
       log_fields_({{"gimbal", options_.gimbal}}),
       generate_timer_(io),
+      watch_timer_(io),
       generate_period_(std::chrono::duration_cast<SteadyClock::duration>(
           std::chrono::duration<double>(1.0 / options_.config.klv_rate_hz))),
       track_(options_.klv_stream_fresh_s),
       bad_checksum_log_(gimbal::log::Level::warn, "klv_bad_checksum",
-                        "KLV sets with a bad checksum"),
+                        "video datagrams with KLV sets with a bad checksum"),
+      refused_log_(gimbal::log::Level::warn, "klv_refused",
+                   "video datagrams with KLV sets refused"),
+      dropped_log_(gimbal::log::Level::warn, "video_dropped", "times video was dropped"),
       generate_error_log_(gimbal::log::Level::warn, "klv_generate_error",
                           "KLV sets not generated") {
-    if (!options_.capabilities) throw std::invalid_argument("GimbalVideo needs capabilities");
+    if (!options_.view) throw std::invalid_argument("GimbalVideo needs the gimbal's view");
     const bool klv_off = options_.config.klv == KlvMode::off;
     for (const auto& text : options_.config.outputs) {
         VideoOutputOptions o;
@@ -71,11 +76,17 @@ GimbalVideo::GimbalVideo(boost::asio::io_context& io, GimbalVideoOptions options
     }
     VideoInputOptions in = options_.input;
     for (const auto& [k, v] : log_fields_.items()) in.log_fields[k] = v;
+    in.klv = options_.config.klv == KlvMode::automatic || options_.config.klv == KlvMode::parse;
+    if (options_.config.source) {
+        std::string error;
+        in.source = parse_source(*options_.config.source, error);
+        if (!in.source) throw std::invalid_argument("video.source: " + error);
+    }
     VideoInputHandlers handlers;
     handlers.access_unit = [this](const gv::AccessUnit& au, Clock::time_point) {
         on_access_unit(au);
     };
-    handlers.klv = [this](const gv::KlvUnit& unit, Clock::time_point) { on_klv(unit); };
+    handlers.klv = [this](gimbal::klv::CheckedSets& sets, Clock::time_point) { on_klv(sets); };
     handlers.connection = [this](bool up) { on_connection(up); };
     if (options_.record && input.scheme == gv::UrlScheme::udp)
         handlers.ts_bytes = [this](std::span<const std::uint8_t> ts, Clock::time_point) {
@@ -96,6 +107,7 @@ void GimbalVideo::start() {
     if (running_) return;
     running_ = true;
     input_->start();
+    arm_watch();
     if (options_.config.klv != KlvMode::off) {
         next_generate_ = SteadyClock::now() + generate_period_;
         arm_generate();
@@ -107,6 +119,7 @@ void GimbalVideo::stop() {
     running_ = false;
     lifetime_.reset();
     generate_timer_.cancel();
+    watch_timer_.cancel();
     input_->stop();
 }
 
@@ -131,25 +144,35 @@ void GimbalVideo::remove_viewer(std::uint64_t id) {
     viewers_.erase(id);
 }
 
-void GimbalVideo::on_klv(const gv::KlvUnit& unit) {
+void GimbalVideo::on_klv(gimbal::klv::CheckedSets& checked) {
     const KlvMode mode = options_.config.klv;
     if (mode == KlvMode::off || mode == KlvMode::generate) return;
     const double now = now_s();
-    const auto sets = track_.stream_unit(unit.data, now);
-    for (; reported_bad_ < track_.bad_checksums(); ++reported_bad_)
-        bad_checksum_log_.hit("KLV set with a bad checksum in the video stream: ignored",
-                              {{"gimbal", options_.gimbal},
-                               {"input", options_.config.input},
-                               {"total", track_.bad_checksums()}});
-    if (sets.empty()) return;
-    for (const auto& set : sets) send_klv(set);
-    if (now - vs_telemetry_at_s_ >= compare_every_s && options_.state) {
+    const nlohmann::json fields = {{"gimbal", options_.gimbal},
+                                   {"input", gv::redact_userinfo(options_.config.input)}};
+    if (checked.bad_checksums > 0) {
+        nlohmann::json f = fields;
+        f["sets"] = checked.bad_checksums;
+        f["total"] = track_.bad_checksums() + checked.bad_checksums;
+        bad_checksum_log_.hit("KLV set with a bad checksum in the video stream: ignored", f);
+    }
+    if (checked.refused > 0) {
+        nlohmann::json f = fields;
+        f["sets"] = checked.refused;
+        f["total"] = track_.refused() + checked.refused;
+        refused_log_.hit(
+            "KLV set in the video stream refused before decoding (over 64 KiB or 1024 items, "
+            "malformed, or too many in one datagram): ignored",
+            f);
+    }
+    const bool any = !checked.sets.empty();
+    for (const auto& set : checked.sets) send_klv(set.bytes);
+    track_.stream_sets(std::move(checked), now);
+    if (!any) return;
+    if (now - vs_telemetry_at_s_ >= compare_every_s) {
         vs_telemetry_at_s_ = now;
-        const auto own = gimbal::klv_state::sensor_frame(options_.state(), *options_.capabilities,
-                                                         unix_us_now());
+        const auto own = gimbal::klv_state::sensor_frame(options_.view(), unix_us_now());
         vs_telemetry_ = gimbal::klv_state::compare(*track_.latest_stream_json(), own);
-        for (auto& [key, value] : vs_telemetry_.items())
-            if (value.is_number()) value = gimbal::state::metres(value.get<double>());
     }
 }
 
@@ -184,8 +207,6 @@ void GimbalVideo::arm_generate() {
     generate_timer_.async_wait(lifetime_.wrap([this](const boost::system::error_code& ec) {
         if (ec || !running_) return;
         generate();
-        bad_checksum_log_.poll();
-        generate_error_log_.poll();
         // A fixed rate without drift; after a stall, skip rather than burst.
         next_generate_ += generate_period_;
         const auto now = SteadyClock::now();
@@ -194,46 +215,100 @@ void GimbalVideo::arm_generate() {
     }));
 }
 
+void GimbalVideo::arm_watch() {
+    watch_timer_.expires_after(std::chrono::seconds(1));
+    watch_timer_.async_wait(lifetime_.wrap([this](const boost::system::error_code& ec) {
+        if (ec || !running_) return;
+        watch_counters();
+        arm_watch();
+    }));
+}
+
+// What the input refused or dropped on its own (the demuxer's bounds, its queues) is counted
+// there; here it becomes log lines, rolled up like the rest.
+void GimbalVideo::watch_counters() {
+    const VideoInputStatus s = input_->status();
+    nlohmann::json fields = {{"gimbal", options_.gimbal},
+                             {"input", gv::redact_userinfo(options_.config.input)}};
+    const std::uint64_t refused = s.demux.oversized_klv + s.demux.metadata_dropped;
+    if (refused > reported_stream_refused_) {
+        nlohmann::json f = fields;
+        f["units"] = refused - reported_stream_refused_;
+        f["total"] = refused;
+        refused_log_.hit(
+            "KLV in the video stream refused before it was read (a KLV PES over 128 KiB, or a "
+            "synchronous metadata AU over 64 KiB or out of order): ignored",
+            f);
+    }
+    reported_stream_refused_ = refused;
+    const std::uint64_t dropped = s.dropped_units + s.dropped_datagrams;
+    if (dropped > reported_dropped_) {
+        nlohmann::json f = fields;
+        f["dropped_units"] = s.dropped_units;
+        f["dropped_datagrams"] = s.dropped_datagrams;
+        dropped_log_.hit(
+            "video dropped: an access unit over 8 MiB, or the input's queues were full", f);
+    }
+    reported_dropped_ = dropped;
+    bad_checksum_log_.poll();
+    refused_log_.poll();
+    dropped_log_.poll();
+    generate_error_log_.poll();
+}
+
 void GimbalVideo::generate() {
-    if (!generating() || !options_.state) return;
-    const auto frame = gimbal::klv_state::sensor_frame(options_.state(), *options_.capabilities,
-                                                       unix_us_now(), options_.config.mission_id);
+    if (!generating()) return;
+    const auto frame =
+        gimbal::klv_state::sensor_frame(options_.view(), unix_us_now(), options_.config.mission_id);
     if (!gimbal::klv_state::has_position(frame)) return;  // nothing known about the camera yet
     klv::Encoded encoded = klv::encode(klv::sensor_set(frame));
     if (!encoded.ok()) {
         ++generate_errors_;
-        generate_error_log_.hit("a generated KLV set did not encode: " + encoded.error,
+        generate_error_log_.hit("a generated KLV set did not encode: " + encoded.error().message,
                                 {{"gimbal", options_.gimbal}});
         return;
     }
     ++generated_;
-    send_klv(encoded.bytes);
-    if (options_.record) options_.record(encoded.bytes, true);
-    track_.generated(std::move(encoded.bytes), now_s());
+    send_klv(*encoded);
+    if (options_.record) options_.record(*encoded, true);
+    track_.generated(std::move(encoded).value(), now_s());
+}
+
+gimbal::state::VideoState GimbalVideo::video_state() const {
+    const VideoInputStatus s = input_->status();
+    const auto& info = s.stream;
+    const auto positive = [](int v) { return v > 0 ? std::optional(v) : std::nullopt; };
+    const auto text = [](const std::string& t) {
+        return t.empty() ? std::nullopt : std::optional(t);
+    };
+    gimbal::state::VideoState v;
+    v.input = gv::redact_userinfo(options_.config.input);
+    v.connected = s.connected;
+    if (info.codec) v.codec = std::string(gv::to_string(*info.codec));
+    v.width = positive(info.width);
+    v.height = positive(info.height);
+    if (info.fps) v.fps = gimbal::state::round_decimals(*info.fps, 3);
+    v.bitrate_bps = static_cast<std::uint64_t>(std::llround(info.bitrate_bps));
+    if (const auto source = track_.source()) v.klv_source = std::string(to_string(*source));
+    if (track_.has_latest()) {
+        v.klv = track_.latest_json();
+        v.klv["age_s"] = gimbal::state::seconds(track_.latest_age_s(now_s()));
+    }
+    v.klv_sets = track_.sets();
+    v.klv_bad_checksums = track_.bad_checksums();
+    v.klv_refused = track_.refused() + s.demux.oversized_klv + s.demux.metadata_dropped;
+    v.klv_vs_telemetry = vs_telemetry_;
+    v.source = text(s.source);
+    v.foreign_datagrams = s.foreign_datagrams;
+    v.dropped_datagrams = s.dropped_datagrams;
+    v.dropped_units = s.dropped_units;
+    v.reconnects = s.reconnects;
+    v.last_error = text(s.last_error);
+    return v;
 }
 
 json GimbalVideo::snapshot() const {
-    const VideoInputStatus s = input_->status();
-    const auto& info = s.stream;
-    const auto positive = [](int v) { return v > 0 ? json(v) : json(nullptr); };
-    json klv = nullptr;
-    if (track_.has_latest()) {
-        klv = track_.latest_json();
-        klv["age_s"] = gimbal::state::seconds(track_.latest_age_s(now_s()));
-    }
-    const auto source = track_.source();
-    return {{"input", options_.config.input},
-            {"connected", s.connected},
-            {"codec", info.codec ? json(std::string(gv::to_string(*info.codec))) : json(nullptr)},
-            {"width", positive(info.width)},
-            {"height", positive(info.height)},
-            {"fps", info.fps ? json(gimbal::state::round_decimals(*info.fps, 3)) : json(nullptr)},
-            {"bitrate_bps", static_cast<std::uint64_t>(std::llround(info.bitrate_bps))},
-            {"klv_source", source ? json(std::string(to_string(*source))) : json(nullptr)},
-            {"klv", std::move(klv)},
-            {"klv_sets", track_.sets()},
-            {"klv_bad_checksums", track_.bad_checksums()},
-            {"klv_vs_telemetry", vs_telemetry_}};
+    return gimbal::state::write(video_state());
 }
 
 gimbal::command::Result<json> GimbalVideo::klv_reply() const {

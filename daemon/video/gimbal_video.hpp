@@ -1,11 +1,12 @@
 // One gimbal's video (contract section 17), on the daemon's io_context: the input (UDP TS or
 // RTSP, video_input.hpp) feeds the outputs unchanged (video_output.hpp) together with one
-// KLV stream - the stream's own UAS Datalink sets, parsed and checked (KlvTrack), or sets
-// generated from the gimbal's STATE at klv_rate_hz through its capabilities
-// (lib/klv_state) - and, when recording, the recorder (the input's TS packets inbound, the
-// generated sets outbound). STATE `video` and the `klv` command read it. Nothing is decoded
-// or re-encoded; no thread of its own (an RTSP input has its reader thread, which only posts).
-// The console's video WebSocket taps the access units (VideoTap).
+// KLV stream - the stream's own UAS Datalink sets, checked and decoded by the input off the
+// io thread and kept here (KlvTrack), or sets generated from the gimbal's STATE at
+// klv_rate_hz through its capabilities (lib/klv_state) - and, when recording, the recorder
+// (the input's TS packets inbound, the generated sets outbound). STATE `video` and the `klv`
+// command read it. Nothing is decoded or re-encoded. Threads: none here; a UDP input has its
+// worker (ts_worker.hpp) and an RTSP input its reader thread, and both hand small typed
+// results to the io thread. The console's video WebSocket taps the access units (VideoTap).
 #pragma once
 
 #include <chrono>
@@ -25,7 +26,8 @@
 #include "klv/sensor_set.hpp"
 #include "link/lifetime.hpp"
 #include "logging.hpp"
-#include "session/capabilities.hpp"
+#include "session/gimbal_view.hpp"
+#include "state/video_state.hpp"
 #include "video/klv_clock.hpp"
 #include "video/klv_track.hpp"
 #include "video/ts_muxer.hpp"
@@ -39,10 +41,9 @@ namespace gimbald::video {
 struct GimbalVideoOptions {
     std::string gimbal;
     VideoConfig config;
-    const gimbal::session::Capabilities* capabilities = nullptr;
-    // The gimbal's STATE (GimbalSession::snapshot), read to generate KLV and to compare the
-    // stream's KLV with gimbald's own values.
-    std::function<nlohmann::json()> state;
+    // The gimbal's typed state (GimbalSession::view): its capabilities and telemetry, read to
+    // generate KLV and to compare the stream's KLV with gimbald's own values. Required.
+    std::function<gimbal::session::GimbalView()> view;
     // The recorder's tap: the input's MPEG-TS (each UDP datagram; an RTSP input's access
     // units muxed into TS) with generated = false, and each generated set with generated =
     // true. Empty: not recording.
@@ -60,7 +61,9 @@ class GimbalVideo final : public VideoTap {
     void start();
     void stop();
 
-    // STATE `video`.
+    // STATE `video`, typed (state/video_state.hpp).
+    gimbal::state::VideoState video_state() const;
+    // STATE `video` as JSON.
     nlohmann::json snapshot() const;
     // The `klv` command: {"klv_hex", "klv"}, or unavailable when no set is known yet.
     gimbal::command::Result<nlohmann::json> klv_reply() const;
@@ -74,11 +77,13 @@ class GimbalVideo final : public VideoTap {
   private:
     double now_s() const;
     void on_access_unit(const gimbal::video::AccessUnit& au);
-    void on_klv(const gimbal::video::KlvUnit& unit);
+    void on_klv(gimbal::klv::CheckedSets& checked);
     void on_connection(bool connected);
     void send_klv(std::span<const std::uint8_t> set);
     void arm_generate();
     void generate();
+    void arm_watch();
+    void watch_counters();
     bool generating() const;
 
     boost::asio::io_context& io_;
@@ -88,6 +93,7 @@ class GimbalVideo final : public VideoTap {
     std::vector<std::unique_ptr<VideoOutput>> outputs_;
     std::unique_ptr<gimbal::video::TsMuxer> record_mux_;  // RTSP input while recording
     boost::asio::steady_timer generate_timer_;
+    boost::asio::steady_timer watch_timer_;  // 1 Hz: counters into log lines, roll-ups
     std::chrono::steady_clock::duration generate_period_;
     std::chrono::steady_clock::time_point next_generate_{};
     Lifetime lifetime_;
@@ -98,10 +104,13 @@ class GimbalVideo final : public VideoTap {
     bool running_ = false;
     std::uint64_t generated_ = 0;
     std::uint64_t generate_errors_ = 0;
-    nlohmann::json vs_telemetry_;  // null until a stream set was compared
+    std::optional<gimbal::state::KlvOffsets> vs_telemetry_;  // until a stream set was compared
     double vs_telemetry_at_s_ = -1e9;
-    std::uint64_t reported_bad_ = 0;
     gimbal::log::RateLimitedLog bad_checksum_log_;
+    gimbal::log::RateLimitedLog refused_log_;
+    gimbal::log::RateLimitedLog dropped_log_;
+    std::uint64_t reported_stream_refused_ = 0;  // input counters already logged
+    std::uint64_t reported_dropped_ = 0;
     gimbal::log::RateLimitedLog generate_error_log_;
     std::map<std::uint64_t, Viewer> viewers_;
     std::uint64_t next_viewer_ = 1;

@@ -10,25 +10,15 @@ std::string_view to_string(KlvSource source) {
     return source == KlvSource::stream ? "stream" : "generated";
 }
 
-std::vector<klv::Bytes> KlvTrack::stream_unit(std::span<const std::uint8_t> unit, double now_s) {
-    std::vector<klv::Bytes> valid;
-    for (const klv::SetSpan s : klv::find_sets(unit).sets) {
-        const auto bytes = unit.subspan(s.offset, s.size);
-        klv::DecodeResult r = klv::decode(bytes);
-        if (r.status == klv::DecodeStatus::bad_checksum) {
-            ++bad_checksums_;
-            continue;
-        }
-        if (!r.ok()) {
-            ++malformed_;
-            continue;
-        }
-        ++sets_;
-        last_stream_s_ = now_s;
-        latest_ = Latest{{bytes.begin(), bytes.end()}, KlvSource::stream, now_s, std::move(r.json)};
-        valid.push_back(latest_->bytes);
-    }
-    return valid;
+void KlvTrack::stream_sets(klv::CheckedSets checked, double now_s) {
+    bad_checksums_ += checked.bad_checksums;
+    refused_ += checked.refused;
+    if (checked.sets.empty()) return;
+    sets_ += checked.sets.size();
+    last_stream_s_ = now_s;
+    // Cut to max_json_bytes already, where it was checked (TsWorker).
+    klv::CheckedSet& last = checked.sets.back();
+    latest_ = Latest{std::move(last.bytes), KlvSource::stream, now_s, std::move(last.json)};
 }
 
 void KlvTrack::generated(klv::Bytes set, double now_s) {
@@ -52,7 +42,10 @@ const klv::Bytes* KlvTrack::latest_bytes() const {
 const nlohmann::json& KlvTrack::latest_json() const {
     static const nlohmann::json none;
     if (!latest_) return none;
-    if (!latest_->decoded) latest_->decoded = klv::decode(latest_->bytes).json;
+    if (!latest_->decoded) {
+        latest_->decoded = klv::decode(latest_->bytes).json;
+        klv::fit_json(*latest_->decoded, max_json_bytes);
+    }
     return *latest_->decoded;
 }
 

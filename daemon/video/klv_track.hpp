@@ -1,18 +1,18 @@
 // One gimbal's KLV as STATE `video` and the `klv` command show it (contract section 17): the
 // latest set - found in the stream or generated - with its bytes and its decoded JSON, and
-// the counters. The stream's KLV units are searched for UAS Datalink sets (lib/klv); a set
-// whose checksum is wrong is counted and ignored, as is one that does not parse. Pure: times
-// (seconds, monotonic) are passed in.
+// the counters. The stream's sets arrive already checked and decoded off the io thread
+// (klv::check_sets on the input's worker): this only keeps the latest and counts. The JSON
+// shown is at most max_json_bytes (8 KiB, contract section 14 v4; klv::fit_json says what is
+// left out). Pure: times (seconds, monotonic) are passed in.
 #pragma once
 
 #include <cstdint>
 #include <nlohmann/json.hpp>
 #include <optional>
-#include <span>
 #include <string_view>
-#include <vector>
 
 #include "klv/ber.hpp"
+#include "klv/checked_sets.hpp"
 
 namespace gimbald::video {
 
@@ -21,13 +21,16 @@ std::string_view to_string(KlvSource source);
 
 class KlvTrack {
   public:
+    // STATE `video.klv` is at most 8 KiB of JSON with its age_s; the decoded set leaves room
+    // for that.
+    static constexpr std::size_t max_state_json_bytes = 8 * 1024;
+    static constexpr std::size_t max_json_bytes = max_state_json_bytes - 64;
+
     // A stream counts as carrying KLV while a valid set came within this long.
     explicit KlvTrack(double stream_fresh_s = 2.0) : stream_fresh_s_(stream_fresh_s) {}
 
-    // One KLV unit (PES payload) of the stream: the valid sets in it, each whole (key through
-    // checksum), in order. Sets with a bad checksum or a malformed body are counted, not
-    // returned.
-    std::vector<gimbal::klv::Bytes> stream_unit(std::span<const std::uint8_t> unit, double now_s);
+    // The checked sets of the stream's KLV units (in order) and what was refused with them.
+    void stream_sets(gimbal::klv::CheckedSets sets, double now_s);
     // A set gimbald generated (key through checksum).
     void generated(gimbal::klv::Bytes set, double now_s);
 
@@ -37,7 +40,8 @@ class KlvTrack {
     bool has_latest() const { return latest_.has_value(); }
     std::optional<KlvSource> source() const;
     const gimbal::klv::Bytes* latest_bytes() const;
-    // The latest set decoded (klv::decode JSON), decoded once per set; null when none.
+    // The latest set decoded (klv::decode JSON, cut by fit_json to max_json_bytes); null
+    // when none.
     const nlohmann::json& latest_json() const;
     double latest_age_s(double now_s) const;
     // Decoded JSON of the latest stream set (for klv_vs_telemetry); null when none.
@@ -45,14 +49,16 @@ class KlvTrack {
 
     std::uint64_t sets() const { return sets_; }
     std::uint64_t bad_checksums() const { return bad_checksums_; }
-    std::uint64_t malformed() const { return malformed_; }
+    // Stream sets refused before they were decoded: over 64 KiB or 1024 items, malformed, or
+    // past the number taken from one datagram.
+    std::uint64_t refused() const { return refused_; }
 
   private:
     struct Latest {
         gimbal::klv::Bytes bytes;
         KlvSource source = KlvSource::stream;
         double at_s = 0;
-        mutable std::optional<nlohmann::json> decoded;  // filled on first use
+        mutable std::optional<nlohmann::json> decoded;  // generated sets: filled on first use
     };
 
     double stream_fresh_s_;
@@ -60,7 +66,7 @@ class KlvTrack {
     std::optional<double> last_stream_s_;
     std::uint64_t sets_ = 0;
     std::uint64_t bad_checksums_ = 0;
-    std::uint64_t malformed_ = 0;
+    std::uint64_t refused_ = 0;
 };
 
 }  // namespace gimbald::video

@@ -50,8 +50,8 @@ SimVideoSender::SimVideoSender(SimVideoSenderOptions options)
     if (ec) throw std::runtime_error("video socket: " + ec.message());
     auto opened = gimbal::sim_video::SimVideoStream::open(
         options_.stream, [this](std::span<const std::uint8_t> chunk) { send(chunk); });
-    if (!opened.stream) throw std::runtime_error("video encoder: " + opened.error);
-    stream_ = std::move(opened.stream);
+    if (!opened) throw std::runtime_error("video encoder: " + opened.error().message);
+    stream_ = std::move(opened).value();
 }
 
 SimVideoSender::~SimVideoSender() {
@@ -151,11 +151,11 @@ void SimVideoSender::run() {
 
 std::optional<SimVideoTarget> sim_video_target(const std::string& input_url, std::string& why) {
     const auto parsed = gimbal::video::parse_video_url(input_url);
-    if (!parsed.url) {
-        why = parsed.error;
+    if (!parsed) {
+        why = parsed.error().message;
         return std::nullopt;
     }
-    const auto& url = *parsed.url;
+    const auto& url = *parsed;
     if (url.scheme != gimbal::video::UrlScheme::udp) {
         why = "the simulated camera sends MPEG-TS over UDP; it cannot feed " + input_url;
         return std::nullopt;

@@ -4,8 +4,6 @@
 
 #include <boost/asio/ip/multicast.hpp>
 
-#include "logging.hpp"
-
 namespace gimbald::video {
 
 namespace asio = boost::asio;
@@ -39,17 +37,11 @@ UdpTsInput::UdpTsInput(asio::io_context& io, gv::VideoUrl url, VideoInputOptions
       retry_timer_(io),
       tick_timer_(io),
       backoff_(options_.backoff),
-      demux_({[this](const gv::AccessUnit& au) {
-                  if (!running_) return;  // a handler stopped us mid-datagram
-                  info_.on_access_unit(au);
-                  if (handlers_.access_unit) handlers_.access_unit(au, arrival_);
-              },
-              [this](const gv::KlvUnit& k) {
-                  if (!running_) return;
-                  ++klv_units_;
-                  if (handlers_.klv) handlers_.klv(k, arrival_);
-              },
-              {}}) {
+      io_(io),
+      source_(options_.source, std::chrono::duration_cast<Clock::duration>(
+                                   std::chrono::duration<double>(options_.source_silence_s))),
+      foreign_log_(gimbal::log::Level::warn, "video_foreign",
+                   "datagrams from another sender than the video source") {
     if (url_.timeout_s) options_.timeout_s = *url_.timeout_s;
     const auto host = url_.host.empty() ? asio::ip::address(asio::ip::address_v4::any())
                                         : parse_address(url_.host, "input address");
@@ -67,6 +59,15 @@ UdpTsInput::~UdpTsInput() {
 void UdpTsInput::start() {
     if (running_) return;
     running_ = true;
+    TsWorkerOptions w;
+    w.name = "video-" + options_.log_fields.value("gimbal", std::string("input"));
+    w.klv = options_.klv;
+    w.max_datagrams = options_.max_queued_datagrams;
+    w.max_datagram_bytes = options_.max_queued_datagram_bytes;
+    w.max_batches = options_.max_queued_units;
+    w.max_unit_bytes = options_.max_queued_bytes;
+    worker_ =
+        std::make_unique<TsWorker>(io_, std::move(w), [this](TsBatch& batch) { on_batch(batch); });
     open();
     tick();
 }
@@ -77,6 +78,11 @@ void UdpTsInput::stop() {
     retry_timer_.cancel();
     tick_timer_.cancel();
     close();
+    if (worker_) {
+        worker_->stop();  // joined: nothing it delivered runs after this
+        worker_counters_ = worker_->counters();
+        worker_.reset();
+    }
     connected_ = false;  // silently: no handler runs from stop()
 }
 
@@ -111,11 +117,12 @@ void UdpTsInput::open() {
 
 void UdpTsInput::retry_later(const std::string& error) {
     close();
-    if (error != last_error_) {
+    if (error != reported_error_) {
         gimbal::log::warn("video_input_error", "video input: " + error + " (retrying)",
                           options_.log_fields);
     }
     last_error_ = error;
+    reported_error_ = error;
     retry_timer_.expires_after(std::chrono::duration_cast<Clock::duration>(
         std::chrono::duration<double>(backoff_.next())));
     retry_timer_.async_wait(lifetime_.wrap([this](const boost::system::error_code& ec) {
@@ -127,8 +134,8 @@ void UdpTsInput::retry_later(const std::string& error) {
 }
 
 void UdpTsInput::receive() {
-    socket_.async_receive(
-        asio::buffer(buffer_),
+    socket_.async_receive_from(
+        asio::buffer(buffer_), sender_,
         lifetime_.wrap([this](const boost::system::error_code& ec, std::size_t n) {
             if (ec == asio::error::operation_aborted || !running_) return;
             if (ec) return retry_later(ec.message());
@@ -138,23 +145,50 @@ void UdpTsInput::receive() {
 }
 
 void UdpTsInput::on_datagram(std::size_t n) {
-    arrival_ = Clock::now();
-    last_data_ = arrival_;
-    info_.on_bytes(n, seconds(arrival_ - epoch_));
+    const auto arrival = Clock::now();
+    const auto verdict = source_.check(sender_, arrival);
+    if (verdict == SourcePin::Verdict::foreign) {
+        nlohmann::json fields = options_.log_fields;
+        fields["from"] = to_string(sender_);
+        fields["source"] = source_.current() ? nlohmann::json(to_string(*source_.current()))
+                                             : nlohmann::json(nullptr);
+        fields["total"] = source_.foreign();
+        foreign_log_.hit("video datagram from another sender than the source: ignored", fields);
+        return;
+    }
+    if (verdict == SourcePin::Verdict::pinned) {
+        nlohmann::json fields = options_.log_fields;
+        fields["source"] = to_string(sender_);
+        gimbal::log::info("video_source", "video input takes its stream from " + to_string(sender_),
+                          fields);
+    }
+    last_data_ = arrival;
+    info_.on_bytes(n, seconds(arrival - epoch_));
     const std::span<const std::uint8_t> bytes(buffer_.data(), n);
     if (!connected_) {
         backoff_.reset();
-        last_error_.clear();
+        reported_error_.clear();
         set_connected(true);
+        if (!running_) return;  // a handler stopped us
     }
-    if (handlers_.ts_bytes) handlers_.ts_bytes(bytes, arrival_);
-    demux_.push(bytes);
+    if (handlers_.ts_bytes) handlers_.ts_bytes(bytes, arrival);
+    if (running_ && worker_) worker_->push(bytes, arrival);
+}
+
+void UdpTsInput::on_batch(TsBatch& batch) {
+    for (const auto& au : batch.units) {
+        if (!running_) return;  // a handler stopped us mid-batch
+        info_.on_access_unit(au.view());
+        if (handlers_.access_unit) handlers_.access_unit(au.view(), batch.arrival);
+    }
+    if (running_ && handlers_.klv) handlers_.klv(batch.klv, batch.arrival);
 }
 
 void UdpTsInput::tick() {
     tick_timer_.expires_after(tick_period);
     tick_timer_.async_wait(lifetime_.wrap([this](const boost::system::error_code& ec) {
         if (ec || !running_) return;
+        foreign_log_.poll();
         const auto now = Clock::now();
         const auto timeout = std::chrono::duration<double>(options_.timeout_s);
         if (connected_ && now - last_data_ > timeout) set_connected(false);
@@ -184,9 +218,14 @@ VideoInputStatus UdpTsInput::status() const {
     s.input = url_.text;
     s.connected = connected_;
     s.stream = info_.info(seconds(Clock::now() - epoch_));
-    if (demux_.program()) s.klv = demux_.program()->klv;
-    s.demux = demux_.stats();
-    s.klv_units = klv_units_;
+    const TsWorkerCounters w = worker_ ? worker_->counters() : worker_counters_;
+    s.klv = w.klv;
+    s.demux = w.demux;
+    s.klv_units = w.demux.klv_units;
+    s.dropped_units = w.dropped_units + w.dropped_klv_sets + w.demux.oversized_units;
+    s.dropped_datagrams = w.dropped_datagrams;
+    s.foreign_datagrams = source_.foreign();
+    if (const auto current = source_.current()) s.source = to_string(*current);
     s.reconnects = rejoins_;
     s.last_error = last_error_;
     return s;

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <boost/asio/ip/address.hpp>
 
+#include "video/source_pin.hpp"
 #include "video/url.hpp"
 
 namespace gimbald::video {
@@ -30,11 +31,11 @@ std::optional<gv::VideoUrl> read_url(const json& value, const std::string& path,
         return std::nullopt;
     }
     const auto parsed = gv::parse_video_url(value.get<std::string>());
-    if (!parsed.url) {
-        problem(path, fmt::format("\"{}\": {}", value.get<std::string>(), parsed.error));
+    if (!parsed) {
+        problem(path, fmt::format("\"{}\": {}", value.get<std::string>(), parsed.error().message));
         return std::nullopt;
     }
-    const gv::VideoUrl& url = *parsed.url;
+    const gv::VideoUrl& url = *parsed;
     if (input && url.scheme == gv::UrlScheme::klv_udp) {
         problem(path, "an input is udp:// (MPEG-TS) or rtsp://, not klv-udp://");
         return std::nullopt;
@@ -164,6 +165,19 @@ void read_video_fields(gimbal::config::Fields& f, VideoConfig& config) {
                     fmt::format("must be 1 to {} bytes (ST 0601 tag 3)", max_mission_id_bytes));
         } else {
             config.mission_id = it->get<std::string>();
+        }
+    }
+
+    if (const json* it = lookup("source"); it != nullptr && !it->is_null()) {
+        std::string error;
+        if (!it->is_string()) {
+            problem(at("source"), "must be a string \"ADDR[:PORT]\" or null");
+        } else if (input && input->scheme != gv::UrlScheme::udp) {
+            problem(at("source"), "only for a udp:// input (an RTSP input names its camera)");
+        } else if (!parse_source(it->get_ref<const std::string&>(), error)) {
+            problem(at("source"), fmt::format("\"{}\": {}", it->get<std::string>(), error));
+        } else {
+            config.source = it->get<std::string>();
         }
     }
 }

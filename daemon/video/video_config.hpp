@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "config/fields.hpp"
+#include "video/url.hpp"
 
 namespace gimbald::video {
 
@@ -30,6 +31,9 @@ struct VideoConfig {
     double klv_rate_hz = 10;                // generated sets per second
     std::vector<std::string> outputs;       // udp://... (MPEG-TS) or klv-udp://...
     std::optional<std::string> mission_id;  // KLV tag 3 of generated sets
+    // udp:// inputs: the sender the stream must come from, "host[:port]" (source_pin.hpp);
+    // none: the first sender, pinned until it is silent for 5 s.
+    std::optional<std::string> source;
     bool operator==(const VideoConfig&) const = default;
 };
 
@@ -54,11 +58,13 @@ void fields(V& v, VideoConfig& c) {
     if constexpr (V::reading) {
         read_video_fields(v, c);
     } else {
-        v.string("input", c.input);
+        // Written for logs and the protocols' option objects: an RTSP password is not shown.
+        v.string("input", gimbal::video::redact_userinfo(c.input));
         v.choice("klv", c.klv, klv_mode_names);
         v.number("klv_rate_hz", c.klv_rate_hz, {min_klv_rate_hz, max_klv_rate_hz});
         v.set_json("outputs", c.outputs);
         v.optional_string("mission_id", c.mission_id);
+        v.optional_string("source", c.source);
     }
 }
 

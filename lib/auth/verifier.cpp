@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "command/request.hpp"
 #include "command/request_limits.hpp"
 
 namespace gimbal::auth {
@@ -18,40 +19,41 @@ const Key* Verifier::find(const std::string& id) const {
     return nullptr;
 }
 
-std::variant<Verified, Rejected> Verifier::verify(const SignedEnvelope& envelope,
-                                                  std::int64_t now_unix_ms) {
-    auto key = authenticate(envelope);
-    if (auto* rejected = std::get_if<Rejected>(&key)) return std::move(*rejected);
-    return accept(*std::get<const Key*>(key), envelope, now_unix_ms);
+Result<nlohmann::json> read_signed_payload(std::string_view payload) {
+    // A key holder's request meets the same limits as anyone's, before it is parsed.
+    if (auto refused = command::check_request_limits(payload))
+        return Error{refused->code, "the signed payload: " + refused->message};
+    auto parsed = command::parse_object(payload);
+    if (!parsed) return Error{code::bad_json, "the signed payload is not a JSON object"};
+    return std::move(*parsed);
 }
 
-std::variant<const Key*, Rejected> Verifier::authenticate(const SignedEnvelope& envelope) const {
+Result<Verified> Verifier::verify(const SignedEnvelope& envelope, std::int64_t now_unix_ms) {
+    auto key = authenticate(envelope);
+    if (!key) return key.error();
+    auto payload = read_signed_payload(envelope.payload);
+    if (!payload) return payload.error();
+    return accept(**key, std::move(payload).value(), now_unix_ms);
+}
+
+Result<const Key*> Verifier::authenticate(const SignedEnvelope& envelope) const {
     const Key* key = find(envelope.key);
-    if (key == nullptr)
-        return Rejected{Rejected::Kind::forbidden, "unknown key '" + envelope.key + "'"};
+    if (key == nullptr) return Error{code::forbidden, "unknown key '" + envelope.key + "'"};
     // Nothing of the payload is looked at before its MAC is known to be right.
     if (!mac_matches(envelope, key->secret))
-        return Rejected{Rejected::Kind::forbidden,
-                        "bad MAC: the payload was not signed with key '" + key->id + "'"};
+        return Error{code::forbidden,
+                     "bad MAC: the payload was not signed with key '" + key->id + "'"};
     return key;
 }
 
-std::variant<Verified, Rejected> Verifier::accept(const Key& key, const SignedEnvelope& envelope,
-                                                  std::int64_t now_unix_ms) {
-    auto forbid = [](std::string reason) {
-        return Rejected{Rejected::Kind::forbidden, std::move(reason)};
-    };
-    // A key holder's request meets the same limits as anyone's, before it is parsed.
-    if (auto refused = gimbal::command::check_request_limits(envelope.payload))
-        return Rejected{refused->code == gimbal::command::code::too_large
-                            ? Rejected::Kind::too_large
-                            : Rejected::Kind::bad_json,
-                        "the signed payload: " + refused->message};
+Result<Verified> Verifier::accept(const Key& key, nlohmann::json payload,
+                                  std::int64_t now_unix_ms) {
+    auto forbid = [](std::string reason) { return Error{code::forbidden, std::move(reason)}; };
+    if (!payload.is_object())
+        return Error{code::bad_json, "the signed payload is not a JSON object"};
     Verified v;
     v.key = &key;
-    v.request = nlohmann::json::parse(envelope.payload, nullptr, false);
-    if (v.request.is_discarded() || !v.request.is_object())
-        return Rejected{Rejected::Kind::bad_json, "the signed payload is not a JSON object"};
+    v.request = std::move(payload);
 
     const auto ts = v.request.find("ts");
     if (ts == v.request.end() || !ts->is_number_integer())

@@ -7,7 +7,6 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <string>
-#include <variant>
 #include <vector>
 
 #include "auth/nonce_window.hpp"
@@ -28,27 +27,27 @@ struct Verified {
     std::string nonce;
 };
 
-struct Rejected {
-    enum class Kind { forbidden, bad_json, too_large };
-    Kind kind = Kind::forbidden;
-    std::string reason;  // the reply's message: names what was wrong
-};
+// A signed envelope's payload as a JSON object: the request limits on its bytes, then its one
+// parse (command::parse_object). bad_json / too_large say "the signed payload ...".
+Result<nlohmann::json> read_signed_payload(std::string_view payload);
 
 class Verifier {
   public:
     Verifier(std::vector<Key> keys, double max_skew_s, std::size_t nonces_per_key = 65536);
 
-    // authenticate(), then accept().
-    std::variant<Verified, Rejected> verify(const SignedEnvelope& envelope,
-                                            std::int64_t now_unix_ms);
+    // A refusal is an Error whose message is the reply's: it names what was wrong. Its code
+    // is forbidden, or bad_json / too_large for a payload that is not a JSON object within
+    // the request limits.
+    // authenticate(), read_signed_payload(), then accept().
+    Result<Verified> verify(const SignedEnvelope& envelope, std::int64_t now_unix_ms);
     // The key the envelope names, when it exists and the MAC over the payload is right.
     // Nothing of the payload is read and nothing is remembered: a caller may use the key
     // (e.g. as a rate-limit key) before accept() spends a nonce.
-    std::variant<const Key*, Rejected> authenticate(const SignedEnvelope& envelope) const;
-    // The payload of an envelope `key` authenticated: a JSON object within the request
-    // limits, `ts` within max_skew_s of now, a fresh `nonce` (remembered from here on).
-    std::variant<Verified, Rejected> accept(const Key& key, const SignedEnvelope& envelope,
-                                            std::int64_t now_unix_ms);
+    Result<const Key*> authenticate(const SignedEnvelope& envelope) const;
+    // The payload (read_signed_payload) of an envelope `key` authenticated: `ts` within
+    // max_skew_s of now, a fresh `nonce` (remembered from here on). The payload becomes the
+    // Verified request: it is not parsed again.
+    Result<Verified> accept(const Key& key, nlohmann::json payload, std::int64_t now_unix_ms);
     const Key* find(const std::string& id) const;
     bool empty() const { return keys_.empty(); }
 

@@ -118,12 +118,19 @@ constexpr std::array geopoint_params{
 };
 
 constexpr std::array<std::string_view, 2> path_alt_refs{"wgs84", "terrain"};
+// A path point: `alt` may be left to the terrain (alt_ref, contract section 15).
+constexpr std::array point_fields{
+    P{.name = "lat", .required = true, .min = -90, .max = 90, .unit = "deg"},
+    P{.name = "lon", .required = true, .min = -180, .max = 180, .unit = "deg"},
+    P{.name = "alt", .min = min_alt, .max = max_alt, .unit = "m"},
+};
 constexpr std::array path_params{
     P{.name = "points",
       .type = T::points,
       .max = 15,
       .note = "altitudes above the WGS84 ellipsoid, `alt` optional where `terrain` covers the "
-              "point; leave out with `down`"},
+              "point; leave out with `down`",
+      .fields = point_fields},
     P{.name = "alt_ref",
       .type = T::choice,
       .default_text = "wgs84",
@@ -378,6 +385,9 @@ constexpr std::array commands{
       .summary = "Move at pan/tilt rates.",
       .params = rate_params,
       .example = R"({"pan": 5, "tilt": 0})"},
+    C{.name = "center",
+      .summary = "Point forward and level: pan 0, tilt 0 relative to the aircraft.",
+      .example = "{}"},
     C{.name = "mode",
       .summary = "Switch to a mode without targets.",
       .params = mode_params,

@@ -5,9 +5,9 @@
 // derived from it. Which protocols plan a protocol command is the protocol registry's to say
 // (lib/protocols): each protocol lists the catalogue commands it plans.
 //
-// The planners (lib/command/<protocol>_commands.cpp, the request path) check
-// parameters themselves; tests/unit/protocols checks that they accept and refuse exactly
-// what this table says.
+// A request's parameters are checked against this table once, when the request is read
+// (command/request.hpp): ranges are declared here and nowhere else. tests/unit/protocols
+// checks that every planner accepts and refuses exactly what this table says.
 #pragma once
 
 #include <optional>
@@ -51,8 +51,9 @@ struct ParamSpec {
     std::string_view unit = {};  // "deg", "m", "s", "ms", "deg/s", "m/s", or empty
     std::string_view default_text = {};  // as a person reads it ("0", "wgs84", "now"); empty: none
     std::span<const std::string_view> choices = {};
-    std::size_t count = 0;       // numbers
-    std::string_view note = {};  // anything the columns above cannot say
+    std::size_t count = 0;                   // numbers
+    std::string_view note = {};              // anything the columns above cannot say
+    std::span<const ParamSpec> fields = {};  // points: the fields of each point
 };
 
 struct CommandSpec {

@@ -1,45 +1,53 @@
 #include "command/params.hpp"
 
+#include "command/request.hpp"
+
 #include <cmath>
 #include <cstdio>
 
 namespace gimbal::command {
-namespace {
-
-// Keys every request may carry; they are handled by the command server, not by commands.
-bool is_envelope(std::string_view key) {
-    return key == "cmd" || key == "id" || key == "gimbal" || key == "token" || key == "ts" ||
-           key == "nonce";
-}
-
-}  // namespace
-
 std::string format_number(double v) {
     char buf[32];
     std::snprintf(buf, sizeof buf, "%.10g", v);
     return buf;
 }
 
-Params::Params(const nlohmann::json& params) : params_(params) {}
+JsonParams::JsonParams(const nlohmann::json& params, std::string_view cmd) : params_(params) {
+    if (const CommandSpec* spec = find_command(cmd)) {
+        specs_ = spec->params;
+        command_ = spec->name;
+    }
+}
 
-void Params::fail(ErrorCode c, std::string message) {
+JsonParams::JsonParams(const nlohmann::json& params, std::span<const ParamSpec> specs)
+    : params_(params), specs_(specs) {}
+
+const ParamSpec* JsonParams::spec_of(std::string_view key) {
+    for (const ParamSpec& spec : specs_)
+        if (spec.name == key) return &spec;
+    fail(code::internal, "parameter '" + std::string(key) + "' is not in the catalogue of '" +
+                             std::string(command_) + "'");
+    return nullptr;
+}
+
+void JsonParams::fail(ErrorCode c, std::string message) {
     if (!error_) error_ = Error{c, std::move(message)};
 }
 
-void Params::reject_unknown() {
+void JsonParams::reject_unknown() {
     if (error_ || !params_.is_object()) return;
     for (const auto& item : params_.items()) {
-        if (is_envelope(item.key()) || used_.count(item.key())) continue;
+        if (is_envelope_key(item.key()) || used_.count(item.key())) continue;
         fail(code::bad_request, "unknown parameter '" + item.key() + "'");
         return;
     }
 }
 
-bool Params::has(std::string_view key) const {
+bool JsonParams::has(std::string_view key) const {
     return params_.is_object() && params_.contains(std::string(key));
 }
 
-const nlohmann::json* Params::take(std::string_view key, bool required) {
+const nlohmann::json* JsonParams::take(std::string_view key, bool required) {
     if (error_) return nullptr;
     used_.insert(std::string(key));
     auto it = params_.find(std::string(key));
@@ -50,13 +58,20 @@ const nlohmann::json* Params::take(std::string_view key, bool required) {
     return &*it;
 }
 
-const nlohmann::json* Params::raw(std::string_view key) {
+std::span<const ParamSpec> JsonParams::fields_of(std::string_view key) {
+    const ParamSpec* spec = spec_of(key);
+    return spec ? spec->fields : std::span<const ParamSpec>();
+}
+
+const nlohmann::json* JsonParams::raw(std::string_view key) {
     return take(key, false);
 }
 
-std::optional<double> Params::number(std::string_view key, double lo, double hi, bool required) {
-    const nlohmann::json* j = take(key, required);
+std::optional<double> JsonParams::number(std::string_view key, bool required) {
+    const ParamSpec* spec = spec_of(key);
+    const nlohmann::json* j = spec ? take(key, required) : nullptr;
     if (!j) return std::nullopt;
+    const double lo = spec->min, hi = spec->max;
     if (!j->is_number()) {
         fail(code::bad_request, "'" + std::string(key) + "' must be a number");
         return std::nullopt;
@@ -70,10 +85,12 @@ std::optional<double> Params::number(std::string_view key, double lo, double hi,
     return v;
 }
 
-std::optional<std::int64_t> Params::integer(std::string_view key, std::int64_t lo, std::int64_t hi,
-                                            bool required) {
-    const nlohmann::json* j = take(key, required);
+std::optional<std::int64_t> JsonParams::integer(std::string_view key, bool required) {
+    const ParamSpec* spec = spec_of(key);
+    const nlohmann::json* j = spec ? take(key, required) : nullptr;
     if (!j) return std::nullopt;
+    const auto lo = static_cast<std::int64_t>(spec->min);
+    const auto hi = static_cast<std::int64_t>(spec->max);
     if (!j->is_number() ||
         (j->is_number_float() && j->get<double>() != std::floor(j->get<double>()))) {
         fail(code::bad_request, "'" + std::string(key) + "' must be an integer");
@@ -88,8 +105,8 @@ std::optional<std::int64_t> Params::integer(std::string_view key, std::int64_t l
     return static_cast<std::int64_t>(v);
 }
 
-std::optional<bool> Params::boolean(std::string_view key, bool required) {
-    const nlohmann::json* j = take(key, required);
+std::optional<bool> JsonParams::boolean(std::string_view key, bool required) {
+    const nlohmann::json* j = spec_of(key) ? take(key, required) : nullptr;
     if (!j) return std::nullopt;
     if (!j->is_boolean()) {
         fail(code::bad_request, "'" + std::string(key) + "' must be true or false");
@@ -98,11 +115,11 @@ std::optional<bool> Params::boolean(std::string_view key, bool required) {
     return j->get<bool>();
 }
 
-std::optional<std::string> Params::choice(std::string_view key,
-                                          std::span<const std::string_view> choices,
-                                          bool required) {
-    const nlohmann::json* j = take(key, required);
+std::optional<std::string> JsonParams::choice(std::string_view key, bool required) {
+    const ParamSpec* spec = spec_of(key);
+    const nlohmann::json* j = spec ? take(key, required) : nullptr;
     if (!j) return std::nullopt;
+    const std::span<const std::string_view> choices = spec->choices;
     std::string list;
     for (auto c : choices) list += (list.empty() ? "" : ", ") + std::string(c);
     if (!j->is_string()) {
@@ -116,10 +133,11 @@ std::optional<std::string> Params::choice(std::string_view key,
     return std::nullopt;
 }
 
-std::optional<std::string> Params::text(std::string_view key, std::size_t max_chars,
-                                        bool required) {
-    const nlohmann::json* j = take(key, required);
+std::optional<std::string> JsonParams::text(std::string_view key, bool required) {
+    const ParamSpec* spec = spec_of(key);
+    const nlohmann::json* j = spec ? take(key, required) : nullptr;
     if (!j) return std::nullopt;
+    const auto max_chars = static_cast<std::size_t>(spec->max);
     if (!j->is_string()) {
         fail(code::bad_request, "'" + std::string(key) + "' must be a string");
         return std::nullopt;
@@ -140,10 +158,12 @@ std::optional<std::string> Params::text(std::string_view key, std::size_t max_ch
     return v;
 }
 
-std::optional<std::vector<double>> Params::numbers(std::string_view key, std::size_t count,
-                                                   double lo, double hi, bool required) {
-    const nlohmann::json* j = take(key, required);
+std::optional<std::vector<double>> JsonParams::numbers(std::string_view key, bool required) {
+    const ParamSpec* spec = spec_of(key);
+    const nlohmann::json* j = spec ? take(key, required) : nullptr;
     if (!j) return std::nullopt;
+    const std::size_t count = spec->count;
+    const double lo = spec->min, hi = spec->max;
     if (!j->is_array() || j->size() != count) {
         fail(code::bad_request, "'" + std::string(key) + "' must be an array of " +
                                     std::to_string(count) + " numbers");

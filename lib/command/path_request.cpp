@@ -8,20 +8,14 @@
 
 namespace gimbal::command {
 
-namespace {
-constexpr double min_alt_m = -2000.0;
-constexpr double max_alt_m = 100000.0;
-}  // namespace
-
-Result<PathRequest> read_path_request(Params& p) {
+Result<PathRequest> read_path_request(JsonParams& p) {
     PathRequest r;
     const nlohmann::json* points = p.raw("points");
     r.down = p.boolean_or("down", false);
-    r.along_step_deg = p.number_or("along_step_deg", 0.0, 180.0, 0.0);
-    r.cross_steps = static_cast<unsigned>(p.integer_or("cross_steps", 0, 15, 0));
-    r.cross_ratio = p.number_or("cross_ratio", 0.0, 2.55, 0.0);
-    static constexpr std::array<std::string_view, 2> refs{"wgs84", "terrain"};
-    const auto ref = p.choice("alt_ref", refs, false).value_or("wgs84");
+    r.along_step_deg = p.number_or("along_step_deg", 0.0);
+    r.cross_steps = static_cast<unsigned>(p.integer_or("cross_steps", 0));
+    r.cross_ratio = p.number_or("cross_ratio", 0.0);
+    const auto ref = p.choice("alt_ref", false).value_or("wgs84");
     p.reject_unknown();
     if (!p.ok()) return p.error();
     if (ref == "terrain")
@@ -40,10 +34,10 @@ Result<PathRequest> read_path_request(Params& p) {
         const std::string where = "points[" + std::to_string(i) + "]";
         if (!item.is_object())
             return Error{code::bad_request, where + " must be {\"lat\",\"lon\",\"alt\"}"};
-        Params point(item);
-        const auto lat = point.number("lat", -90.0, 90.0, true);
-        const auto lon = point.number("lon", -180.0, 180.0, true);
-        const auto alt = point.number("alt", min_alt_m, max_alt_m, true);
+        JsonParams point(item, p.fields_of("points"));
+        const auto lat = point.number("lat", true);
+        const auto lon = point.number("lon", true);
+        const auto alt = point.number("alt", true);
         point.reject_unknown();
         if (!point.ok()) return Error{point.error().code, where + ": " + point.error().message};
         r.ecef.push_back(geo::lla_to_ecef({*lat, *lon, *alt}));

@@ -23,6 +23,6 @@ struct PathRequest {
 
 // Reads every parameter (and refuses unknown ones). alt_ref "terrain" is `unavailable`: the
 // daemon resolves it against its terrain before a protocol plans the command.
-Result<PathRequest> read_path_request(Params& p);
+Result<PathRequest> read_path_request(JsonParams& p);
 
 }  // namespace gimbal::command

@@ -1,130 +1,25 @@
-// The one result type of gimbald: a value, or an Error carrying a contract error code
-// (section 4, a closed list) and a message for people. Commands, the auth layer, STATE key
-// lists and secret files all answer this way; `to_string` gives the wire spelling.
-// Also what the command layer produces: wire packets to write (Plan).
+// What the command layer produces: wire packets to write (Plan), with the laser it fires.
+// Its results and errors are gimbald's one result type (lib/result), named here as the
+// command layer always spelt them (command::Error, command::code::bad_request).
 #pragma once
 
-#include <array>
 #include <cstdint>
 #include <nlohmann/json.hpp>
 #include <optional>
-#include <ostream>
-#include <string>
-#include <string_view>
-#include <utility>
-#include <variant>
 #include <vector>
+
+#include "result/result.hpp"
 
 namespace gimbal::command {
 
-// Error codes of the contract, section 4, in its order.
-enum class ErrorCode : std::uint8_t {
-    bad_json,
-    too_large,
-    unknown_cmd,
-    bad_request,
-    out_of_range,
-    unknown_gimbal,
-    unsupported,
-    unavailable,
-    link_down,
-    forbidden,
-    busy,
-    rate_limited,
-    internal,
-};
-
-// The spelling callers use: code::bad_request.
-namespace code {
-inline constexpr ErrorCode bad_json = ErrorCode::bad_json;
-inline constexpr ErrorCode too_large = ErrorCode::too_large;
-inline constexpr ErrorCode unknown_cmd = ErrorCode::unknown_cmd;
-inline constexpr ErrorCode bad_request = ErrorCode::bad_request;
-inline constexpr ErrorCode out_of_range = ErrorCode::out_of_range;
-inline constexpr ErrorCode unknown_gimbal = ErrorCode::unknown_gimbal;
-inline constexpr ErrorCode unsupported = ErrorCode::unsupported;
-inline constexpr ErrorCode unavailable = ErrorCode::unavailable;
-inline constexpr ErrorCode link_down = ErrorCode::link_down;
-inline constexpr ErrorCode forbidden = ErrorCode::forbidden;
-inline constexpr ErrorCode busy = ErrorCode::busy;
-inline constexpr ErrorCode rate_limited = ErrorCode::rate_limited;
-inline constexpr ErrorCode internal = ErrorCode::internal;
-}  // namespace code
-
-inline constexpr std::array<std::string_view, 13> error_code_names{
-    "bad_json",       "too_large",    "unknown_cmd", "bad_request", "out_of_range",
-    "unknown_gimbal", "unsupported",  "unavailable", "link_down",   "forbidden",
-    "busy",           "rate_limited", "internal"};
-
-constexpr std::string_view to_string(ErrorCode c) {
-    return error_code_names[static_cast<std::size_t>(c)];
-}
-
-constexpr std::optional<ErrorCode> parse_error_code(std::string_view name) {
-    for (std::size_t i = 0; i < error_code_names.size(); ++i)
-        if (error_code_names[i] == name) return static_cast<ErrorCode>(i);
-    return std::nullopt;
-}
-
-// The wire spelling compares equal to the code ("bad_request" == code::bad_request).
-constexpr bool operator==(ErrorCode c, std::string_view name) {
-    return to_string(c) == name;
-}
-inline std::ostream& operator<<(std::ostream& out, ErrorCode c) {
-    return out << to_string(c);
-}
-// JSON holds the wire spelling, never the number.
-inline void to_json(nlohmann::json& j, ErrorCode c) {
-    j = std::string(to_string(c));
-}
-
-struct Error {
-    ErrorCode code = ErrorCode::internal;
-    std::string message;
-};
-
-// A T, or the Error that stopped it. Result<void> is success or an Error.
-template <class T>
-class [[nodiscard]] Result {
-  public:
-    Result(T value) : v_(std::in_place_index<0>, std::move(value)) {}
-    Result(Error error) : v_(std::in_place_index<1>, std::move(error)) {}
-    Result(ErrorCode c, std::string message)
-        : v_(std::in_place_index<1>, Error{c, std::move(message)}) {}
-
-    bool ok() const { return v_.index() == 0; }
-    explicit operator bool() const { return ok(); }
-
-    const T& value() const& { return std::get<0>(v_); }
-    T& value() & { return std::get<0>(v_); }
-    T&& value() && { return std::get<0>(std::move(v_)); }
-    const T& operator*() const& { return value(); }
-    T& operator*() & { return value(); }
-    const T* operator->() const { return &value(); }
-    T* operator->() { return &value(); }
-
-    const Error& error() const { return std::get<1>(v_); }
-
-  private:
-    std::variant<T, Error> v_;
-};
-
-template <>
-class [[nodiscard]] Result<void> {
-  public:
-    Result() = default;
-    Result(Error error) : error_(std::move(error)) {}
-    Result(ErrorCode c, std::string message) : error_(Error{c, std::move(message)}) {}
-
-    bool ok() const { return !error_; }
-    explicit operator bool() const { return ok(); }
-    const Error& error() const { return *error_; }
-
-  private:
-    std::optional<Error> error_;
-};
-
-using Status = Result<void>;
+using gimbal::Error;
+using gimbal::error_code_names;
+using gimbal::ErrorCode;
+using gimbal::parse_error_code;
+using gimbal::Result;
+using gimbal::Status;
+using gimbal::to_string;
+namespace code = gimbal::code;
 
 // One packet ready for the link: the full wire frame plus what the reply's `sent` lists.
 struct WirePacket {

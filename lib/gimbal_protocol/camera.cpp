@@ -54,26 +54,23 @@ struct VideoNow {
     std::uint8_t encoding = mav::video_stream::encoding_unknown;
     bool connected = false;
 };
-VideoNow video_now(const nlohmann::json& state) {
+VideoNow video_now(const session::GimbalView& state) {
     VideoNow v;
-    const auto it = state.is_object() ? state.find("video") : state.end();
-    if (!state.is_object() || it == state.end() || !it->is_object()) return v;
-    const nlohmann::json& video = *it;
-    v.fps = static_cast<float>(session::number_at(video, {"fps"}).value_or(0));
-    v.bitrate = clamp_to<std::uint32_t>(session::number_at(video, {"bitrate_bps"}).value_or(0));
-    v.width = clamp_to<std::uint16_t>(session::number_at(video, {"width"}).value_or(0));
-    v.height = clamp_to<std::uint16_t>(session::number_at(video, {"height"}).value_or(0));
-    v.connected = video.value("connected", false);
-    const auto codec = video.find("codec");
-    if (codec != video.end() && codec->is_string()) {
-        if (*codec == "h264") v.encoding = mav::video_stream::encoding_h264;
-        if (*codec == "h265") v.encoding = mav::video_stream::encoding_h265;
-    }
+    const auto video = state.video ? state.video() : std::nullopt;
+    if (!video) return v;
+    v.fps = static_cast<float>(video->fps.value_or(0));
+    v.bitrate = clamp_to<std::uint32_t>(static_cast<double>(video->bitrate_bps));
+    v.width = clamp_to<std::uint16_t>(video->width.value_or(0));
+    v.height = clamp_to<std::uint16_t>(video->height.value_or(0));
+    v.connected = video->connected;
+    if (video->codec == "h264") v.encoding = mav::video_stream::encoding_h264;
+    if (video->codec == "h265") v.encoding = mav::video_stream::encoding_h265;
     return v;
 }
 
-std::uint16_t hfov_deg(const nlohmann::json& state) {
-    return clamp_to<std::uint16_t>(session::number_at(state, {"telemetry", "hfov"}).value_or(0));
+std::uint16_t hfov_deg(const session::GimbalView& state) {
+    const auto hfov = state.telemetry ? state.telemetry->hfov : std::nullopt;
+    return clamp_to<std::uint16_t>(hfov.value_or(0));
 }
 
 }  // namespace
@@ -134,9 +131,9 @@ CameraMapped CameraComponents::command(const CommandView& cmd, const ExposedCame
             if (!cam.can_point)
                 return {answer(MavResult::unsupported, cam.gimbal.name + " cannot track a point")};
             // Stop staring and hold where the camera looks (as MAV_CMD_DO_SET_ROI_NONE).
-            const auto* caps = cam.gimbal.capabilities();
+            const auto* caps = state(cam.gimbal.name).capabilities;
             if (!caps) return {answer(MavResult::unsupported, cam.gimbal.name + " cannot stop")};
-            auto stop = caps->stop(state(cam.gimbal.name));
+            auto stop = caps->stop();
             if (!stop.ok())
                 return {answer(result_for_error(stop.error().code), stop.error().message)};
             CameraMapped out;
@@ -167,7 +164,8 @@ CameraMapped CameraComponents::command(const CommandView& cmd, const ExposedCame
 }
 
 Mapped CameraComponents::request(std::uint32_t msgid, float param2, const ExposedCamera& cam,
-                                 const nlohmann::json& state, std::uint32_t time_boot_ms) const {
+                                 const session::GimbalView& state,
+                                 std::uint32_t time_boot_ms) const {
     Mapped out;
     const auto send = [&](mav::Payload p) {
         out.replies.push_back(Reply{cam.component_id, std::move(p)});
@@ -255,7 +253,7 @@ Mapped CameraComponents::set_interval(const CommandView& cmd, const ExposedCamer
 }
 
 mav::CameraInformation camera_component_information(const ExposedCamera& cam,
-                                                    const nlohmann::json& state,
+                                                    const session::GimbalView& state,
                                                     std::uint32_t time_boot_ms) {
     mav::CameraInformation c = camera_information(cam.gimbal, state, time_boot_ms);
     namespace f = mav::camera_cap;
@@ -268,7 +266,7 @@ mav::CameraInformation camera_component_information(const ExposedCamera& cam,
     return c;
 }
 
-mav::CameraSettings camera_settings(const ExposedCamera&, const nlohmann::json&,
+mav::CameraSettings camera_settings(const ExposedCamera&, const session::GimbalView&,
                                     std::uint32_t time_boot_ms) {
     mav::CameraSettings s;
     s.time_boot_ms = time_boot_ms;
@@ -291,7 +289,7 @@ mav::CameraCaptureStatus capture_status(std::uint32_t time_boot_ms) {
 }
 
 mav::VideoStreamInformation stream_information(const ExposedCamera& cam, std::size_t index,
-                                               const nlohmann::json& state) {
+                                               const session::GimbalView& state) {
     const CameraStream& stream = cam.streams.at(index);
     const VideoNow v = video_now(state);
     mav::VideoStreamInformation s;
@@ -311,7 +309,7 @@ mav::VideoStreamInformation stream_information(const ExposedCamera& cam, std::si
 }
 
 mav::VideoStreamStatus stream_status(const ExposedCamera& cam, std::size_t index,
-                                     const nlohmann::json& state) {
+                                     const session::GimbalView& state) {
     (void)cam.streams.at(index);
     const VideoNow v = video_now(state);
     mav::VideoStreamStatus s;
@@ -325,7 +323,7 @@ mav::VideoStreamStatus stream_status(const ExposedCamera& cam, std::size_t index
     return s;
 }
 
-mav::CameraFovStatus camera_fov_status(const ExposedCamera& cam, const nlohmann::json& state,
+mav::CameraFovStatus camera_fov_status(const ExposedCamera& cam, const session::GimbalView& state,
                                        std::uint32_t time_boot_ms) {
     mav::CameraFovStatus s = fov_status(cam.gimbal, state, time_boot_ms);
     s.camera_device_id = 0;
@@ -333,19 +331,17 @@ mav::CameraFovStatus camera_fov_status(const ExposedCamera& cam, const nlohmann:
 }
 
 mav::CameraTrackingGeoStatus tracking_geo_status(const std::optional<HeldPoint>& held,
-                                                 const nlohmann::json& state) {
+                                                 const session::GimbalView& state) {
     mav::CameraTrackingGeoStatus s;
     if (!held) return s;
     s.tracking_status = mav::tracking::status_active;
     s.lat = static_cast<std::int32_t>(std::lround(held->lat * 1e7));
     s.lon = static_cast<std::int32_t>(std::lround(held->lon * 1e7));
     if (held->alt_msl) s.alt = static_cast<float>(*held->alt_msl);
-    // The camera's own position (Orion telemetry: WGS84 ellipsoid altitude).
-    const auto lat = session::number_at(state, {"telemetry", "lat"});
-    const auto lon = session::number_at(state, {"telemetry", "lon"});
-    const auto alt = session::number_at(state, {"telemetry", "alt"});
-    if (lat && lon && alt) {
-        const auto a = geo::lla_to_ecef(geo::Lla{*lat, *lon, *alt});
+    // The camera's own position (telemetry: WGS84 ellipsoid altitude).
+    const auto* t = state.telemetry;
+    if (t && t->lat && t->lon && t->alt) {
+        const auto a = geo::lla_to_ecef(geo::Lla{*t->lat, *t->lon, *t->alt});
         const auto b = geo::lla_to_ecef(geo::Lla{held->lat, held->lon, held->alt});
         s.dist = static_cast<float>(std::hypot(a.x - b.x, a.y - b.y, a.z - b.z));
     }

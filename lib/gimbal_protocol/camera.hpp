@@ -1,8 +1,9 @@
 // The MAVLink camera component of each gimbal (contract section 16): what a ground station's
 // camera manager (QGroundControl's, MAVSDK's Camera plugin) asks of a camera, answered from the
-// gimbal's STATE and its relayed video (section 17). Click-to-track (MAV_CMD_CAMERA_TRACK_POINT)
-// becomes the `point` command with stare. Pure: STATE comes in through a lookup, time as
-// time_boot_ms; the daemon executes the requests and sends the replies.
+// gimbal's typed state and its relayed video (section 17). Click-to-track
+// (MAV_CMD_CAMERA_TRACK_POINT) becomes the `point` command with stare. Pure: the state comes in
+// through a lookup, time as time_boot_ms; the daemon executes the requests and sends the
+// replies.
 #pragma once
 
 #include <cstdint>
@@ -79,7 +80,7 @@ class CameraComponents {
 
   private:
     Mapped request(std::uint32_t msgid, float param2, const ExposedCamera& cam,
-                   const nlohmann::json& state, std::uint32_t time_boot_ms) const;
+                   const session::GimbalView& state, std::uint32_t time_boot_ms) const;
     CameraMapped track_point(const CommandView& cmd, const ExposedCamera& cam) const;
     Mapped set_interval(const CommandView& cmd, const ExposedCamera& cam);
 
@@ -90,9 +91,9 @@ class CameraComponents {
 // The messages a camera component sends; camera_device_id 0 (a MAVLink camera with its own
 // component id, as common.xml says).
 mavlink::CameraInformation camera_component_information(const ExposedCamera& cam,
-                                                        const nlohmann::json& state,
+                                                        const session::GimbalView& state,
                                                         std::uint32_t time_boot_ms);
-mavlink::CameraSettings camera_settings(const ExposedCamera& cam, const nlohmann::json& state,
+mavlink::CameraSettings camera_settings(const ExposedCamera& cam, const session::GimbalView& state,
                                         std::uint32_t time_boot_ms);
 // No storage: STORAGE_STATUS_NOT_SUPPORTED, count 0 (gimbald records flights, not photos).
 mavlink::StorageInformation storage_information(std::uint32_t time_boot_ms);
@@ -100,15 +101,16 @@ mavlink::StorageInformation storage_information(std::uint32_t time_boot_ms);
 mavlink::CameraCaptureStatus capture_status(std::uint32_t time_boot_ms);
 // Stream `index` (0-based) of the camera's streams, with what STATE `video` says about it.
 mavlink::VideoStreamInformation stream_information(const ExposedCamera& cam, std::size_t index,
-                                                   const nlohmann::json& state);
+                                                   const session::GimbalView& state);
 mavlink::VideoStreamStatus stream_status(const ExposedCamera& cam, std::size_t index,
-                                         const nlohmann::json& state);
-mavlink::CameraFovStatus camera_fov_status(const ExposedCamera& cam, const nlohmann::json& state,
+                                         const session::GimbalView& state);
+mavlink::CameraFovStatus camera_fov_status(const ExposedCamera& cam,
+                                           const session::GimbalView& state,
                                            std::uint32_t time_boot_ms);
 // While `held`: ACTIVE with the point (altitude AMSL, NaN when unknown) and the distance from
 // the camera; without: IDLE.
 mavlink::CameraTrackingGeoStatus tracking_geo_status(const std::optional<HeldPoint>& held,
-                                                     const nlohmann::json& state);
+                                                     const session::GimbalView& state);
 // `at`: where the held point is in the image now (-1..1, contract section 16), sent as 0..1.
 struct ImageAt {
     double x = 0, y = 0;

@@ -54,18 +54,29 @@ session::Request unknown_protocol(const ExposedGimbal& g) {
 // A command none of the targets takes: the first target's own refusal of the action (the
 // capability's "unsupported" and why).
 template <class Action>
-Mapped refused_by_all(const std::vector<const ExposedGimbal*>& targets, Action action) {
+Mapped refused_by_all(const std::vector<const ExposedGimbal*>& targets, const StateLookup& state,
+                      Action action) {
     const ExposedGimbal& g = *targets.front();
-    const auto* caps = g.capabilities();
-    const session::Request r = caps ? action(*caps) : unknown_protocol(g);
+    const session::GimbalView view = state(g.name);
+    const session::Request r = view.capabilities ? action(*view.capabilities) : unknown_protocol(g);
     return r.ok() ? answer(MavResult::unsupported, "no gimbal takes this") : refusal(r.error());
+}
+
+// "CAMERA_INFORMATION comes from the camera component: 100 (main)".
+std::string camera_elsewhere(const std::vector<const ExposedGimbal*>& targets) {
+    std::string components;
+    for (const auto* g : targets)
+        components += (components.empty() ? "" : ", ") + std::to_string(g->camera_component) +
+                      " (" + g->name + ")";
+    return "CAMERA_INFORMATION comes from the camera component: " + components;
 }
 
 }  // namespace
 
-const session::Capabilities* ExposedGimbal::capabilities() const {
+std::optional<session::Features> ExposedGimbal::features() const {
     const auto* entry = protocols::find(protocol);
-    return entry ? entry->capabilities : nullptr;
+    if (!entry) return std::nullopt;
+    return entry->features;
 }
 
 std::vector<ExposedGimbal> expose(const std::vector<std::pair<std::string, std::string>>& gimbals,
@@ -171,7 +182,7 @@ Mapped GimbalManager::command(const CommandView& cmd, const MavId& sender,
                               std::uint32_t time_boot_ms) {
     switch (cmd.command) {
         case mav::mav_cmd::do_set_roi_location:
-            return roi_location(cmd, sender, vehicle);
+            return roi_location(cmd, sender, vehicle, state);
         case mav::mav_cmd::do_set_roi_none:
             return roi_none(cmd, sender, state);
         case mav::mav_cmd::do_gimbal_manager_pitchyaw: {
@@ -243,20 +254,17 @@ Mapped GimbalManager::pitchyaw(const std::vector<const ExposedGimbal*>& targets,
 
     Mapped out;
     for (const auto* g : targets) {
-        const session::Capabilities* caps = g->capabilities();
+        const session::GimbalView view = state(g->name);
+        const session::Capabilities* caps = view.capabilities;
         session::Request request = unknown_protocol(*g);
-        const bool complete = !angles || (!std::isnan(pitch_deg) && !std::isnan(yaw_deg));
-        const nlohmann::json gimbal_state = caps && caps->features().absolute_angles && complete
-                                                ? nlohmann::json::object()
-                                                : state(g->name);
         if (caps && angles) {
             const session::AnglesTarget target{
                 given(pitch_deg), given(yaw_deg),
                 earth_yaw ? session::YawFrame::earth : session::YawFrame::vehicle,
                 vehicle.heading_deg};
-            request = caps->point_angles(gimbal_state, target);
+            request = caps->point_angles(target);
         } else if (caps) {
-            request = caps->rate(gimbal_state, session::RateTarget{pitch_rate, yaw_rate});
+            request = caps->rate(session::RateTarget{pitch_rate, yaw_rate});
         }
         if (!request.ok()) {
             // Among several gimbals, one that cannot (a gimbal without rate control) sits
@@ -271,18 +279,17 @@ Mapped GimbalManager::pitchyaw(const std::vector<const ExposedGimbal*>& targets,
 }
 
 Mapped GimbalManager::roi_location(const CommandView& cmd, const MavId& sender,
-                                   const VehicleView& vehicle) {
+                                   const VehicleView& vehicle, const StateLookup& state) {
     const auto selected = select(cmd.param[0], cmd.target_component);
     const auto& targets = selected.gimbals;
     if (targets.empty()) return answer(MavResult::denied, selected.refusal);
     const auto points = [](const ExposedGimbal* g) {
-        const auto* caps = g->capabilities();
-        return caps && caps->features().geopoint;
+        const auto f = g->features();
+        return f && f->geopoint;
     };
     if (std::none_of(targets.begin(), targets.end(), points))
-        return refused_by_all(targets, [](const session::Capabilities& c) {
-            return c.geopoint(nlohmann::json::object(), {});
-        });
+        return refused_by_all(targets, state,
+                              [](const session::Capabilities& c) { return c.geopoint({}); });
     namespace f = mav::mav_frame;
     const std::uint8_t frame = cmd.frame;
     bool relative = false;
@@ -307,9 +314,9 @@ Mapped GimbalManager::roi_location(const CommandView& cmd, const MavId& sender,
     Mapped out;
     for (const auto* g : targets) {
         if (!points(g)) continue;
-        // No geopoint reads the gimbal's STATE: the location is absolute.
-        auto request = g->capabilities()->geopoint(nlohmann::json::object(),
-                                                   session::GeoTarget{cmd.x, cmd.y, alt_msl});
+        const auto* caps = state(g->name).capabilities;
+        auto request =
+            caps ? caps->geopoint(session::GeoTarget{cmd.x, cmd.y, alt_msl}) : unknown_protocol(*g);
         if (!request.ok()) return refusal(request.error());
         add_request(out, *g, std::move(request).value());
     }
@@ -324,16 +331,16 @@ Mapped GimbalManager::roi_none(const CommandView& cmd, const MavId& sender,
     if (auto refused = check_control(targets, sender)) return *refused;
     Mapped out;
     for (const auto* g : targets) {
-        const auto* caps = g->capabilities();
-        if (!caps || !caps->features().geopoint) continue;
-        auto request = caps->stop(state(g->name));
+        const auto f = g->features();
+        if (!f || !f->geopoint) continue;
+        const auto* caps = state(g->name).capabilities;
+        auto request = caps ? caps->stop() : unknown_protocol(*g);
         if (!request.ok()) return refusal(request.error());
         add_request(out, *g, std::move(request).value());
     }
     if (out.requests.empty())
-        return refused_by_all(targets, [](const session::Capabilities& c) {
-            return c.stop(nlohmann::json::object());
-        });
+        return refused_by_all(targets, state,
+                              [](const session::Capabilities& c) { return c.stop(); });
     return out;
 }
 
@@ -367,11 +374,10 @@ Mapped GimbalManager::zoom(const CommandView& cmd, const StateLookup& state) {
     if (targets.empty()) return answer(MavResult::denied, "no such camera: " + selected.refusal);
     std::vector<const ExposedGimbal*> zooms;
     for (const auto* g : targets)
-        if (const auto* caps = g->capabilities(); caps && caps->features().zoom) zooms.push_back(g);
+        if (const auto f = g->features(); f && f->zoom) zooms.push_back(g);
     if (zooms.empty())
-        return refused_by_all(targets, [](const session::Capabilities& c) {
-            return c.zoom(nlohmann::json::object(), {});
-        });
+        return refused_by_all(targets, state,
+                              [](const session::Capabilities& c) { return c.zoom({}); });
     session::ZoomTarget target{session::ZoomKind::range_percent, value};
     if (type == mav::zoom_type::range) {
         if (value < 0 || value > 100)
@@ -386,7 +392,8 @@ Mapped GimbalManager::zoom(const CommandView& cmd, const StateLookup& state) {
     }
     Mapped out;
     for (const auto* g : zooms) {
-        auto request = g->capabilities()->zoom(state(g->name), target);
+        const auto* caps = state(g->name).capabilities;
+        auto request = caps ? caps->zoom(target) : unknown_protocol(*g);
         if (!request.ok()) return refusal(request.error());
         add_request(out, *g, std::move(request).value());
     }
@@ -406,7 +413,7 @@ Mapped GimbalManager::request_message(const CommandView& cmd, const StateLookup&
     Mapped out;
     const auto msgid = static_cast<std::uint32_t>(id);
     for (const auto* g : targets) {
-        const nlohmann::json s = state(g->name);
+        const session::GimbalView s = state(g->name);
         // Each gimbal's messages come from its own manager component.
         const auto reply = [&](mavlink::Payload p) {
             out.replies.push_back(Reply{g->component_id, std::move(p)});
@@ -419,7 +426,7 @@ Mapped GimbalManager::request_message(const CommandView& cmd, const StateLookup&
                 reply(device_information(*g, s, time_boot_ms));
                 break;
             case mav::CameraInformation::id:
-                reply(camera_information(*g, s, time_boot_ms));
+                if (g->camera_component == 0) reply(camera_information(*g, s, time_boot_ms));
                 break;
             case mav::GimbalManagerStatus::id:
                 reply(manager_status(*g, controls_.at(g->device_id), time_boot_ms));
@@ -434,6 +441,10 @@ Mapped GimbalManager::request_message(const CommandView& cmd, const StateLookup&
                 return answer(MavResult::unsupported, "message not provided");
         }
     }
+    // A gimbal with a camera component of its own is a camera only there (contract v4).
+    // common.xml: DENIED is a supported command with a value this component does not support.
+    if (msgid == mav::CameraInformation::id && out.replies.empty())
+        return answer(MavResult::denied, camera_elsewhere(targets));
     return out;
 }
 

@@ -17,6 +17,7 @@
 #include "gimbal_protocol/control.hpp"
 #include "mavlink/messages.hpp"
 #include "session/capabilities.hpp"
+#include "session/gimbal_view.hpp"
 
 namespace gimbal::gimbal_protocol {
 
@@ -28,10 +29,14 @@ struct ExposedGimbal {
     std::string protocol;  // a protocol registry entry's name (protocols/registry.hpp)
     std::uint8_t device_id = 0;
     std::uint8_t component_id = 154;
+    // Its MAVLink camera component (100..105, camera.hpp), 0 for none. A ground station must
+    // list each camera once (contract v4): the manager then leaves CAMERA_INFORMATION to it.
+    std::uint8_t camera_component = 0;
 
-    // What the gimbal can do: the mapping asks these, never the protocol's name. nullptr for
-    // a name the registry does not know (every action is then unsupported).
-    const session::Capabilities* capabilities() const;
+    // What the gimbal can do, from its protocol's registry entry: the mapping asks these, never
+    // the protocol's name. nullopt for a name the registry does not know (every action is then
+    // unsupported). The actions themselves are its capabilities' (StateLookup).
+    std::optional<session::Features> features() const;
 };
 
 // MAV_COMP_ID_GIMBAL2..6: the components of the second and later gimbals.
@@ -87,8 +92,9 @@ struct Mapped {
     std::string reason;  // why, for a result other than accepted
 };
 
-// The STATE of a gimbal, fetched only when a mapping needs it.
-using StateLookup = std::function<nlohmann::json(const std::string& gimbal)>;
+// A gimbal's typed state - its capabilities bound to it, telemetry, health, video - asked
+// only when a mapping needs it. A view with no capabilities: no such gimbal.
+using StateLookup = std::function<session::GimbalView(const std::string& gimbal)>;
 
 class GimbalManager {
   public:
@@ -124,7 +130,8 @@ class GimbalManager {
     Mapped pitchyaw(const std::vector<const ExposedGimbal*>& targets, const MavId& sender,
                     double pitch_deg, double yaw_deg, double pitch_rate, double yaw_rate,
                     std::uint32_t flags, const VehicleView& vehicle, const StateLookup& state);
-    Mapped roi_location(const CommandView& cmd, const MavId& sender, const VehicleView& vehicle);
+    Mapped roi_location(const CommandView& cmd, const MavId& sender, const VehicleView& vehicle,
+                        const StateLookup& state);
     Mapped roi_none(const CommandView& cmd, const MavId& sender, const StateLookup& state);
     Mapped configure(const CommandView& cmd, const MavId& sender);
     Mapped zoom(const CommandView& cmd, const StateLookup& state);

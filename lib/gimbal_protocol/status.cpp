@@ -30,45 +30,43 @@ float f(std::optional<double> v) {
     return v ? static_cast<float>(*v) : mav::nan_f;
 }
 
-bool healthy(const nlohmann::json& state) {
-    const auto* link = state.is_object() && state.contains("link") ? &state["link"] : nullptr;
-    const bool connected = link && link->is_object() && link->value("connected", false);
-    const bool stale = !state.is_object() || state.value("stale", true);
-    return connected && !stale;
+bool healthy(const session::GimbalView& state) {
+    return state.connected && !state.stale;
 }
 
-// Pan and tilt limits in radians, NaN where the gimbal reports none.
+// Pan and tilt limits in radians, NaN where the gimbal reports none - or reports a pair no
+// gimbal has (outside -360..360 degrees, or min above max): unknown, not relayed (section 14).
 struct Limits {
     float pan_min = mav::nan_f, pan_max = mav::nan_f, tilt_min = mav::nan_f, tilt_max = mav::nan_f;
 };
-Limits limits_of(const ExposedGimbal& g, const nlohmann::json& state) {
-    const auto* caps = g.capabilities();
+Limits limits_of(const session::GimbalView& state) {
+    const auto* caps = state.capabilities;
     if (!caps) return {};
-    const session::Limits l = caps->limits(state);
+    const session::Limits l = caps->limits();
     const auto rad = [](std::optional<double> deg) {
-        return deg ? static_cast<float>(*deg * deg_to_rad) : mav::nan_f;
+        return deg && std::isfinite(*deg) && std::abs(*deg) <= 360.0
+                   ? static_cast<float>(*deg * deg_to_rad)
+                   : mav::nan_f;
     };
-    return {rad(l.pan_min_deg), rad(l.pan_max_deg), rad(l.tilt_min_deg), rad(l.tilt_max_deg)};
+    Limits out{rad(l.pan_min_deg), rad(l.pan_max_deg), rad(l.tilt_min_deg), rad(l.tilt_max_deg)};
+    if (out.pan_min > out.pan_max) out.pan_min = out.pan_max = mav::nan_f;
+    if (out.tilt_min > out.tilt_max) out.tilt_min = out.tilt_max = mav::nan_f;
+    return out;
 }
 
 // GIMBAL_MANAGER_CAP_FLAGS from what the gimbal can do.
 std::uint32_t capabilities(const ExposedGimbal& g) {
     namespace c = mav::gimbal_cap;
     std::uint32_t caps = c::has_pitch_axis | c::has_yaw_axis | c::has_yaw_follow;
-    const auto* gimbal_caps = g.capabilities();
-    if (!gimbal_caps) return caps;
-    const session::Features f = gimbal_caps->features();
+    const auto features = g.features();
+    if (!features) return caps;
+    const session::Features& f = *features;
     if (f.pitch_lock) caps |= c::has_pitch_lock;
     if (f.yaw_lock) caps |= c::has_yaw_lock;
     if (f.yaw_in_earth_frame) caps |= c::supports_yaw_in_earth_frame;
     if (f.infinite_yaw) caps |= c::supports_infinite_yaw;
     if (f.geopoint) caps |= c::can_point_location_global;
     return caps;
-}
-
-std::optional<geo::Quat> line_of_sight(const ExposedGimbal& g, const nlohmann::json& state) {
-    const auto* caps = g.capabilities();
-    return caps ? caps->line_of_sight(state) : std::nullopt;
 }
 
 }  // namespace
@@ -82,18 +80,19 @@ mav::Heartbeat heartbeat() {
     return hb;
 }
 
-std::optional<geo::Quat> line_of_sight(const nlohmann::json& state, std::string_view protocol) {
-    return line_of_sight(ExposedGimbal{std::string(protocol), std::string(protocol)}, state);
+std::optional<geo::Quat> line_of_sight(const session::GimbalView& state) {
+    return state.capabilities ? state.capabilities->line_of_sight() : std::nullopt;
 }
 
-mav::GimbalDeviceAttitudeStatus attitude_status(const ExposedGimbal& g, const nlohmann::json& state,
+mav::GimbalDeviceAttitudeStatus attitude_status(const ExposedGimbal& g,
+                                                const session::GimbalView& state,
                                                 std::uint32_t time_boot_ms) {
     mav::GimbalDeviceAttitudeStatus s;
     s.time_boot_ms = time_boot_ms;
     s.gimbal_device_id = g.device_id;
     namespace fl = mav::gimbal_flags;
     s.flags = static_cast<std::uint16_t>(fl::roll_lock | fl::pitch_lock | fl::yaw_in_earth_frame);
-    if (const auto q = line_of_sight(g, state))
+    if (const auto q = line_of_sight(state))
         s.q = {static_cast<float>(q->w), static_cast<float>(q->x), static_cast<float>(q->y),
                static_cast<float>(q->z)};
     else
@@ -102,13 +101,13 @@ mav::GimbalDeviceAttitudeStatus attitude_status(const ExposedGimbal& g, const nl
     return s;
 }
 
-mav::CameraFovStatus fov_status(const ExposedGimbal& g, const nlohmann::json& state,
+mav::CameraFovStatus fov_status(const ExposedGimbal& g, const session::GimbalView& state,
                                 std::uint32_t time_boot_ms) {
     mav::CameraFovStatus s;
     s.time_boot_ms = time_boot_ms;
     s.camera_device_id = g.device_id;
-    const auto* caps = g.capabilities();
-    const session::View v = caps ? caps->view(state) : session::View{};
+    const auto* caps = state.capabilities;
+    const session::View v = caps ? caps->view() : session::View{};
     s.lat_camera = degE7(v.lat_deg);
     s.lon_camera = degE7(v.lon_deg);
     s.alt_camera = mm(v.alt_msl_m);
@@ -117,7 +116,7 @@ mav::CameraFovStatus fov_status(const ExposedGimbal& g, const nlohmann::json& st
     s.alt_image = mm(v.target_alt_msl_m);  // CAMERA_FOV_STATUS wants MSL
     s.hfov = f(v.hfov_deg);
     s.vfov = f(v.vfov_deg);
-    if (const auto q = line_of_sight(g, state))
+    if (const auto q = line_of_sight(state))
         s.q = {static_cast<float>(q->w), static_cast<float>(q->x), static_cast<float>(q->y),
                static_cast<float>(q->z)};
     return s;
@@ -141,39 +140,40 @@ mav::GimbalManagerStatus manager_status(const ExposedGimbal& g, const Control& c
 }
 
 mav::GimbalManagerInformation manager_information(const ExposedGimbal& g,
-                                                  const nlohmann::json& state,
+                                                  const session::GimbalView& state,
                                                   std::uint32_t time_boot_ms) {
     mav::GimbalManagerInformation m;
     m.time_boot_ms = time_boot_ms;
     m.gimbal_device_id = g.device_id;
     m.cap_flags = capabilities(g);
-    const Limits l = limits_of(g, state);
+    const Limits l = limits_of(state);
     m.roll_min = 0;
     m.roll_max = 0;
     m.pitch_min = l.tilt_min;
     m.pitch_max = l.tilt_max;
     m.yaw_min = l.pan_min;
     m.yaw_max = l.pan_max;
-    if (std::isnan(l.pan_min)) {
-        // No limits reported: the whole circle in yaw, straight down to straight up in pitch.
-        const float pi = std::numbers::pi_v<float>;
-        m.pitch_min = std::isnan(l.tilt_min) ? -pi / 2 : l.tilt_min;
-        m.pitch_max = std::isnan(l.tilt_max) ? pi / 2 : l.tilt_max;
+    // Limits not known: the whole circle in yaw, straight down to straight up in pitch.
+    const float pi = std::numbers::pi_v<float>;
+    if (std::isnan(l.pan_min) || std::isnan(l.pan_max)) {
         m.yaw_min = -pi;
         m.yaw_max = pi;
     }
+    if (std::isnan(l.tilt_min)) m.pitch_min = -pi / 2;
+    if (std::isnan(l.tilt_max)) m.pitch_max = pi / 2;
     return m;
 }
 
 // Vendor and model as MAVLink announces them: what the gimbal says of itself.
 namespace {
-session::Identity identity_of(const ExposedGimbal& g, const nlohmann::json& state) {
-    const auto* caps = g.capabilities();
-    return caps ? caps->identity(state) : session::Identity{g.protocol, g.protocol, std::nullopt};
+session::Identity identity_of(const ExposedGimbal& g, const session::GimbalView& state) {
+    const auto* caps = state.capabilities;
+    return caps ? caps->identity() : session::Identity{g.protocol, g.protocol, std::nullopt};
 }
 }  // namespace
 
-mav::GimbalDeviceInformation device_information(const ExposedGimbal& g, const nlohmann::json& state,
+mav::GimbalDeviceInformation device_information(const ExposedGimbal& g,
+                                                const session::GimbalView& state,
                                                 std::uint32_t time_boot_ms) {
     mav::GimbalDeviceInformation d;
     d.uid = g.device_id;
@@ -181,7 +181,7 @@ mav::GimbalDeviceInformation device_information(const ExposedGimbal& g, const nl
     d.gimbal_device_id = g.device_id;
     d.cap_flags = static_cast<std::uint16_t>(capabilities(g) & 0xFFFF);
     d.cap_flags2 = capabilities(g);
-    const Limits l = limits_of(g, state);
+    const Limits l = limits_of(state);
     d.roll_min = 0;
     d.roll_max = 0;
     d.pitch_min = l.tilt_min;
@@ -195,7 +195,7 @@ mav::GimbalDeviceInformation device_information(const ExposedGimbal& g, const nl
     return d;
 }
 
-mav::CameraInformation camera_information(const ExposedGimbal& g, const nlohmann::json& state,
+mav::CameraInformation camera_information(const ExposedGimbal& g, const session::GimbalView& state,
                                           std::uint32_t time_boot_ms) {
     mav::CameraInformation c;
     c.time_boot_ms = time_boot_ms;
@@ -207,9 +207,9 @@ mav::CameraInformation camera_information(const ExposedGimbal& g, const nlohmann
     c.focal_length = mav::nan_f;
     c.sensor_size_h = mav::nan_f;
     c.sensor_size_v = mav::nan_f;
-    const auto* caps = g.capabilities();
+    const auto* caps = state.capabilities;
     if (!caps) return c;
-    const session::Camera cam = caps->camera(state);
+    const session::Camera cam = caps->camera();
     if (cam.basic_zoom) c.flags = mav::camera_cap_has_basic_zoom;
     c.focal_length = f(cam.focal_length_mm);
     if (cam.width_px && cam.height_px) {

@@ -1,10 +1,10 @@
-// Gimbal STATE -> the MAVLink messages gimbald sends as a gimbal manager (contract section 8):
+// A gimbal's typed state -> the MAVLink messages gimbald sends as a gimbal manager (contract
+// section 8):
 // the line-of-sight attitude, the camera's field of view, and the information messages.
 // Pure; unknown values are NaN (floats) or INT32_MAX (positions), as common.xml says.
 #pragma once
 
 #include <cstdint>
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <string_view>
 
@@ -12,6 +12,7 @@
 #include "gimbal_protocol/commands.hpp"
 #include "gimbal_protocol/control.hpp"
 #include "mavlink/messages.hpp"
+#include "session/gimbal_view.hpp"
 
 namespace gimbal::gimbal_protocol {
 
@@ -19,23 +20,24 @@ namespace gimbal::gimbal_protocol {
 mavlink::Heartbeat heartbeat();
 
 // The camera's line of sight as a rotation from the camera frame (x along the view) to NED,
-// as the protocol's capabilities read it from STATE (nullopt: not reported yet).
-std::optional<geo::Quat> line_of_sight(const nlohmann::json& state, std::string_view protocol);
+// as the gimbal's capabilities read it (nullopt: not reported yet).
+std::optional<geo::Quat> line_of_sight(const session::GimbalView& state);
 
 mavlink::GimbalDeviceAttitudeStatus attitude_status(const ExposedGimbal& g,
-                                                    const nlohmann::json& state,
+                                                    const session::GimbalView& state,
                                                     std::uint32_t time_boot_ms);
-mavlink::CameraFovStatus fov_status(const ExposedGimbal& g, const nlohmann::json& state,
+mavlink::CameraFovStatus fov_status(const ExposedGimbal& g, const session::GimbalView& state,
                                     std::uint32_t time_boot_ms);
 mavlink::GimbalManagerStatus manager_status(const ExposedGimbal& g, const Control& control,
                                             std::uint32_t time_boot_ms);
 mavlink::GimbalManagerInformation manager_information(const ExposedGimbal& g,
-                                                      const nlohmann::json& state,
+                                                      const session::GimbalView& state,
                                                       std::uint32_t time_boot_ms);
 mavlink::GimbalDeviceInformation device_information(const ExposedGimbal& g,
-                                                    const nlohmann::json& state,
+                                                    const session::GimbalView& state,
                                                     std::uint32_t time_boot_ms);
-mavlink::CameraInformation camera_information(const ExposedGimbal& g, const nlohmann::json& state,
+mavlink::CameraInformation camera_information(const ExposedGimbal& g,
+                                              const session::GimbalView& state,
                                               std::uint32_t time_boot_ms);
 
 }  // namespace gimbal::gimbal_protocol

@@ -206,16 +206,22 @@ std::string_view to_string(DecodeStatus status) {
             return "bad_checksum";
         case DecodeStatus::malformed:
             return "malformed";
+        case DecodeStatus::too_large:
+            return "too_large";
     }
     return "malformed";
 }
 
 DecodeResult decode(Span bytes, Digits digits) {
     DecodeResult r;
-    auto malformed = [&r](std::string why) {
-        r.status = DecodeStatus::malformed;
+    auto refuse = [&r](DecodeStatus status, std::string why) {
+        r.status = status;
         r.reason = std::move(why);
+        r.items.clear();
         return std::move(r);
+    };
+    auto malformed = [&refuse](std::string why) {
+        return refuse(DecodeStatus::malformed, std::move(why));
     };
     const std::size_t key_size = uas_datalink_key.size();
     if (bytes.size() < key_size) return malformed("shorter than the 16-byte key");
@@ -225,15 +231,39 @@ DecodeResult decode(Span bytes, Digits digits) {
     if (length.status == BerStatus::truncated) return malformed("truncated BER length");
     if (length.status != BerStatus::ok) return malformed("invalid BER length");
     const std::size_t head = key_size + length.size;
+    // The size limit comes before anything else: a set's length says how much would be read.
+    if (length.value > max_set_bytes - head) {
+        if (length.value <= bytes.size() - head)
+            r.consumed = head + static_cast<std::size_t>(length.value);
+        return refuse(DecodeStatus::too_large, "the set is " + std::to_string(length.value + head) +
+                                                   " bytes, over the limit of " +
+                                                   std::to_string(max_set_bytes));
+    }
     if (length.value > bytes.size() - head)
         return malformed("truncated: the set needs " + std::to_string(length.value) +
                          " value bytes, " + std::to_string(bytes.size() - head) + " present");
     const std::size_t end = head + static_cast<std::size_t>(length.value);
     r.consumed = end;
 
+    // The checksum before any item is read: it is the last item, tag 1 with 2 bytes (ST 0601
+    // 6.6), summed from the key through its length byte.
+    if (end - head < 4 || bytes[end - 4] != 0x01 || bytes[end - 3] != 0x02)
+        return malformed("no checksum (tag 1, 2 bytes) as the last item");
+    r.checksum_stored = static_cast<std::uint16_t>((bytes[end - 2] << 8) | bytes[end - 1]);
+    r.checksum_computed = checksum16(bytes.first(end - 2));
+    if (r.checksum_stored != r.checksum_computed) {
+        char why[64];
+        std::snprintf(why, sizeof why, "checksum 0x%04X, computed 0x%04X", r.checksum_stored,
+                      r.checksum_computed);
+        return refuse(DecodeStatus::bad_checksum, why);
+    }
+
     std::size_t at = head;
     std::size_t checksum_at = 0;  // offset of the last item's tag when it is tag 1
     while (at < end) {
+        if (r.items.size() == max_set_items)
+            return refuse(DecodeStatus::too_large,
+                          "more than " + std::to_string(max_set_items) + " items");
         const std::size_t item_at = at;
         const BerRead tag = read_ber_oid(bytes.subspan(at, end - at));
         if (tag.status != BerStatus::ok)
@@ -252,7 +282,7 @@ DecodeResult decode(Span bytes, Digits digits) {
         checksum_at = (tag.value == 1 && value.size() == 2) ? item_at : 0;
         at += value.size();
     }
-    if (checksum_at == 0) return malformed("no checksum (tag 1, 2 bytes) as the last item");
+    if (checksum_at != end - 4) return malformed("no checksum (tag 1, 2 bytes) as the last item");
 
     for (const RawItem& item : r.items) {
         const TagSpec* row = find_tag(item.tag);
@@ -270,18 +300,6 @@ DecodeResult decode(Span bytes, Digits digits) {
         } else {
             r.json[std::string(row->name)] = std::move(value);
         }
-    }
-
-    const RawItem& last = r.items.back();
-    r.checksum_stored = static_cast<std::uint16_t>((last.value[0] << 8) | last.value[1]);
-    r.checksum_computed = checksum16(bytes.subspan(0, last.offset));
-    if (r.checksum_stored != r.checksum_computed) {
-        char why[64];
-        std::snprintf(why, sizeof why, "checksum 0x%04X, computed 0x%04X", r.checksum_stored,
-                      r.checksum_computed);
-        r.status = DecodeStatus::bad_checksum;
-        r.reason = why;
-        return r;
     }
     r.status = DecodeStatus::ok;
     return r;

@@ -224,7 +224,10 @@ bool encode_integer(const TagSpec& row, const Item& item, Bytes& out, std::strin
 
 }  // namespace
 
-bool encode_value(const Item& item, Bytes& out, std::string& error) {
+namespace {
+
+// encode_value()'s work: false with `error` when the item cannot be encoded.
+bool encode_item(const Item& item, Bytes& out, std::string& error) {
     const TagSpec* row = find_tag(item.tag);
     // Raw bytes go out as they are for any tag but the checksum: nested sets and packs,
     // unknown tags, an item relayed from a decoded set, or a zero-length item ("unknown").
@@ -283,6 +286,14 @@ bool encode_value(const Item& item, Bytes& out, std::string& error) {
     return false;
 }
 
+}  // namespace
+
+Status encode_value(const Item& item, Bytes& out) {
+    std::string why;
+    if (!encode_item(item, out, why)) return Error{code::bad_request, std::move(why)};
+    return {};
+}
+
 std::uint32_t add_corners(LocalSet& set, LatLon frame_center,
                           const std::array<LatLon, 4>& corners) {
     const bool offsets = std::all_of(corners.begin(), corners.end(), [&](const LatLon& c) {
@@ -299,7 +310,6 @@ std::uint32_t add_corners(LocalSet& set, LatLon frame_center,
 }
 
 Encoded encode(const LocalSet& set) {
-    Encoded result;
     Bytes body;
     body.reserve(16 * set.items.size() + 8);
     Bytes value;
@@ -307,12 +317,12 @@ Encoded encode(const LocalSet& set) {
         if (item.tag == 1) continue;
         value.clear();
         std::string why;
-        if (!encode_value(item, value, why)) {
+        if (!encode_item(item, value, why)) {
             const TagSpec* row = find_tag(item.tag);
-            result.error = "tag " + std::to_string(item.tag);
-            if (row != nullptr) result.error += " (" + std::string(row->name) + ")";
-            result.error += " " + why;
-            return result;
+            std::string message = "tag " + std::to_string(item.tag);
+            if (row != nullptr) message += " (" + std::string(row->name) + ")";
+            message += " " + why;
+            return Error{code::bad_request, std::move(message)};
         }
         append_ber_oid(body, item.tag);
         append_ber_length(body, value.size());
@@ -320,15 +330,16 @@ Encoded encode(const LocalSet& set) {
     }
     body.push_back(0x01);  // checksum tag and length; its value follows the sum
     body.push_back(0x02);
-    Bytes& out = result.bytes;
+    // Built from the key rather than inserted into an empty reserved vector: GCC 12 at -O2
+    // warns falsely about that insert's memmove (-Wstringop-overflow).
+    Bytes out(uas_datalink_key.begin(), uas_datalink_key.end());
     out.reserve(uas_datalink_key.size() + 9 + body.size() + 2);
-    out.insert(out.end(), uas_datalink_key.begin(), uas_datalink_key.end());
     append_ber_length(out, body.size() + 2);
     out.insert(out.end(), body.begin(), body.end());
     const std::uint16_t sum = checksum16(out);
     out.push_back(static_cast<std::uint8_t>(sum >> 8));
     out.push_back(static_cast<std::uint8_t>(sum));
-    return result;
+    return out;
 }
 
 }  // namespace gimbal::klv

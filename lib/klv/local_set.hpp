@@ -30,6 +30,10 @@
 //       else if (r.ok()) use(r.json);                                 // {"sensor_latitude":..}
 //   }
 // decode() expects the set at the start of its input and reads no further than the set.
+// Untrusted bytes are checked before anything is expanded (contract section 14 v4): first
+// the set's size (at most max_set_bytes, from its BER length alone), then its checksum, then
+// the item count while the items are read (at most max_set_items); only a set that passes
+// all three is decoded into items and JSON.
 #pragma once
 
 #include <array>
@@ -44,6 +48,8 @@
 
 #include "klv/ber.hpp"
 #include "klv/st0601.hpp"
+
+#include "result/result.hpp"
 
 namespace gimbal::klv {
 
@@ -80,20 +86,25 @@ struct LatLon {
 };
 std::uint32_t add_corners(LocalSet& set, LatLon frame_center, const std::array<LatLon, 4>& corners);
 
-struct Encoded {
-    Bytes bytes;        // key, BER length, items, checksum; empty on error
-    std::string error;  // "tag 13 (sensor_latitude): ..." ; empty on success
-    bool ok() const { return error.empty(); }
-};
+// The set's bytes (key, BER length, items, checksum), or bad_request naming the item it
+// refuses: "tag 13 (sensor_latitude) takes a number".
+using Encoded = Result<Bytes>;
 
 Encoded encode(const LocalSet& set);
-// One item's value bytes (no tag, no length). False with `error` when encode() would refuse it.
-bool encode_value(const Item& item, Bytes& out, std::string& error);
+// One item's value bytes (no tag, no length) appended to `out`, or bad_request saying why
+// encode() would refuse it ("takes a number").
+Status encode_value(const Item& item, Bytes& out);
+
+// A set is at most this long, key through checksum (contract section 14 v4), and has at most
+// this many items: ST 0601 defines 143 tags, and a few of them may repeat.
+inline constexpr std::size_t max_set_bytes = 64 * 1024;
+inline constexpr std::size_t max_set_items = 1024;
 
 enum class DecodeStatus {
     ok,
-    bad_checksum,  // well formed, checksum differs (json and items are still filled)
+    bad_checksum,  // the checksum differs: refused before any item was read (json, items empty)
     malformed,     // not a set, truncated, an item running past the set, no checksum last
+    too_large,     // over max_set_bytes or max_set_items: refused before it was decoded
 };
 std::string_view to_string(DecodeStatus status);
 
@@ -119,6 +130,7 @@ struct DecodeResult {
     std::vector<RawItem> items;  // every item in wire order, the checksum included
     // Bytes the set takes (key through checksum) once its length is known and present,
     // whatever the status; 0 when the input is not a set or ends before the set does.
+    // Only an ok set has items and json; checksum_* are filled once the checksum was read.
     std::size_t consumed = 0;
     std::uint16_t checksum_stored = 0;
     std::uint16_t checksum_computed = 0;

@@ -7,36 +7,25 @@
 namespace gimbal::klv_state {
 
 using nlohmann::json;
-using session::number_at;
-using session::state_at;
 
 namespace {
 
-std::optional<klv::GroundPoint> ground_point(const json& state,
+std::optional<klv::GroundPoint> ground_point(const state::Telemetry* t,
                                              const std::optional<double>& undulation_m,
                                              std::optional<double>& range_m) {
-    const json* g = state_at(state, {"telemetry", "ground"});
-    if (!g) return std::nullopt;
-    const auto lat = number_at(*g, {"lat"});
-    const auto lon = number_at(*g, {"lon"});
-    if (!lat || !lon) return std::nullopt;
-    klv::GroundPoint p{*lat, *lon, std::nullopt};
-    if (const auto alt = number_at(*g, {"alt"}); alt && undulation_m)
-        p.alt_msl_m = geo::msl_from_ellipsoid(*alt, *undulation_m);
-    range_m = number_at(*g, {"range_m"});
+    if (!t || !t->view.ground) return std::nullopt;
+    const geo::GroundPoint& g = *t->view.ground;
+    klv::GroundPoint p{g.point.lat_deg, g.point.lon_deg, std::nullopt};
+    if (undulation_m) p.alt_msl_m = geo::msl_from_ellipsoid(g.point.alt_m, *undulation_m);
+    range_m = g.range_m;
     return p;
 }
 
-std::optional<std::array<klv::LatLon, 4>> footprint(const json& state) {
-    const json* f = state_at(state, {"telemetry", "footprint"});
-    if (!f || !f->is_array() || f->size() != 4) return std::nullopt;
+std::optional<std::array<klv::LatLon, 4>> footprint(const state::Telemetry* t) {
+    if (!t || !t->view.footprint) return std::nullopt;
     std::array<klv::LatLon, 4> corners{};
-    for (std::size_t i = 0; i < 4; ++i) {
-        const auto lat = number_at((*f)[i], {"lat"});
-        const auto lon = number_at((*f)[i], {"lon"});
-        if (!lat || !lon) return std::nullopt;
-        corners[i] = {*lat, *lon};
-    }
+    for (std::size_t i = 0; i < 4; ++i)
+        corners[i] = {(*t->view.footprint)[i].lat, (*t->view.footprint)[i].lon};
     return corners;
 }
 
@@ -50,31 +39,36 @@ double distance_m(double lat1, double lon1, std::optional<double> alt1, double l
     return geo::norm(a - b);
 }
 
+// A number of the decoded KLV (lib/klv's JSON of a set).
 std::optional<double> number(const json& j, const char* key) {
-    return number_at(j, {key});
+    const auto it = j.is_object() ? j.find(key) : j.end();
+    if (!j.is_object() || it == j.end() || !it->is_number()) return std::nullopt;
+    const double d = it->get<double>();
+    return std::isfinite(d) ? std::optional(d) : std::nullopt;
 }
 
 }  // namespace
 
-klv::SensorFrame sensor_frame(const json& state, const session::Capabilities& caps,
-                              std::uint64_t time_us, const std::optional<std::string>& mission_id) {
+klv::SensorFrame sensor_frame(const session::GimbalView& gimbal, std::uint64_t time_us,
+                              const std::optional<std::string>& mission_id) {
+    const session::Capabilities& caps = *gimbal.capabilities;
     klv::SensorFrame f;
     f.time_us = time_us;
     f.mission_id = mission_id;
-    const session::View view = caps.view(state);
+    const session::View view = caps.view();
     f.sensor_lat_deg = view.lat_deg;
     f.sensor_lon_deg = view.lon_deg;
     f.sensor_alt_msl_m = view.alt_msl_m;
     f.hfov_deg = view.hfov_deg;
     f.vfov_deg = view.vfov_deg;
 
-    const auto platform = caps.platform_attitude(state);
+    const auto platform = caps.platform_attitude();
     if (platform) {
         const geo::EulerDeg e = geo::quat_to_euler(*platform);
         f.platform_heading_deg = e.yaw_deg;
         f.platform_pitch_deg = e.pitch_deg;
         f.platform_roll_deg = e.roll_deg;
-        if (const auto los = caps.line_of_sight(state)) {
+        if (const auto los = caps.line_of_sight()) {
             // The line of sight in the platform's axes: azimuth from the nose, elevation up.
             const geo::EulerDeg r =
                 geo::quat_to_euler(geo::normalized(geo::conjugate(*platform) * *los));
@@ -87,13 +81,13 @@ klv::SensorFrame sensor_frame(const json& state, const session::Capabilities& ca
     std::optional<double> undulation;
     if (view.alt_m && view.alt_msl_m) undulation = *view.alt_m - *view.alt_msl_m;
     std::optional<double> ground_range;
-    f.frame_center = ground_point(state, undulation, ground_range);
+    f.frame_center = ground_point(gimbal.telemetry, undulation, ground_range);
     const bool target_known = view.target_lat_deg && view.target_lon_deg;
     if (target_known)
         f.target =
             klv::GroundPoint{*view.target_lat_deg, *view.target_lon_deg, view.target_alt_msl_m};
     if (!f.frame_center) f.frame_center = f.target;
-    if (f.frame_center) f.corners = footprint(state);
+    if (f.frame_center) f.corners = footprint(gimbal.telemetry);
 
     if (view.measured_range_m) {
         f.slant_range_m = view.measured_range_m;
@@ -114,20 +108,19 @@ bool has_position(const klv::SensorFrame& frame) {
            std::isfinite(*frame.sensor_lon_deg);
 }
 
-json compare(const json& decoded, const klv::SensorFrame& own) {
-    json out = {{"sensor_m", nullptr}, {"frame_center_m", nullptr}};
+state::KlvOffsets compare(const json& decoded, const klv::SensorFrame& own) {
+    state::KlvOffsets out;
     const auto s_lat = number(decoded, "sensor_latitude");
     const auto s_lon = number(decoded, "sensor_longitude");
     if (s_lat && s_lon && has_position(own))
-        out["sensor_m"] =
-            distance_m(*s_lat, *s_lon, number(decoded, "sensor_true_altitude"), *own.sensor_lat_deg,
-                       *own.sensor_lon_deg, own.sensor_alt_msl_m);
+        out.sensor_m = distance_m(*s_lat, *s_lon, number(decoded, "sensor_true_altitude"),
+                                  *own.sensor_lat_deg, *own.sensor_lon_deg, own.sensor_alt_msl_m);
     const auto c_lat = number(decoded, "frame_center_latitude");
     const auto c_lon = number(decoded, "frame_center_longitude");
     if (c_lat && c_lon && own.frame_center)
-        out["frame_center_m"] = distance_m(
-            *c_lat, *c_lon, number(decoded, "frame_center_elevation"), own.frame_center->lat_deg,
-            own.frame_center->lon_deg, own.frame_center->alt_msl_m);
+        out.frame_center_m = distance_m(*c_lat, *c_lon, number(decoded, "frame_center_elevation"),
+                                        own.frame_center->lat_deg, own.frame_center->lon_deg,
+                                        own.frame_center->alt_msl_m);
     return out;
 }
 

@@ -1,9 +1,9 @@
 // What gimbald knows about a gimbal's camera, as the KLV it generates (contract section 17):
-// a klv::SensorFrame read from the gimbal's STATE through its typed capabilities
+// a klv::SensorFrame read from the gimbal's typed state - its capabilities
 // (session/capabilities.hpp: view, line_of_sight, platform_attitude), never by naming a
-// protocol, plus the contract-wide derived telemetry keys every protocol that has them shares
-// (`telemetry.ground`, section 15; `telemetry.footprint`, sections 11 and 15). Pure: the
-// caller passes the time stamp.
+// protocol, and the shared telemetry every protocol that has it fills (state/telemetry.hpp:
+// `ground`, section 15; `footprint`, sections 11 and 15). Pure: the caller passes the time
+// stamp.
 //
 //   sensor: the view's camera position (MSL) and fields of view;
 //   platform heading, pitch, roll: platform_attitude;
@@ -22,12 +22,13 @@
 #include <string>
 
 #include "klv/sensor_set.hpp"
-#include "session/capabilities.hpp"
+#include "session/gimbal_view.hpp"
+#include "state/video_state.hpp"
 
 namespace gimbal::klv_state {
 
-klv::SensorFrame sensor_frame(const nlohmann::json& state, const session::Capabilities& caps,
-                              std::uint64_t time_us,
+// `gimbal.capabilities` must be set.
+klv::SensorFrame sensor_frame(const session::GimbalView& gimbal, std::uint64_t time_us,
                               const std::optional<std::string>& mission_id = std::nullopt);
 
 // Enough to be worth sending: the sensor's position is known.
@@ -37,6 +38,6 @@ bool has_position(const klv::SensorFrame& frame);
 // klv::decode) lies from gimbald's own values, in metres - the sensor position and the frame
 // centre, 3D when both altitudes are known, else along the ground; null where either side
 // lacks the value. Offsets (tags 26-33) are not compared.
-nlohmann::json compare(const nlohmann::json& decoded, const klv::SensorFrame& own);
+state::KlvOffsets compare(const nlohmann::json& decoded, const klv::SensorFrame& own);
 
 }  // namespace gimbal::klv_state

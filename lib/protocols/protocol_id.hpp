@@ -9,11 +9,11 @@
 
 namespace gimbal::protocols {
 
-enum class ProtocolId { orion, viewpro, mavlink };
+enum class ProtocolId { orion, viewpro, mavlink, siyi };
 
 // Every protocol, in the order `version` and the docs list them.
 inline constexpr std::array all_protocol_ids{ProtocolId::orion, ProtocolId::viewpro,
-                                             ProtocolId::mavlink};
+                                             ProtocolId::mavlink, ProtocolId::siyi};
 
 // The protocol's name in configuration, STATE `protocol` and recordings.
 std::string_view to_string(ProtocolId id);

@@ -4,7 +4,9 @@
 
 #include "protocols/mavlink_device/mavlink_device_entry.hpp"
 #include "protocols/orion/orion_entry.hpp"
+#include "protocols/siyi/siyi_entry.hpp"
 #include "protocols/viewpro/viewpro_entry.hpp"
+#include "state/messages.hpp"
 
 namespace gimbal::protocols {
 
@@ -16,6 +18,8 @@ const Entry& entry(ProtocolId id) {
             return viewpro_entry();
         case ProtocolId::mavlink:
             return mavlink_device_entry();
+        case ProtocolId::siyi:
+            return siyi_entry();
     }
     __builtin_unreachable();  // every enumerator returns above; -Wswitch names a missing one
 }
@@ -63,6 +67,15 @@ std::string names_text() {
     std::string out;
     for (const auto& name : names()) out += (out.empty() ? "" : ", ") + name;
     return out;
+}
+
+bool is_state_key(std::string_view key) {
+    if (state::is_shared_state_key(key)) return true;
+    for (const ProtocolId id : all_protocol_ids) {
+        const auto& keys = entry(id).state_keys;
+        if (std::find(keys.begin(), keys.end(), key) != keys.end()) return true;
+    }
+    return false;
 }
 
 std::vector<const Entry*> planners_of(std::string_view cmd) {

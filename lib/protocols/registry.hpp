@@ -17,6 +17,7 @@
 #include "config/fields.hpp"
 #include "framing/stream_splitter.hpp"
 #include "geo/surface.hpp"
+#include "protocols/discovery.hpp"
 #include "protocols/protocol_id.hpp"
 #include "protocols/simulator.hpp"
 #include "protocols/track.hpp"
@@ -68,7 +69,12 @@ struct Entry {
     // find_by_dissector maps a recording's frames back to their entry.
     std::string_view dissector;
     std::span<const PlannedCommand> commands;
-    const session::Capabilities* capabilities = nullptr;
+    // The top-level STATE keys this protocol's session writes besides the shared ones
+    // (state::is_shared_state_key): what a subscriber may name in `keys`.
+    std::span<const std::string_view> state_keys;
+    // What every gimbal of the protocol can do (a session's capabilities say the same, bound
+    // to its state: session::Protocol::capabilities()).
+    session::Features features;
 
     // The gimbal keys this protocol owns besides name, protocol, link and video, declared in
     // its <protocol>_config.hpp. read_config reads them from the gimbal's object, reporting
@@ -90,6 +96,9 @@ struct Entry {
     std::unique_ptr<framing::StreamSplitter> (*make_splitter)() = nullptr;
     // The gimbal-to-ground stream as track points (gimbal-export).
     std::unique_ptr<TrackDecoder> (*make_track_decoder)() = nullptr;
+    // How gimbald finds such a gimbal by UDP broadcast (a TCP link with host "discover");
+    // empty: it cannot, and the configuration refuses "discover".
+    Discovery discovery;
     Simulator simulator;
 
     bool plans(std::string_view cmd) const;
@@ -104,6 +113,9 @@ const Entry* find_by_dissector(std::string_view dissector);
 std::vector<std::string> names();
 // The names joined by ", " (for messages and help texts).
 std::string names_text();
+// True for a top-level STATE key of some gimbal: a shared key or a protocol's own
+// (Entry::state_keys). What `keys` of state, subscribe and mqtt.state_keys may name.
+bool is_state_key(std::string_view key);
 // The protocols that plan `cmd`, in order.
 std::vector<const Entry*> planners_of(std::string_view cmd);
 

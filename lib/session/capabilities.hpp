@@ -1,14 +1,15 @@
 // What a gimbal can do, typed, so that consumers (the MAVLink gimbal manager, the console,
 // KLV) ask the gimbal instead of naming its protocol - AP_Mount_Backend's set_angle_target /
-// set_zoom returning false is the model. Every function is pure: it reads the gimbal's
-// STATE (contract section 5, as GimbalSession::snapshot() gives it) and either answers or
-// says why not:
+// set_zoom returning false is the model. A protocol's capabilities are bound to its typed state
+// (its session's Protocol::capabilities()) and read its fields, never STATE JSON; each answer
+// is a pure function of that state:
 //   - an action (point_angles, rate, geopoint, stop, zoom) returns the gimbald request to run
 //     through the one request path ({"cmd": ..., parameters}, without "gimbal"), or an Error:
-//     `unsupported` (this protocol cannot), `unavailable` (not yet: the STATE lacks what it
+//     `unsupported` (this protocol cannot), `unavailable` (not yet: the state lacks what it
 //     needs, e.g. no telemetry for an angle left out);
-//   - a reading (line_of_sight, view, identity, limits, camera) returns what STATE says, with
-//     nullopt for what this gimbal does not report (yet); `image` says why not as an Error.
+//   - a reading (line_of_sight, view, identity, limits, camera) returns what the gimbal
+//     reported, with nullopt for what it does not report (yet); `image` says why not as an
+//     Error.
 // Angles are degrees, positions WGS84 degrees and metres above mean sea level (image's camera
 // position: above the WGS84 ellipsoid, as image geometry works).
 #pragma once
@@ -72,10 +73,9 @@ struct Features {
     bool yaw_lock = false;
     bool yaw_in_earth_frame = false;
     bool infinite_yaw = false;
-    // point_angles given both angles, and rate, read nothing from STATE (the gimbal takes
-    // absolute angles; a gimbal stepped from where it looks now does not). The MAVLink
-    // mapping then skips building STATE for a PITCHYAW, which ground stations send at up to
-    // 100 Hz. tests/unit/protocols checks the claim.
+    // point_angles given both angles, and rate, read nothing of what the gimbal reported (the
+    // gimbal takes absolute angles; a gimbal stepped from where it looks now does not).
+    // tests/unit/protocols checks the claim.
     bool absolute_angles = false;
 };
 
@@ -123,45 +123,44 @@ struct Camera {
     std::optional<double> sensor_width_mm, sensor_height_mm;
 };
 
+// The names of the actions `f` allows, for STATE `capabilities` (point_angles, rate, geopoint,
+// zoom).
+std::vector<std::string> feature_names(const Features& f);
+
 class Capabilities {
   public:
     virtual ~Capabilities() = default;
 
     virtual Features features() const = 0;
-    // The names of the actions this gimbal takes, for STATE `capabilities` (point_angles,
-    // rate, geopoint, zoom).
-    std::vector<std::string> names() const;
+    std::vector<std::string> names() const { return feature_names(features()); }
 
-    virtual Request point_angles(const nlohmann::json& state, const AnglesTarget& t) const = 0;
-    virtual Request rate(const nlohmann::json& state, const RateTarget& t) const = 0;
-    virtual Request geopoint(const nlohmann::json& state, const GeoTarget& t) const = 0;
+    virtual Request point_angles(const AnglesTarget& t) const = 0;
+    virtual Request rate(const RateTarget& t) const = 0;
+    virtual Request geopoint(const GeoTarget& t) const = 0;
     // Stop pointing at a location: hold where the gimbal looks now.
-    virtual Request stop(const nlohmann::json& state) const = 0;
-    virtual Request zoom(const nlohmann::json& state, const ZoomTarget& t) const = 0;
+    virtual Request stop() const = 0;
+    virtual Request zoom(const ZoomTarget& t) const = 0;
 
     // The camera's line of sight as a rotation from the camera frame (x along the view) to
     // NED.
-    virtual std::optional<geo::Quat> line_of_sight(const nlohmann::json& state) const = 0;
-    virtual View view(const nlohmann::json& state) const = 0;
+    virtual std::optional<geo::Quat> line_of_sight() const = 0;
+    virtual View view() const = 0;
     // The image geometry, or unsupported (the gimbal never reports what it needs, such as a
     // field of view) / unavailable (no telemetry yet).
-    virtual command::Result<ImageView> image(const nlohmann::json& state) const = 0;
+    virtual command::Result<ImageView> image() const = 0;
     // The platform's (aircraft's, or the gimbal mount's) attitude as a rotation from its body
     // frame to NED, when the gimbal reports it (KLV platform heading, pitch and roll).
-    virtual std::optional<geo::Quat> platform_attitude(const nlohmann::json&) const {
-        return std::nullopt;
-    }
-    virtual Identity identity(const nlohmann::json& state) const = 0;
-    virtual Limits limits(const nlohmann::json& state) const = 0;
-    virtual Camera camera(const nlohmann::json& state) const = 0;
+    virtual std::optional<geo::Quat> platform_attitude() const { return std::nullopt; }
+    virtual Identity identity() const = 0;
+    virtual Limits limits() const = 0;
+    virtual Camera camera() const = 0;
+    // Whether the gimbal says it still points at a location (an Orion in geopoint mode), for a
+    // gimbal that reports its pointing mode; nullopt when it reports none (the MAVLink camera
+    // then keeps a click-to-track point until steered elsewhere).
+    virtual std::optional<bool> holds_geopoint() const { return std::nullopt; }
 };
 
-// Helpers the implementations share: STATE lookups that tolerate absent or null keys.
-const nlohmann::json* state_at(const nlohmann::json& state,
-                               std::initializer_list<const char*> keys);
-// A finite number at that path, else nullopt.
-std::optional<double> number_at(const nlohmann::json& state,
-                                std::initializer_list<const char*> keys);
+// Helpers the implementations share.
 // Degrees into -180..180.
 double wrap180(double deg);
 // An Error for a request this protocol cannot make.

@@ -6,6 +6,7 @@
 #include <string>
 #include <string_view>
 
+#include "command/catalogue.hpp"
 #include "command/params.hpp"
 
 namespace gimbal::session {
@@ -16,32 +17,40 @@ using command::Error;
 using nlohmann::json;
 namespace code = command::code;
 
-// The altitudes commands may name (lib/command/catalogue.cpp), also as heights above ground.
-constexpr double min_alt_m = -2000;
-constexpr double max_alt_m = 100000;
+// What a point object is read against: the catalogue's geopoint parameters, or the fields
+// of a path's points.
+std::span<const command::ParamSpec> specs_of(std::string_view cmd, std::string_view structured) {
+    const command::CommandSpec* spec = command::find_command(cmd);
+    if (!spec) return {};
+    if (structured.empty()) return spec->params;
+    for (const command::ParamSpec& param : spec->params)
+        if (param.name == structured) return param.fields;
+    return {};
+}
 
 bool present(const json& object, const char* key) {
     const auto it = object.find(key);
     return it != object.end() && !it->is_null();
 }
 
-// The alt_ref of a request (nullopt when absent), refused when not one of `allowed`.
-command::Result<std::optional<std::string>> alt_ref(const json& request,
-                                                    std::span<const std::string_view> allowed) {
-    command::Params p(request);
-    auto ref = p.choice("alt_ref", allowed, false);
+// The alt_ref of a request (nullopt when absent), refused when not one of its command's.
+command::Result<std::optional<std::string>> alt_ref(const json& request, std::string_view cmd) {
+    command::JsonParams p(request, cmd);
+    auto ref = p.choice("alt_ref", false);
     if (!p.ok()) return p.error();
     return ref;
 }
 
 // The ellipsoid altitude for one point object: the terrain's height there plus the height
 // above ground when `above_ground`, else the terrain's height. `where` prefixes messages.
-command::Result<double> ground_altitude(const json& point, bool above_ground, geo::Surface* terrain,
+command::Result<double> ground_altitude(const json& point,
+                                        std::span<const command::ParamSpec> specs,
+                                        bool above_ground, geo::Surface* terrain,
                                         const std::string& where) {
-    command::Params p(point);
-    const auto lat = p.number("lat", -90.0, 90.0, true);
-    const auto lon = p.number("lon", -180.0, 180.0, true);
-    const auto agl = p.number("alt", min_alt_m, max_alt_m, false);
+    command::JsonParams p(point, specs);
+    const auto lat = p.number("lat", true);
+    const auto lon = p.number("lon", true);
+    const auto agl = p.number("alt", false);
     if (!p.ok()) return Error{p.error().code, where + p.error().message};
     if (!terrain)
         return Error{code::unavailable,
@@ -57,15 +66,14 @@ command::Result<double> ground_altitude(const json& point, bool above_ground, ge
 }
 
 command::Result<json> resolve_geopoint(const json& request, geo::Surface* terrain) {
-    static constexpr std::array<std::string_view, 3> refs{"wgs84", "msl", "terrain"};
-    const auto read = alt_ref(request, refs);
+    const auto read = alt_ref(request, "geopoint");
     if (!read) return read.error();
     const auto& ref = *read;
     const bool above_ground = ref == "terrain";
     if (present(request, "alt") && !above_ground) return request;
     if (ref == "msl")
         return Error{code::bad_request, "missing parameter 'alt' (alt_ref 'msl' needs it)"};
-    auto alt = ground_altitude(request, above_ground, terrain, "");
+    auto alt = ground_altitude(request, specs_of("geopoint", ""), above_ground, terrain, "");
     if (!alt) return alt.error();
     json out = request;
     out["alt"] = *alt;
@@ -74,8 +82,7 @@ command::Result<json> resolve_geopoint(const json& request, geo::Surface* terrai
 }
 
 command::Result<json> resolve_path(const json& request, geo::Surface* terrain) {
-    static constexpr std::array<std::string_view, 2> refs{"wgs84", "terrain"};
-    const auto read = alt_ref(request, refs);
+    const auto read = alt_ref(request, "path");
     if (!read) return read.error();
     const auto& ref = *read;
     const bool above_ground = ref == "terrain";
@@ -87,8 +94,8 @@ command::Result<json> resolve_path(const json& request, geo::Surface* terrain) {
         const json& point = (*points)[i];
         if (!point.is_object()) return request;  // the planner names the point
         if (present(point, "alt") && !above_ground) continue;
-        auto alt =
-            ground_altitude(point, above_ground, terrain, "points[" + std::to_string(i) + "]: ");
+        auto alt = ground_altitude(point, specs_of("path", "points"), above_ground, terrain,
+                                   "points[" + std::to_string(i) + "]: ");
         if (!alt) return alt.error();
         out["points"][i]["alt"] = *alt;
         changed = true;

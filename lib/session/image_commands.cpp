@@ -15,17 +15,15 @@ using command::Error;
 using nlohmann::json;
 namespace code = command::code;
 
-constexpr double max_pixels = 65535;
-
 }  // namespace
 
-command::Result<ImagePosition> read_image_position(command::Params& p) {
+command::Result<ImagePosition> read_image_position(command::JsonParams& p) {
     const bool has_x = p.has("x"), has_y = p.has("y");
     const bool has_px = p.has("px"), has_py = p.has("py");
-    const auto x = p.number("x", -1.0, 1.0, false);
-    const auto y = p.number("y", -1.0, 1.0, false);
-    const auto px = p.number("px", 0.0, max_pixels, false);
-    const auto py = p.number("py", 0.0, max_pixels, false);
+    const auto x = p.number("x", false);
+    const auto y = p.number("y", false);
+    const auto px = p.number("px", false);
+    const auto py = p.number("py", false);
     if (!p.ok()) return p.error();
     const bool normalised = has_x || has_y;
     const bool pixels = has_px || has_py;
@@ -104,15 +102,15 @@ json project_reply(const ImageView& view, const geo::Lla& point, geo::Surface* t
     return out;
 }
 
-Request point_request(const Capabilities& capabilities, const json& state, const ImageView& view,
+Request point_request(const Capabilities& capabilities, const ImageView& view,
                       const geo::GroundPoint& target, bool stare) {
     if (!capabilities.features().geopoint)
         return unsupported("this gimbal cannot point at a location (no geopoint capability)");
     if (!view.geoid_undulation_m)
         return unavailable("the gimbal reports no geoid undulation for the point's altitude");
     Request request = capabilities.geopoint(
-        state, GeoTarget{target.point.lat_deg, target.point.lon_deg,
-                         geo::msl_from_ellipsoid(target.point.alt_m, *view.geoid_undulation_m)});
+        GeoTarget{target.point.lat_deg, target.point.lon_deg,
+                  geo::msl_from_ellipsoid(target.point.alt_m, *view.geoid_undulation_m)});
     if (!request || !stare) return request;
     // Stare where the command the capability chose takes it (the catalogue says).
     const auto* cmd = request->contains("cmd") && (*request)["cmd"].is_string()

@@ -23,7 +23,7 @@ struct ImagePosition {
 
 // Reads x,y (each -1..1) or px,py (each 0..65535; the image's size is checked later). One
 // pair, whole: both or neither of a pair, never both pairs. Errors name the keys.
-command::Result<ImagePosition> read_image_position(command::Params& p);
+command::Result<ImagePosition> read_image_position(command::JsonParams& p);
 
 // The normalised point: pixels converted with the image's size (out_of_range beyond it,
 // unavailable when the gimbal reports no size).
@@ -42,7 +42,7 @@ nlohmann::json project_reply(const ImageView& view, const geo::Lla& point, geo::
 // capability, staring when `stare` and the gimbal's geopoint takes `stare`. unsupported when
 // the gimbal cannot point at a location (or stare); unavailable when it reports no geoid
 // undulation to give the altitude above mean sea level with.
-Request point_request(const Capabilities& capabilities, const nlohmann::json& state,
-                      const ImageView& view, const geo::GroundPoint& target, bool stare);
+Request point_request(const Capabilities& capabilities, const ImageView& view,
+                      const geo::GroundPoint& target, bool stare);
 
 }  // namespace gimbal::session

@@ -2,43 +2,7 @@
 
 #include <algorithm>
 
-#include "orion/framing.hpp"
-#include "viewpro/output.hpp"
-
 namespace gimbal::sim {
-
-namespace {
-
-std::size_t orion_frame_size_at(std::span<const std::uint8_t> in) {
-    if (in.size() < orion::header_size || in[0] != orion::sync0 || in[1] != orion::sync1 ||
-        in[3] > orion::max_data_length)
-        return 0;
-    return orion::header_size + in[3] + orion::checksum_size;
-}
-
-std::size_t viewpro_frame_size_at(std::span<const std::uint8_t> in) {
-    if (in.size() < 2 || in[0] != viewpro::output_header) return 0;
-    switch (in[1]) {
-        case viewpro::out1_id:
-            return viewpro::out1_size;
-        case viewpro::out2_id:
-            return viewpro::out2_size;
-        case viewpro::out3_id:
-            return viewpro::out3_size;  // and OUT4
-        default:
-            return 0;
-    }
-}
-
-}  // namespace
-
-FrameShape orion_frames() {
-    return {orion_frame_size_at, orion::sync0, orion::sync1};
-}
-
-FrameShape viewpro_output_frames() {
-    return {viewpro_frame_size_at, viewpro::output_header, viewpro::out3_id};
-}
 
 FaultInjector::FaultInjector(const FaultOptions& options, FrameShape shape)
     : options_(options), shape_(shape), rng_(options.seed) {

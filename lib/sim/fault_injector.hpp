@@ -24,7 +24,8 @@ struct FaultStats {
     std::uint64_t junk_inserts = 0;
 };
 
-// How to find whole frames in a protocol's output. The checksum is always the last byte.
+// How to find whole frames in a protocol's output (its simulator hook's fault_frames,
+// protocols/simulator.hpp). The checksum is always the last byte.
 struct FrameShape {
     // Length of the whole frame starting at in[0], or 0 when no frame starts there.
     std::size_t (*frame_size_at)(std::span<const std::uint8_t> in);
@@ -32,12 +33,9 @@ struct FrameShape {
     std::uint8_t sync1;  // ... sometimes followed by sync1: a false header
 };
 
-FrameShape orion_frames();           // D0 0D id len data ck ck
-FrameShape viewpro_output_frames();  // FE FB/FC/FD ... ck (OUT1..OUT4)
-
 class FaultInjector {
   public:
-    explicit FaultInjector(const FaultOptions& options, FrameShape shape = orion_frames());
+    explicit FaultInjector(const FaultOptions& options, FrameShape shape);
 
     // Appends `in`, with faults applied, to `out`.
     void apply(std::span<const std::uint8_t> in, std::vector<std::uint8_t>& out);

@@ -92,17 +92,18 @@ struct H264Encoder::Impl {
 H264Encoder::H264Encoder(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 H264Encoder::~H264Encoder() = default;
 
-H264Encoder::Opened H264Encoder::open(const H264Options& o) {
-    if (auto e = check(o); !e.empty()) return {nullptr, e};
+Result<std::unique_ptr<H264Encoder>> H264Encoder::open(const H264Options& o) {
+    if (auto e = check(o); !e.empty()) return Error{code::bad_request, e};
     const AVCodec* codec = avcodec_find_encoder_by_name("libx264");
-    if (!codec) return {nullptr, "this FFmpeg has no libx264 encoder"};
+    if (!codec) return Error{code::unavailable, "this FFmpeg has no libx264 encoder"};
     auto impl = std::make_unique<Impl>();
     impl->options = o;
     impl->key_interval = std::max(1, static_cast<int>(std::lround(o.key_interval_s * o.fps)));
     impl->context.reset(avcodec_alloc_context3(codec));
     impl->frame.reset(av_frame_alloc());
     impl->packet.reset(av_packet_alloc());
-    if (!impl->context || !impl->frame || !impl->packet) return {nullptr, "out of memory"};
+    if (!impl->context || !impl->frame || !impl->packet)
+        return Error{code::unavailable, "out of memory"};
 
     AVCodecContext* c = impl->context.get();
     // x264's informational lines (CPU flags, profile) are verbose here; warnings still show.
@@ -132,9 +133,9 @@ H264Encoder::Opened H264Encoder::open(const H264Options& o) {
     if (set("preset", o.preset.c_str()) < 0 || set("tune", "zerolatency") < 0 ||
         set("profile", o.profile.c_str()) < 0 || av_opt_set_int(priv, "aud", 1, 0) < 0 ||
         av_opt_set_int(priv, "sc_threshold", 0, 0) < 0)
-        return {nullptr, "libx264 does not take the options"};
+        return Error{code::unavailable, "libx264 does not take the options"};
     if (const int r = avcodec_open2(c, codec, nullptr); r < 0)
-        return {nullptr, "cannot open libx264: " + av_error(r)};
+        return Error{code::unavailable, "cannot open libx264: " + av_error(r)};
 
     AVFrame* f = impl->frame.get();
     f->format = AV_PIX_FMT_YUV420P;
@@ -142,7 +143,7 @@ H264Encoder::Opened H264Encoder::open(const H264Options& o) {
     f->height = o.height;
     f->color_range = AVCOL_RANGE_MPEG;
     f->colorspace = AVCOL_SPC_SMPTE170M;
-    return {std::unique_ptr<H264Encoder>(new H264Encoder(std::move(impl))), {}};
+    return std::unique_ptr<H264Encoder>(new H264Encoder(std::move(impl)));
 }
 
 bool H264Encoder::encode(const sim::I420Frame& in, std::int64_t pts_90k,

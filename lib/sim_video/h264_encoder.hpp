@@ -14,6 +14,8 @@
 
 #include "sim/i420_frame.hpp"
 
+#include "result/result.hpp"
+
 namespace gimbal::sim_video {
 
 struct H264Options {
@@ -37,12 +39,9 @@ struct AccessUnit {
 
 class H264Encoder {
   public:
-    struct Opened {
-        std::unique_ptr<H264Encoder> encoder;
-        std::string error;  // when encoder is null
-    };
-    // Fails when the options are invalid or this FFmpeg has no libx264.
-    static Opened open(const H264Options& options);
+    // Fails when the options are invalid (bad_request, check()'s message) or this FFmpeg has
+    // no libx264 or cannot open it (unavailable).
+    static Result<std::unique_ptr<H264Encoder>> open(const H264Options& options);
     ~H264Encoder();
     H264Encoder(const H264Encoder&) = delete;
     H264Encoder& operator=(const H264Encoder&) = delete;

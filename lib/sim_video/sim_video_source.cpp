@@ -1,21 +1,20 @@
 #include "sim_video/sim_video_source.hpp"
 
 #include "sim/frame_code.hpp"
-#include "sim/sim_camera.hpp"
 
 namespace gimbal::sim_video {
 
-SimVideoSource::Opened SimVideoSource::open(const SimVideoOptions& options) {
+Result<std::unique_ptr<SimVideoSource>> SimVideoSource::open(const SimVideoOptions& options) {
     if (!sim::valid(options.scene))
-        return {nullptr, "scene: width and height must be even, 16..4096; grid 4..64 px"};
+        return Error{code::bad_request,
+                     "scene: width and height must be even, 16..4096; grid 4..64 px"};
     H264Options h264 = options.h264;
     h264.width = options.scene.width;
     h264.height = options.scene.height;
     auto opened = H264Encoder::open(h264);
-    if (!opened.encoder) return {nullptr, opened.error};
-    return {std::unique_ptr<SimVideoSource>(
-                new SimVideoSource(options.scene, std::move(opened.encoder))),
-            {}};
+    if (!opened) return opened.error();
+    return std::unique_ptr<SimVideoSource>(
+        new SimVideoSource(options.scene, std::move(opened).value()));
 }
 
 SimVideoSource::SimVideoSource(const sim::SceneOptions& scene, std::unique_ptr<H264Encoder> encoder)
@@ -26,12 +25,6 @@ bool SimVideoSource::frame(const geo::CameraPose& camera, std::uint64_t unix_ms,
     renderer_.render(camera, picture_);
     sim::draw_frame_code(picture_, unix_ms);
     return encoder_->encode(picture_, pts_90k, out);
-}
-
-bool SimVideoSource::frame(const sim::OrionCameraView& view, std::uint64_t unix_ms,
-                           std::int64_t pts_90k, std::vector<AccessUnit>& out) {
-    renderer_.set_monochrome(view.infrared);
-    return frame(sim::camera_pose(view), unix_ms, pts_90k, out);
 }
 
 bool SimVideoSource::frame(const sim::CameraView& view, std::uint64_t unix_ms, std::int64_t pts_90k,

@@ -13,7 +13,6 @@
 #include "geo/footprint.hpp"
 #include "sim/camera_view.hpp"
 #include "sim/i420_frame.hpp"
-#include "sim/orion_sim.hpp"
 #include "sim/scene_renderer.hpp"
 #include "sim_video/h264_encoder.hpp"
 
@@ -27,20 +26,13 @@ struct SimVideoOptions {
 
 class SimVideoSource {
   public:
-    struct Opened {
-        std::unique_ptr<SimVideoSource> source;
-        std::string error;
-    };
-    static Opened open(const SimVideoOptions& options);
+    // The source, or why not (bad_request for options, unavailable for the encoder).
+    static Result<std::unique_ptr<SimVideoSource>> open(const SimVideoOptions& options);
 
     // One frame of what `camera` sees, taken at unix_ms and shown at pts_90k; its access
     // unit(s) are appended to `out`. False (error() says why) when the encoder refuses it; an
     // invalid camera still gives a (grey) frame.
     bool frame(const geo::CameraPose& camera, std::uint64_t unix_ms, std::int64_t pts_90k,
-               std::vector<AccessUnit>& out);
-    // The simulated Orion's active camera (sim::orion_sim_camera): its pose, and no colour
-    // when it is the infrared one.
-    bool frame(const sim::OrionCameraView& view, std::uint64_t unix_ms, std::int64_t pts_90k,
                std::vector<AccessUnit>& out);
     // Any simulated camera (a protocol's simulator hook): its pose, grey when monochrome.
     bool frame(const sim::CameraView& view, std::uint64_t unix_ms, std::int64_t pts_90k,

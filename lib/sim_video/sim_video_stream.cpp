@@ -5,12 +5,12 @@
 
 namespace gimbal::sim_video {
 
-SimVideoStream::Opened SimVideoStream::open(const SimVideoStreamOptions& options, Sink sink) {
+Result<std::unique_ptr<SimVideoStream>> SimVideoStream::open(const SimVideoStreamOptions& options,
+                                                             Sink sink) {
     auto source = SimVideoSource::open(options.video);
-    if (!source.source) return {nullptr, source.error};
-    return {std::unique_ptr<SimVideoStream>(
-                new SimVideoStream(options, std::move(source.source), std::move(sink))),
-            {}};
+    if (!source) return source.error();
+    return std::unique_ptr<SimVideoStream>(
+        new SimVideoStream(options, std::move(source).value(), std::move(sink)));
 }
 
 SimVideoStream::SimVideoStream(const SimVideoStreamOptions& options,
@@ -51,7 +51,7 @@ bool SimVideoStream::frame(const sim::CameraView& view, std::uint64_t unix_us,
     if (klv_) {
         const klv::Encoded set = klv::encode(klv::sensor_set(sensor_frame(view, unix_us)));
         if (set.ok()) {
-            mux_.write_klv(set.bytes, pts);
+            mux_.write_klv(*set, pts);
             ++stats_.klv_sets;
         }
     }

@@ -35,11 +35,8 @@ struct SimVideoStreamStats {
 class SimVideoStream {
   public:
     using Sink = std::function<void(std::span<const std::uint8_t> chunk)>;
-    struct Opened {
-        std::unique_ptr<SimVideoStream> stream;
-        std::string error;
-    };
-    static Opened open(const SimVideoStreamOptions& options, Sink sink);
+    static Result<std::unique_ptr<SimVideoStream>> open(const SimVideoStreamOptions& options,
+                                                        Sink sink);
 
     // One frame of `view`, taken at unix_us (drawn as the time code, and the KLV's time
     // stamp) and shown at pts_90k (increasing). False with error() when the encoder fails.

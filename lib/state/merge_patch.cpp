@@ -1,6 +1,11 @@
 #include "state/merge_patch.hpp"
 
+#include <algorithm>
+#include <functional>
+#include <string>
 #include <string_view>
+#include <utility>
+#include <vector>
 
 namespace gimbal::state {
 
@@ -74,6 +79,30 @@ json merge_patch_diff(const json& from, const json& to) {
     json out;
     diff_objects(from, to, out);
     return out;
+}
+
+std::vector<json> split_patch(const json& patch, std::size_t budget) {
+    if (!patch.is_object() || patch.size() < 2) return {patch};
+    // Each member as it adds to a part's text: "key":value and a comma.
+    std::vector<std::pair<std::size_t, std::string>> members;
+    for (auto it = patch.begin(); it != patch.end(); ++it)
+        members.emplace_back(json(it.key()).dump().size() + 2 +
+                                 it->dump(-1, ' ', false, json::error_handler_t::replace).size(),
+                             it.key());
+    std::sort(members.begin(), members.end(), std::greater<>());
+    std::vector<json> parts;
+    std::vector<std::size_t> used;  // bytes of each part, {} included
+    for (const auto& [size, key] : members) {
+        std::size_t i = 0;
+        while (i < parts.size() && used[i] + size > budget) ++i;
+        if (i == parts.size()) {
+            parts.push_back(json::object());
+            used.push_back(2);
+        }
+        parts[i][key] = patch[key];
+        used[i] += size;
+    }
+    return parts;
 }
 
 bool same_ignoring_age(const json& a, const json& b) {

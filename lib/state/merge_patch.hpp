@@ -4,7 +4,9 @@
 // not count as a change and ride along only inside objects that carry other changes.
 #pragma once
 
+#include <cstddef>
 #include <nlohmann/json.hpp>
+#include <vector>
 
 namespace gimbal::state {
 
@@ -18,6 +20,12 @@ void merge_patch_apply(nlohmann::json& target, const nlohmann::json& patch);
 // something else changed too. An empty object means "nothing changed". When either side is
 // not an object, the patch is `to` itself.
 nlohmann::json merge_patch_diff(const nlohmann::json& from, const nlohmann::json& to);
+
+// `patch` (an object) cut into patches of whole top-level members, each at most `budget`
+// bytes of compact JSON text where a member allows (one larger than that goes alone).
+// Applied in order they do what `patch` does: the members are disjoint. Largest members
+// first, each into the first part it fits (first-fit decreasing); one part when it all fits.
+std::vector<nlohmann::json> split_patch(const nlohmann::json& patch, std::size_t budget);
 
 // True when `a` and `b` are equal once every `age_s` member, at any depth, is left out and a
 // missing object member is taken as null.

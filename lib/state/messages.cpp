@@ -1,45 +1,22 @@
 #include "state/messages.hpp"
 
 #include <algorithm>
+#include <functional>
 #include <iterator>
+#include <utility>
 
 namespace gimbal::state {
 
 namespace {
 
-// Every top-level STATE key of contract sections 5, 8-12, 10 (`command`) and 17 (`video`).
-constexpr std::string_view known_keys[] = {"protocol",
-                                           "link",
-                                           "stale",
-                                           "telemetry",
-                                           "ins",
-                                           "gps",
-                                           "lasers",
-                                           "diagnostics",
-                                           "performance",
-                                           "software",
-                                           "network_diagnostics",
-                                           "vibration",
-                                           "retract",
-                                           "stare",
-                                           "cameras",
-                                           "limits",
-                                           "network_settings",
-                                           "network_video",
-                                           "uart_config",
-                                           "ins_options",
-                                           "versions",
-                                           "reset_source",
-                                           "boards",
-                                           "output",
-                                           "device",
-                                           "vehicle",
-                                           "command",
-                                           "mavlink",
-                                           "mqtt",
-                                           "record",
-                                           "capabilities",
-                                           "video"};
+// The top-level STATE keys every gimbal may have, whatever its protocol: the session's
+// (contract section 5: protocol, link, stale), the shared typed part every protocol fills
+// (telemetry, lasers, stare), and the daemon's own (vehicle, command, mavlink, mqtt, record,
+// capabilities, video). A protocol's own keys (Orion's ins, Viewpro's output, ...) are its
+// registry entry's (protocols::Entry::state_keys).
+constexpr std::string_view shared_keys[] = {
+    "protocol", "link",    "stale", "telemetry", "lasers",       "stare", "vehicle",
+    "command",  "mavlink", "mqtt",  "record",    "capabilities", "video"};
 
 bool always_kept(std::string_view key) {
     return key == "protocol" || key == "link" || key == "stale";
@@ -57,8 +34,30 @@ nlohmann::json event_message(const std::string& gimbal, const Event& event) {
     return msg;
 }
 
-bool is_state_key(std::string_view key) {
-    return std::find(std::begin(known_keys), std::end(known_keys), key) != std::end(known_keys);
+nlohmann::json too_large_event(const std::string& gimbal, std::size_t bytes, std::size_t limit,
+                               const nlohmann::json& body) {
+    std::vector<std::pair<std::size_t, std::string>> sizes;
+    if (body.is_object())
+        for (const auto& [k, v] : body.items())
+            sizes.emplace_back(
+                v.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace).size(), k);
+    std::sort(sizes.begin(), sizes.end(), std::greater<>());
+    if (sizes.size() > 3) sizes.resize(3);
+    nlohmann::json largest = nlohmann::json::object();
+    for (const auto& [n, k] : sizes) largest[k] = n;
+    return {{"type", "event"},
+            {"gimbal", gimbal},
+            {"event", "too_large"},
+            {"bytes", bytes},
+            {"limit", limit},
+            {"largest", std::move(largest)},
+            {"message", "a push of " + std::to_string(bytes) +
+                            " bytes is over the limit of one datagram (" + std::to_string(limit) +
+                            " bytes) and was not sent; subscribe with fewer STATE keys ('keys')"}};
+}
+
+bool is_shared_state_key(std::string_view key) {
+    return std::find(std::begin(shared_keys), std::end(shared_keys), key) != std::end(shared_keys);
 }
 
 nlohmann::json select_keys(const nlohmann::json& state, const std::vector<std::string>& keys) {
@@ -69,7 +68,8 @@ nlohmann::json select_keys(const nlohmann::json& state, const std::vector<std::s
     return out;
 }
 
-command::Result<std::vector<std::string>> read_state_keys(const nlohmann::json& value) {
+command::Result<std::vector<std::string>> read_state_keys(
+    const nlohmann::json& value, const std::function<bool(std::string_view)>& is_known) {
     namespace code = command::code;
     if (!value.is_array()) return {code::bad_request, "'keys' must be an array of STATE key names"};
     std::vector<std::string> names;
@@ -77,8 +77,7 @@ command::Result<std::vector<std::string>> read_state_keys(const nlohmann::json& 
         if (!k.is_string())
             return {code::bad_request, "'keys' must be an array of STATE key names"};
         const auto& name = k.get_ref<const std::string&>();
-        if (!is_state_key(name))
-            return {code::bad_request, "'keys': unknown STATE key '" + name + "'"};
+        if (!is_known(name)) return {code::bad_request, "'keys': unknown STATE key '" + name + "'"};
         if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
     }
     return names;

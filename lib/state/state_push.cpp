@@ -67,6 +67,20 @@ const PushMessage& PushBatch::next(const StreamOptions& options, DeltaCursor& cu
     return it->second;
 }
 
+const std::vector<PushMessage>& PushBatch::split(const PushMessage& message, std::size_t budget) {
+    auto& parts = parts_[&message];
+    if (!parts.empty()) return parts;
+    if (message.full() != false || message.text()->size() <= budget) {
+        parts.push_back(message);
+        return parts;
+    }
+    // The room for the patch is the budget less the message around it.
+    const std::size_t around = message.text()->size() - dump_message(*message.body()).size();
+    for (auto& part : split_patch(*message.body(), budget > around ? budget - around : 0))
+        parts.emplace_back(gimbal_, false, std::make_shared<const json>(std::move(part)));
+    return parts;
+}
+
 json delta_message(const std::string& gimbal, bool full, json state) {
     return {{"type", "state"}, {"gimbal", gimbal}, {"full", full}, {"state", std::move(state)}};
 }

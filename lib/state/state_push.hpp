@@ -4,8 +4,13 @@
 // them among subscribers: one key selection per key list, one full message per key list and
 // one patch per (key list, previous push) - subscribers that got the same previous push share
 // the same patch. Time is passed in.
+//
+// On the UDP socket a patch is kept to one payload where it can be (split(): the 1 Hz
+// reports landing with the telemetry would make one of about 1,600 bytes): it goes as
+// several patches back to back, each of whole top-level members.
 #pragma once
 
+#include <cstddef>
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -15,6 +20,10 @@
 #include <vector>
 
 namespace gimbal::state {
+
+// One UDP payload over Ethernet (MTU 1500 - IPv4 20 - UDP 8): what a UDP delta-stream patch
+// is kept to when its members allow (docs/json-api.md, "Delta streams").
+inline constexpr std::size_t patch_budget_bytes = 1472;
 
 // How a subscriber wants STATE: `keys` (empty: all) and, with `changes`, merge patches with a
 // full STATE every `full_every_s`.
@@ -55,6 +64,8 @@ class PushMessage {
     const std::shared_ptr<const std::string>& text() const;
     // Delta stream: true for a full STATE, false for a patch; nullopt on a plain stream.
     std::optional<bool> full() const { return full_; }
+    // What the message carries under "state".
+    const std::shared_ptr<const nlohmann::json>& body() const { return body_; }
 
   private:
     std::string gimbal_;
@@ -73,6 +84,12 @@ class PushBatch {
     const PushMessage& next(const StreamOptions& options, DeltaCursor& cursor, double now_s);
     // The STATE restricted to `keys`, shared by every caller of this batch.
     const std::shared_ptr<const nlohmann::json>& selected(const std::vector<std::string>& keys);
+    // `message` (one that next() returned) as it goes where a datagram should not exceed
+    // `budget` bytes: a patch over it as several patches to send back to back, each of whole
+    // top-level members and within the budget where a member allows (split_patch); merged
+    // in order they are the one patch. Anything else, or a patch that fits: itself alone.
+    // Shared by every subscriber of the message.
+    const std::vector<PushMessage>& split(const PushMessage& message, std::size_t budget);
 
   private:
     enum class Kind { plain, full, patch };
@@ -82,6 +99,7 @@ class PushBatch {
     std::shared_ptr<const nlohmann::json> state_;
     std::map<std::vector<std::string>, std::shared_ptr<const nlohmann::json>> selected_;
     std::map<Key, PushMessage> messages_;
+    std::map<const PushMessage*, std::vector<PushMessage>> parts_;
     // Previous pushes a patch was made against stay alive for the batch, so their addresses
     // (part of the key) cannot be reused by a new object.
     std::vector<std::shared_ptr<const nlohmann::json>> pinned_;

@@ -38,28 +38,29 @@ BlockCache::BlockCache(std::size_t budget_bytes, Loader loader)
     : capacity_(std::max<std::size_t>(4, budget_bytes / Block::bytes())),
       loader_(std::move(loader)) {}
 
-const Block& BlockCache::get(const BlockKey& key) {
+const Block* BlockCache::get(const BlockKey& key) {
     if (const auto it = index_.find(key); it != index_.end()) {
         if (it->second != lru_.begin()) lru_.splice(lru_.begin(), lru_, it->second);
-        return it->second->block;
+        return &it->second->block;
+    }
+    Block fetched;
+    if (!loader_(key, fetched)) {
+        ++misses_;
+        return nullptr;
     }
     if (lru_.size() >= capacity_) {
         index_.erase(lru_.back().key);
         lru_.pop_back();
         ++evictions_;
     }
-    lru_.push_front(Entry{key, {}});
-    Block& b = lru_.front().block;
-    b.height.assign(static_cast<std::size_t>(Block::nodes * Block::nodes), NAN);
-    loader_(key, b);
-    b.summarise();
+    lru_.push_front(Entry{key, std::move(fetched)});
     ++loads_;
     index_.emplace(key, lru_.begin());
-    return b;
+    return &lru_.front().block;
 }
 
 CacheStats BlockCache::stats() const {
-    return {loads_, evictions_, lru_.size(), capacity_};
+    return {loads_, misses_, evictions_, lru_.size(), capacity_};
 }
 
 }  // namespace gimbal::terrain

@@ -1,7 +1,8 @@
 // A least-recently-used cache of elevation blocks: 129 x 129 node heights (128 x 128 cells,
 // so every cell lies in one block), with the highest height of each 16 x 16-cell sub-block
-// for skipping rays over them. Bounded by a byte budget; loads through a callback. Not
-// thread-safe (gimbald's io thread is its only user).
+// for skipping rays over them. Bounded by a byte budget; fetches through a callback, which
+// may have no block to give yet (read elsewhere, gimbald's loader thread): nothing is kept
+// then and the next get() asks again. Not thread-safe (gimbald's io thread is its only user).
 #pragma once
 
 #include <cstddef>
@@ -38,7 +39,8 @@ struct Block {
 };
 
 struct CacheStats {
-    std::uint64_t loads = 0;      // blocks read from files
+    std::uint64_t loads = 0;      // blocks read from files (or taken from the loader)
+    std::uint64_t misses = 0;     // lookups of a block the loader could not give yet
     std::uint64_t evictions = 0;  // blocks dropped to stay within the budget
     std::size_t resident = 0;     // blocks held now
     std::size_t capacity = 0;     // blocks the budget allows
@@ -46,14 +48,16 @@ struct CacheStats {
 
 class BlockCache {
   public:
-    using Loader = std::function<void(const BlockKey&, Block&)>;
+    // Fills a complete block (heights and summary); false when it cannot now.
+    using Loader = std::function<bool(const BlockKey&, Block&)>;
     // At least 4 blocks whatever the budget.
     BlockCache(std::size_t budget_bytes, Loader loader);
-    // The block, loaded when absent. The reference stays valid until the next get().
-    const Block& get(const BlockKey& key);
+    // The block, fetched when absent; nullptr when the loader has none yet. The pointer stays
+    // valid until the next get().
+    const Block* get(const BlockKey& key);
     CacheStats stats() const;
     // Changes whenever a block is loaded (and so possibly another evicted): a caller holding
-    // a Block reference may keep it while this stays the same.
+    // a Block pointer may keep it while this stays the same.
     std::uint64_t generation() const { return loads_; }
 
   private:
@@ -68,7 +72,7 @@ class BlockCache {
     Loader loader_;
     std::list<Entry> lru_;  // front: most recently used
     std::unordered_map<BlockKey, std::list<Entry>::iterator, KeyHash> index_;
-    std::uint64_t loads_ = 0, evictions_ = 0;
+    std::uint64_t loads_ = 0, evictions_ = 0, misses_ = 0;
 };
 
 }  // namespace gimbal::terrain

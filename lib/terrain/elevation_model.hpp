@@ -1,17 +1,15 @@
-// A digital elevation model (contract section 15): rasters GDAL reads (GeoTIFF, SRTM .hgt,
-// DTED, VRT mosaics, ...), heights above EGM96 converted to the WGS84 ellipsoid (or already
-// ellipsoidal with geoid none), read in blocks through a bounded LRU cache, as a geo::Surface
-// (bilinear between the raster's nodes, pixel centres) for ray intersection and image
-// geometry.
+// A digital elevation model (contract section 15): local rasters GDAL reads (GeoTIFF, SRTM
+// .hgt, DTED, VRT mosaics of them; dem_policy.hpp says what is refused), heights above EGM96
+// converted to the WGS84 ellipsoid (or already ellipsoidal with geoid none), as a
+// geo::Surface (bilinear between the raster's nodes, pixel centres) for ray intersection and
+// image geometry. Blocks of node heights come through a bounded LRU cache from a BlockSource:
+// the files read right away (open()), or - in gimbald - a loader thread that may not have a
+// block yet (read_elsewhere()); the block's cells are then unknown for that lookup.
 //
-// Rasters on the same geographic lattice (same pixel size, origins a whole number of pixels
-// apart: SRTM tiles, a GeoTIFF cut in pieces) form one lattice, so cells across their edges
-// interpolate as in one raster. Where rasters overlap, the finest lattice answers first, then
-// the one whose first file comes first in `files`; within a lattice, the earlier file. A
-// node with nodata (or outside every raster) is unknown, and so is every cell touching it:
-// unknown, never zero. A raster in a projected CRS becomes its own geographic lattice of the
-// same spacing whose nodes are sampled bilinearly from it (points reprojected with OGR);
-// mosaic projected tiles into one VRT (gdalbuildvrt) so their edges join.
+// Where rasters overlap, the finest lattice answers first, then the one whose first file
+// comes first in `files`; within a lattice, the earlier file (dem_reader.hpp). A node with
+// nodata (or outside every raster) is unknown, and so is every cell touching it: unknown,
+// never zero. Mosaic projected tiles into one VRT (gdalbuildvrt) so their edges join.
 //
 // Not thread-safe (the block cache); one io thread uses it.
 #pragma once
@@ -24,23 +22,14 @@
 
 #include "geo/surface.hpp"
 #include "terrain/block_cache.hpp"
+#include "terrain/block_source.hpp"
+#include "terrain/dem_reader.hpp"
 #include "terrain/geoid.hpp"
 #include "terrain/terrain_config.hpp"
 
 namespace gimbal::terrain {
 
-// The config section `terrain` (terrain_config.hpp) and where the EGM96 grid is.
-struct TerrainOptions : TerrainConfig {
-    explicit TerrainOptions(TerrainConfig config = {}) : TerrainConfig(std::move(config)) {}
-    // The EGM96 grid; empty: Geoid::find_egm96().
-    std::string geoid_grid;
-};
-
 class ElevationModel;
-struct OpenedModel {
-    std::unique_ptr<ElevationModel> model;
-    std::string error;  // when model is null: names the file and what is wrong with it
-};
 
 struct Elevation {
     double alt_m = 0;                 // above the WGS84 ellipsoid
@@ -50,11 +39,15 @@ struct Elevation {
 
 class ElevationModel final : public geo::Surface {
   public:
-    // Opens every file (globs expanded, sorted). Errors: a path or glob that names no file,
-    // a file GDAL cannot read, a raster without usable georeferencing or CRS, a missing
-    // geoid grid with geoid egm96.
-    static OpenedModel open(const TerrainOptions& options);
+    // Opens every file (DemReader::open: globs expanded, sorted, each checked; errors name
+    // the file); blocks are read from the files when first needed.
+    static Result<std::unique_ptr<ElevationModel>> open(const TerrainOptions& options);
     ~ElevationModel() override;
+
+    // From now on blocks come from `source` (which must outlive the model's use); returns the
+    // files' reader for whoever serves `source` (another thread: the model no longer touches
+    // it). Null when it was handed over before.
+    std::unique_ptr<DemReader> read_elsewhere(BlockSource& source);
 
     geo::SurfaceKind kind() const override { return geo::SurfaceKind::terrain; }
     std::optional<double> height(double lat_deg, double lon_deg) override;
@@ -70,6 +63,8 @@ class ElevationModel final : public geo::Surface {
     std::optional<double> geoid_undulation(double lat_deg, double lon_deg) const;
 
     const std::vector<std::string>& files() const;
+    // `misses` counts lookups that met a block the source could not give yet: a caller that
+    // sees it grow during a computation knows the terrain was still loading there.
     CacheStats cache_stats() const;
 
     struct Impl;

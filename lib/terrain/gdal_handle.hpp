@@ -1,5 +1,5 @@
-// Thin ownership and error helpers around GDAL's C API (drivers registered once, GDAL's own
-// error printing silenced while we open and read: errors come back as strings instead).
+// Thin ownership and error helpers around GDAL's C API (GDAL set up once, GDAL's own error
+// printing silenced while we open and read: errors come back as strings instead).
 #pragma once
 
 #include <gdal.h>
@@ -10,8 +10,15 @@
 
 namespace gimbal::terrain {
 
-// Registers GDAL's drivers once per process.
+// Sets GDAL up once per process for local elevation files only (contract section 14 v4):
+// registers just the drivers terrain reads - GTiff, SRTMHGT, DTED, VRT, and GTX for the geoid
+// grid - so nothing a VRT names can reach another driver (MEM's raw pointers, HTTP, archive
+// formats); never lists a raster's folder or reads side-car files (.aux.xml, .ovr, .tfw);
+// no Python pixel functions; no network for GDAL's /vsicurl/ or PROJ's grids.
 void gdal_init();
+
+// The drivers an elevation file may be read with (GDALOpenEx's allow-list), null-terminated.
+const char* const* dem_drivers();
 
 struct DatasetCloser {
     void operator()(void* ds) const { GDALClose(ds); }
@@ -28,7 +35,8 @@ struct TransformDestroyer {
 };
 using Transform = std::unique_ptr<void, TransformDestroyer>;
 
-// While alive, GDAL errors are recorded instead of printed; message() is the last one.
+// While alive, GDAL errors (on this thread) are recorded instead of printed; message() is the
+// last one.
 class QuietErrors {
   public:
     QuietErrors();

@@ -45,16 +45,19 @@ std::optional<std::string> Geoid::find_egm96() {
     return std::nullopt;
 }
 
-Geoid::Opened Geoid::open(const std::string& path) {
+Result<Geoid> Geoid::open(const std::string& path) {
     gdal_init();
     QuietErrors quiet;
-    Dataset ds(
-        GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr));
-    if (!ds) return {std::nullopt, path + ": cannot read the geoid grid: " + quiet.message()};
+    // The grid's own formats only (proj-data ships .gtx; PROJ's CDN .tif), never a VRT.
+    const char* const grid_drivers[] = {"GTX", "GTiff", nullptr};
+    Dataset ds(GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, grid_drivers, nullptr,
+                          nullptr));
+    if (!ds)
+        return Error{code::unavailable, path + ": cannot read the geoid grid: " + quiet.message()};
     double gt[6];
     if (GDALGetGeoTransform(ds.get(), gt) != CE_None || gt[2] != 0 || gt[4] != 0 ||
         GDALGetRasterCount(ds.get()) < 1)
-        return {std::nullopt, path + ": the geoid grid has no usable georeferencing"};
+        return Error{code::unavailable, path + ": the geoid grid has no usable georeferencing"};
     Geoid g;
     g.path_ = path;
     g.width_ = GDALGetRasterXSize(ds.get());
@@ -67,8 +70,8 @@ Geoid::Opened Geoid::open(const std::string& path) {
     GDALRasterBandH band = GDALGetRasterBand(ds.get(), 1);
     if (GDALRasterIO(band, GF_Read, 0, 0, g.width_, g.height_, g.values_.data(), g.width_,
                      g.height_, GDT_Float32, 0, 0) != CE_None)
-        return {std::nullopt, path + ": cannot read the geoid grid: " + quiet.message()};
-    return {std::move(g), {}};
+        return Error{code::unavailable, path + ": cannot read the geoid grid: " + quiet.message()};
+    return g;
 }
 
 double Geoid::undulation(double lat, double lon) const {

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "result/result.hpp"
+
 namespace gimbal::terrain {
 
 class Geoid {
@@ -16,9 +18,9 @@ class Geoid {
     // /usr/share/proj; names egm96_15.gtx, us_nga_egm96_15.tif. nullopt when none exists.
     static std::optional<std::string> find_egm96();
 
-    struct Opened;
-    // Reads a geoid grid (any GDAL raster on a geographic lattice covering the globe).
-    static Opened open(const std::string& path);
+    // Reads a geoid grid (any GDAL raster on a geographic lattice covering the globe), or
+    // unavailable naming the file.
+    static Result<Geoid> open(const std::string& path);
 
     // Geoid height above the ellipsoid (m) at a point; longitudes wrap.
     double undulation(double lat_deg, double lon_deg) const;
@@ -30,11 +32,6 @@ class Geoid {
     int width_ = 0, height_ = 0;
     double lon0_ = 0, lat0_ = 0;  // centre of pixel (0, 0)
     double dlon_ = 0, dlat_ = 0;  // dlat negative for north-up grids
-};
-
-struct Geoid::Opened {
-    std::optional<Geoid> geoid;
-    std::string error;  // names the file
 };
 
 }  // namespace gimbal::terrain

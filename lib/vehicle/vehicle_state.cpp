@@ -5,7 +5,7 @@
 #include <type_traits>
 #include <variant>
 
-#include "viewpro/time.hpp"
+#include "calendar/utc.hpp"
 
 namespace gimbal::vehicle {
 
@@ -157,7 +157,7 @@ nlohmann::json VehicleState::snapshot(double now_s) const {
     }
     const auto unix_s = unix_time_s(now_s);
     out["time"] =
-        unix_s ? json(viewpro::to_iso8601(viewpro::from_unix_seconds(*unix_s))) : json(nullptr);
+        unix_s ? json(calendar::to_iso8601(calendar::from_unix_seconds(*unix_s))) : json(nullptr);
     return out;
 }
 

@@ -3,6 +3,7 @@
 // valid only during the callback that delivers them; copy into the *Buffer forms to keep.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -17,6 +18,16 @@ enum class Codec : std::uint8_t { h264, h265 };
 constexpr std::string_view to_string(Codec c) {
     return c == Codec::h264 ? "h264" : "h265";
 }
+
+// The largest access unit an input hands on (bytes, Annex B); a larger one is dropped and
+// counted. Far above a key frame of a gimbal camera (a 4K intra frame at high quality is a
+// few MiB), and small enough that relaying one stays a bounded piece of work for the thread
+// that also times the laser dead-man (contract section 14 v4).
+inline constexpr std::size_t max_access_unit_bytes = 8u << 20;
+// The largest synchronous metadata access unit (ST 1402: one KLV set, whose limit is 64 KiB)
+// put together from its fragments, and the largest KLV PES (several sets).
+inline constexpr std::size_t max_metadata_au_bytes = 64u << 10;
+inline constexpr std::size_t max_klv_pes_bytes = 128u << 10;
 
 // 33-bit MPEG system timestamps at 90 kHz.
 inline constexpr std::uint64_t pts_modulus = std::uint64_t{1} << 33;

@@ -11,8 +11,14 @@ namespace gimbal::video {
 namespace {
 
 constexpr std::uint8_t no_cc = 0x10;
-// Far above any access unit (a 4K intra frame at high quality is a few MiB).
-constexpr std::size_t max_pes_bytes = 16u << 20;
+// A PES header is at most 9 + 255 bytes.
+constexpr std::size_t max_pes_header_bytes = 264;
+// A buffer that grew past this for one large unit gives its memory back afterwards.
+constexpr std::size_t keep_capacity_bytes = 1u << 20;
+
+void release_if_large(std::vector<std::uint8_t>& buffer) {
+    if (buffer.capacity() > keep_capacity_bytes) std::vector<std::uint8_t>().swap(buffer);
+}
 
 bool is_klva_async(const PmtStream& s) {
     return s.stream_type == stream_type::private_pes &&
@@ -269,11 +275,14 @@ void TsDemuxer::pes_packet(PesStream& s, const TsPacket& p, bool video) {
         s.damaged = false;
     } else {
         if (!s.active) return;  // joined mid-PES: wait for the next start
-        if (s.data.size() + p.payload.size() > max_pes_bytes) {
+        const std::size_t bound =
+            max_pes_header_bytes + (video ? max_access_unit_bytes : max_klv_pes_bytes);
+        if (s.data.size() + p.payload.size() > bound) {
             // No end in sight (a broken or hostile stream): memory stays bounded.
-            ++stats_.pes_errors;
+            ++(video ? stats_.oversized_units : stats_.oversized_klv);
             s.active = false;
             s.data.clear();
+            release_if_large(s.data);
             return;
         }
         s.data.insert(s.data.end(), p.payload.begin(), p.payload.end());
@@ -289,6 +298,11 @@ void TsDemuxer::pes_packet(PesStream& s, const TsPacket& p, bool video) {
 
 void TsDemuxer::finish_pes(PesStream& s, bool video) {
     s.active = false;
+    deliver_pes(s, video);
+    release_if_large(s.data);
+}
+
+void TsDemuxer::deliver_pes(PesStream& s, bool video) {
     if (s.damaged) {
         ++stats_.dropped_units;
         return;
@@ -345,10 +359,21 @@ void TsDemuxer::deliver_klv_cells(std::span<const std::uint8_t> payload,
             continue;
         }
         if (fragment == 2) {
+            if (klv_fragment_open_) ++stats_.metadata_dropped;  // its last part never came
             klv_fragment_.clear();
             klv_fragment_open_ = true;
         }
-        if (!klv_fragment_open_) continue;  // a middle or last part without its first
+        if (!klv_fragment_open_) {  // a middle or last part without its first
+            ++stats_.metadata_dropped;
+            continue;
+        }
+        if (klv_fragment_.size() + cell.size() > max_metadata_au_bytes) {
+            // Middle parts without end (a broken or hostile stream): memory stays bounded.
+            ++stats_.metadata_dropped;
+            klv_fragment_.clear();
+            klv_fragment_open_ = false;
+            continue;
+        }
         klv_fragment_.insert(klv_fragment_.end(), cell.begin(), cell.end());
         if (fragment == 1) {
             ++stats_.klv_units;

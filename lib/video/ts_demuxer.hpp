@@ -16,6 +16,10 @@
 // - Loss: a continuity-counter gap (without the discontinuity indicator) or a transport
 //   error on a PID marks its partial PES damaged; a damaged PES is dropped and counted,
 //   never delivered. Duplicate packets (same CC) are ignored as 2.4.3.3 allows.
+// - Bounds: every buffer that joins packets is bounded, whatever the stream: a video PES at
+//   max_access_unit_bytes, a KLV PES at max_klv_pes_bytes, a synchronous metadata access unit
+//   joined from fragments at max_metadata_au_bytes (codec.hpp); past a bound the unit is
+//   dropped and counted. Memory kept after a large unit is given back.
 // Pure: no clocks; timestamps are the stream's own (90 kHz PTS/DTS, 27 MHz PCR).
 #pragma once
 
@@ -44,7 +48,11 @@ struct DemuxStats {
     std::uint64_t bad_packets = 0;       // adaptation field longer than the packet
     std::uint64_t scrambled = 0;         // packets of a selected PID that are scrambled
     std::uint64_t psi_errors = 0;        // PAT/PMT sections with a bad CRC or layout
-    std::uint64_t pes_errors = 0;        // PES whose header does not parse, or over 16 MiB
+    std::uint64_t pes_errors = 0;        // PES whose header or layout does not parse
+    std::uint64_t oversized_units = 0;   // video PES dropped at max_access_unit_bytes
+    std::uint64_t oversized_klv = 0;     // KLV PES dropped at max_klv_pes_bytes
+    std::uint64_t metadata_dropped = 0;  // sync metadata AUs dropped: over 64 KiB, or a middle
+                                         // or last fragment without its first
     std::uint64_t dropped_units = 0;     // damaged PES (lost packets) not delivered
     std::uint64_t access_units = 0;
     std::uint64_t klv_units = 0;
@@ -101,6 +109,7 @@ class TsDemuxer {
     void select_program();
     void pes_packet(PesStream& s, const TsPacket& p, bool video);
     void finish_pes(PesStream& s, bool video);
+    void deliver_pes(PesStream& s, bool video);
     void deliver_klv_cells(std::span<const std::uint8_t> payload, std::optional<std::uint64_t> pts);
     void damage(std::uint16_t pid);
 

@@ -1,5 +1,6 @@
 #include "video/url.hpp"
 
+#include <cctype>
 #include <charconv>
 #include <vector>
 
@@ -77,8 +78,8 @@ bool host_port(std::string_view hp, VideoUrl& url, std::string& error) {
     return true;
 }
 
-UrlResult fail(std::string error) {
-    return {std::nullopt, std::move(error)};
+Error fail(std::string error) {
+    return {code::bad_request, std::move(error)};
 }
 
 }  // namespace
@@ -95,7 +96,7 @@ std::string_view to_string(UrlScheme scheme) {
     return "udp";
 }
 
-UrlResult parse_video_url(std::string_view text) {
+Result<VideoUrl> parse_video_url(std::string_view text) {
     VideoUrl url;
     url.text = std::string(text);
     const std::size_t sep = text.find("://");
@@ -157,13 +158,86 @@ UrlResult parse_video_url(std::string_view text) {
             url.port = 554;
         }
         url.rtsp_url = "rtsp://" + std::string(rest) + (kept.empty() ? "" : "?" + kept);
-        return {url, {}};
+        return url;
     }
     std::string error;
     if (!host_port(rest, url, error)) return fail(error);
     if (url.host.empty() && url.scheme == UrlScheme::klv_udp)
         return fail("klv-udp:// needs a host");
-    return {url, {}};
+    return url;
+}
+
+namespace {
+
+// Where the authority of a URL with "://" starts and ends, and its '@' (npos when none).
+struct Authority {
+    std::size_t begin = std::string_view::npos;
+    std::size_t end = std::string_view::npos;
+    std::size_t at = std::string_view::npos;
+};
+
+Authority find_authority(std::string_view url) {
+    Authority a;
+    const std::size_t sep = url.find("://");
+    if (sep == std::string_view::npos) return a;
+    a.begin = sep + 3;
+    a.end = url.find_first_of("/?#", a.begin);
+    if (a.end == std::string_view::npos) a.end = url.size();
+    const std::size_t at = url.substr(a.begin, a.end - a.begin).rfind('@');
+    if (at != std::string_view::npos) a.at = a.begin + at;
+    return a;
+}
+
+}  // namespace
+
+std::optional<std::string> rtsp_authority(std::string_view url) {
+    const std::size_t sep = url.find("://");
+    if (sep == std::string_view::npos) return std::nullopt;
+    std::string scheme(url.substr(0, sep));
+    for (char& c : scheme) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (scheme != "rtsp") return std::nullopt;
+    const Authority a = find_authority(url);
+    std::string_view hp = url.substr(a.begin, a.end - a.begin);
+    if (a.at != std::string_view::npos) hp = url.substr(a.at + 1, a.end - a.at - 1);
+    std::string_view host = hp;
+    std::string_view port;
+    if (!hp.empty() && hp.front() == '[') {
+        const std::size_t close = hp.find(']');
+        if (close == std::string_view::npos) return std::nullopt;
+        host = hp.substr(0, close + 1);
+        if (close + 1 < hp.size()) {
+            if (hp[close + 1] != ':') return std::nullopt;
+            port = hp.substr(close + 2);
+        }
+    } else if (const std::size_t colon = hp.find(':'); colon != std::string_view::npos) {
+        host = hp.substr(0, colon);
+        port = hp.substr(colon + 1);
+    }
+    if (host.empty() || host == "[]") return std::nullopt;
+    unsigned port_number = 554;
+    if (!port.empty()) {
+        const auto p = number<unsigned>(port);
+        if (!p || *p == 0 || *p > 65535) return std::nullopt;
+        port_number = *p;
+    }
+    std::string out(host);
+    for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return out + ":" + std::to_string(port_number);
+}
+
+std::string without_userinfo(std::string_view url) {
+    const Authority a = find_authority(url);
+    if (a.at == std::string_view::npos) return std::string(url);
+    return std::string(url.substr(0, a.begin)) + std::string(url.substr(a.at + 1));
+}
+
+std::string redact_userinfo(std::string_view url) {
+    const Authority a = find_authority(url);
+    if (a.at == std::string_view::npos) return std::string(url);
+    const std::string_view userinfo = url.substr(a.begin, a.at - a.begin);
+    const std::size_t colon = userinfo.find(':');
+    if (colon == std::string_view::npos) return std::string(url);
+    return std::string(url.substr(0, a.begin + colon + 1)) + "***" + std::string(url.substr(a.at));
 }
 
 }  // namespace gimbal::video

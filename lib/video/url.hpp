@@ -13,6 +13,8 @@
 #include <string>
 #include <string_view>
 
+#include "result/result.hpp"
+
 namespace gimbal::video {
 
 enum class UrlScheme : std::uint8_t { udp, rtsp, klv_udp };
@@ -31,12 +33,17 @@ struct VideoUrl {
     std::string rtsp_url;  // rtsp: the URL for the RTSP client, our own keys removed
 };
 
-struct UrlResult {
-    std::optional<VideoUrl> url;
-    std::string error;  // why not, when url is empty
-};
+// The URL, or bad_request saying why not.
+Result<VideoUrl> parse_video_url(std::string_view text);
 
-UrlResult parse_video_url(std::string_view text);
+// RTSP redirects and credentials (contract section 14 v4): the "host:port" an rtsp:// URL
+// names (host lower-cased, an IPv6 address in brackets, port 554 when none is given), so two
+// URLs can be compared; nullopt when it is not an rtsp:// URL with a host.
+std::optional<std::string> rtsp_authority(std::string_view url);
+// The URL without its "user[:pass]@" part.
+std::string without_userinfo(std::string_view url);
+// The URL with its password shown as "***" (logs, STATE): "rtsp://admin:***@10.0.0.9/live".
+std::string redact_userinfo(std::string_view url);
 
 std::string_view to_string(UrlScheme scheme);
 

@@ -10,6 +10,9 @@ man pages cannot drift from the programs. Understands the help layouts of this p
   and option lines such as "  --port UINT=8747   TCP port" (type, check and default are
   turned into words: "PORT ... Default: 8747.").
 
+Help texts share their sentences with the Markdown docs: `code` becomes bold and a link its
+text (md2roff.inline), never raw markup on the page.
+
 Inside a section: a line starting with an option or followed by deeper-indented lines is a
 tagged paragraph (.TP); "TAG  text" with two spaces after the tag is one too (EXIT STATUS,
 FILES); a line at less than the section's text indent is a subsection (.SS); deeper lines
@@ -27,7 +30,7 @@ import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import md2roff  # noqa: E402  (write())
+import md2roff  # noqa: E402  (write(), inline())
 
 HEADING = re.compile(r"^[A-Z][A-Z0-9 /()-]*$")
 GAP = re.compile(r"^(\S.*?\S|\S)  +(\S.*)$")
@@ -148,7 +151,7 @@ def render_body(lines, keep_lines=False, cli11=False):
                 out.extend(escape(p) for p in paragraph)
                 out.append(".fi")
             else:
-                out.append(escape(" ".join(paragraph)))
+                out.append(md2roff.inline(" ".join(paragraph)))
             paragraph.clear()
 
     while i < len(lines):
@@ -208,7 +211,7 @@ def render_body(lines, keep_lines=False, cli11=False):
             flush()
             out.append(".TP")
             out.append(font_tag(tag))
-            out.append(escape(body_text) if body_text else "\\&")
+            out.append(md2roff.inline(body_text) if body_text else "\\&")
             i = j
             continue
         if following and (introduces_example or keep_lines):

@@ -34,7 +34,8 @@ FOOTER = [
     "\\fI/usr/share/doc/gimbald/examples/sim.json\\fR",
     "One Orion at 127.0.0.1:8747, what \\fBgimbal\\-sim\\fR(1) serves.",
     ".SH SEE ALSO",
-    "\\fBgimbald\\fR(8), \\fBgimbalctl\\fR(1), \\fBgimbal\\-sim\\fR(1),",
+    "\\fBgimbald\\fR(8), \\fBgimbalctl\\fR(1), \\fBgimbal\\-sim\\fR(1), \\fBgimbal\\-replay\\fR(1),",
+    "\\fBgimbal\\-export\\fR(1),",
     "\\fI/usr/share/doc/gimbald/configuration.md\\fR",
 ]
 
@@ -46,9 +47,14 @@ def escape(text):
     return text
 
 
+# A link, keeping its text; the text may hold `code` with brackets ([`gimbals[].video`](#...)).
+LINK = re.compile(r"\[((?:`[^`]*`|[^\]`])+)\]\([^)\s]*\)")
+COMMENT = re.compile(r"<!--.*?-->")
+
+
 def inline(text):
     """Markdown inline markup to roff fonts; everything else escaped."""
-    text = re.sub(r"\[([^\]]+)\]\([^)]+\)", r"\1", text)  # links: keep the text
+    text = LINK.sub(r"\1", COMMENT.sub("", text))
     out = []
     for part in re.split(r"(`[^`]+`|\*\*[^*]+\*\*)", text):
         if part.startswith("`") and part.endswith("`") and len(part) > 1:
@@ -127,6 +133,8 @@ def convert(lines):
         if not stripped:
             flush()
             i += 1
+        elif COMMENT.fullmatch(stripped):
+            i += 1  # markers for the docs' tests (<!-- example -->), not text
         elif stripped.startswith("```"):
             flush()
             block, i = code_block(i, len(line) - len(line.lstrip()))

@@ -49,8 +49,8 @@ void BM_GenerateTypicalSet(benchmark::State& state) {
     std::size_t bytes = 0;
     for (auto _ : state) {
         const klv::Encoded e = klv::encode(typical_set(t, static_cast<double>(t % 7)));
-        bytes = e.bytes.size();
-        benchmark::DoNotOptimize(e.bytes.data());
+        bytes = e.value().size();
+        benchmark::DoNotOptimize(e.value().data());
         t += 33'333;
     }
     state.counters["set_bytes"] = static_cast<double>(bytes);
@@ -62,14 +62,14 @@ void BM_EncodeTypicalSet(benchmark::State& state) {
     const klv::LocalSet set = typical_set(1'800'000'000'000'000, 0.0);
     for (auto _ : state) {
         const klv::Encoded e = klv::encode(set);
-        benchmark::DoNotOptimize(e.bytes.data());
+        benchmark::DoNotOptimize(e.value().data());
     }
 }
 BENCHMARK(BM_EncodeTypicalSet);
 
 // Decoding with JSON as STATE's "klv" shows it (fewest digits), and with exact doubles.
 void BM_DecodeTypicalSet(benchmark::State& state) {
-    const klv::Bytes bytes = klv::encode(typical_set(1'800'000'000'000'000, 0.0)).bytes;
+    const klv::Bytes bytes = klv::encode(typical_set(1'800'000'000'000'000, 0.0)).value();
     const auto digits = state.range(0) == 0 ? klv::Digits::shortest : klv::Digits::exact;
     for (auto _ : state) {
         const klv::DecodeResult r = klv::decode(bytes, digits);
@@ -84,7 +84,7 @@ void BM_FindSets(benchmark::State& state) {
     klv::Bytes payload{0x00, 0x47, 0x06, 0x0E};
     for (unsigned i = 0; i < 4; ++i) {
         const klv::Bytes one =
-            klv::encode(typical_set(1'800'000'000'000'000 + 33'333u * i, i)).bytes;
+            klv::encode(typical_set(1'800'000'000'000'000 + 33'333u * i, i)).value();
         payload.insert(payload.end(), one.begin(), one.end());
     }
     for (auto _ : state) {

@@ -6,9 +6,9 @@
 #include <random>
 #include <vector>
 
-#include "orion/framer.hpp"
-#include "orion/framing.hpp"
-#include "orion/packets.hpp"
+#include "protocols/orion/codec/framer.hpp"
+#include "protocols/orion/codec/framing.hpp"
+#include "protocols/orion/codec/packets.hpp"
 
 namespace {
 

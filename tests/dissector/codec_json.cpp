@@ -21,11 +21,11 @@
 #include "../unit/viewpro/vectors.hpp"
 #include "mavlink/framer.hpp"
 #include "mavlink/framing.hpp"
-#include "orion/framing.hpp"
-#include "orion/json.hpp"
-#include "orion/packets.hpp"
+#include "protocols/orion/codec/framing.hpp"
+#include "protocols/orion/codec/json.hpp"
+#include "protocols/orion/codec/packets.hpp"
+#include "protocols/viewpro/codec/viewpro.hpp"
 #include "schema.hpp"
-#include "viewpro/viewpro.hpp"
 
 using nlohmann::json;
 using Bytes = std::vector<std::uint8_t>;

@@ -128,7 +128,13 @@ def main():
     codec_json, lua = sys.argv[1], sys.argv[2]
     tshark = shutil.which("tshark")
     if not tshark:
-        print("tshark not installed (scripts/install-deps.sh)")
+        # On CI (CI=true) a missing tool fails the test; elsewhere it is skipped (77), and
+        # scripts/test.sh lists it (tests/integration/skipping.py).
+        if os.environ.get("CI") == "true":
+            print("FAILED: tshark not installed (scripts/install-deps.sh; CI=true: a test "
+                  "whose tools cannot be had fails instead of skipping)")
+            return 1
+        print("skipped: tshark not installed (scripts/install-deps.sh)")
         return 77
 
     vectors = subprocess.run([codec_json, "vectors"], check=True, capture_output=True,

@@ -1,6 +1,6 @@
 // libFuzzer target for the MAVLink gimbal manager's and camera components' mapping: arbitrary
 // bytes through the framer, every command and set-point message through GimbalManager and
-// every command through CameraComponents (two gimbals, fixed STATE). Nothing may crash, no
+// every command through CameraComponents (two gimbals, fixed typed state). Nothing may crash, no
 // request may name the laser or a gimbal we do not have, a request always carries finite
 // numbers, and a `point` stays inside the image (-1..1).
 #include <cmath>
@@ -10,6 +10,8 @@
 #include "gimbal_protocol/camera.hpp"
 #include "gimbal_protocol/commands.hpp"
 #include "mavlink/mavlink.hpp"
+#include "protocols/orion/orion_capabilities.hpp"
+#include "protocols/viewpro/viewpro_capabilities.hpp"
 
 namespace m = gimbal::mavlink;
 namespace gp = gimbal::gimbal_protocol;
@@ -21,15 +23,39 @@ namespace {
     std::abort();
 }
 
-nlohmann::json state_of(const std::string& name) {
+// The two gimbals' typed state, fixed: an Orion with telemetry and CAMERAS, a Viewpro with an
+// output frame.
+struct Gimbals {
+    gimbal::state::OrionData orion;
+    gimbal::protocols::OrionCapabilities orion_caps{orion};
+    std::optional<gimbal::viewpro::Output> viewpro;
+    gimbal::protocols::ViewproCapabilities viewpro_caps{viewpro};
+
+    Gimbals() {
+        gimbal::state::OrionTelemetry t;
+        t.packet.quat = {1.0, 0.0, 0.0, 0.0};
+        t.shared.pan = 10.0;
+        t.shared.tilt = -5.0;
+        orion.telemetry = t;
+        gimbal::orion::CameraSettings cam;
+        cam.min_focal_length_mm = 4.3;
+        cam.max_focal_length_mm = 129.0;
+        gimbal::orion::Cameras cameras;
+        cameras.cameras = {cam};
+        orion.packets.cameras = gimbal::state::Received<gimbal::orion::Cameras>{cameras, {}, 0};
+        gimbal::viewpro::Output o;
+        o.gimbal_roll_deg = 0.0;
+        o.gimbal_pitch_deg = -45.0;
+        o.gimbal_yaw_deg = 3.0;
+        viewpro = o;
+    }
+};
+
+gimbal::session::GimbalView state_of(const std::string& name) {
+    static const Gimbals gimbals;
     if (name == "main")
-        return {{"link", {{"connected", true}}},
-                {"stale", false},
-                {"telemetry", {{"pan", 10.0}, {"tilt", -5.0}, {"quat", {1.0, 0.0, 0.0, 0.0}}}},
-                {"cameras",
-                 {{"cameras", nlohmann::json::array({{{"min_focal_length_mm", 4.3},
-                                                      {"max_focal_length_mm", 129.0}}})}}}};
-    return {{"output", {{"gimbal", {{"roll", 0.0}, {"pitch", -45.0}, {"yaw", 3.0}}}}}};
+        return {&gimbals.orion_caps, &gimbals.orion.telemetry->shared, true, false, {}};
+    return {&gimbals.viewpro_caps, nullptr, false, true, {}};
 }
 
 void check(const gp::Mapped& mapped) {

@@ -1,7 +1,7 @@
 // libFuzzer target for the MAVLink gimbal device protocol (lib/protocols/mavlink_device): the
 // input, in chunks it chooses itself, is what the device sends (to gimbald's session) and
 // what the manager sends (to the simulated device); between chunks the session steers from a
-// vehicle, plans a command and renders STATE, and the capabilities read that STATE; with or
+// vehicle, plans a command and renders STATE, and the capabilities read that state; with or
 // without MAVLink signing on the link. Any crash, sanitizer report or broken invariant aborts.
 #include <cstdio>
 #include <cstdlib>
@@ -107,10 +107,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
             fail("STATE without device or telemetry");
         (void)state.dump();
         const auto& caps = session.capabilities();
-        (void)caps.line_of_sight(state);
-        (void)caps.view(state);
-        (void)caps.image(state);
-        (void)caps.identity(state);
+        (void)caps.line_of_sight();
+        (void)caps.view();
+        (void)caps.image();
+        (void)caps.identity();
         const auto c = session.counters();
         if (c.rx_packets > size * 8 + produced.size() * 64) fail("more frames than bytes");
     }

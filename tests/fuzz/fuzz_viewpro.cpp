@@ -6,7 +6,7 @@
 #include <cstdlib>
 #include <string_view>
 
-#include "viewpro/viewpro.hpp"
+#include "protocols/viewpro/codec/viewpro.hpp"
 
 namespace v = gimbal::viewpro;
 

@@ -13,10 +13,10 @@
 #include <type_traits>
 #include <vector>
 
-#include "orion/framer.hpp"
-#include "orion/framing.hpp"
-#include "orion/json.hpp"
-#include "orion/packets.hpp"
+#include "protocols/orion/codec/framer.hpp"
+#include "protocols/orion/codec/framing.hpp"
+#include "protocols/orion/codec/json.hpp"
+#include "protocols/orion/codec/packets.hpp"
 
 namespace gimbal::fuzz {
 
@@ -133,8 +133,8 @@ std::string check_json_to_wire(const P& packet, const json& source) {
     orion::JsonError error;
     if (!orion::from_json(once, again, error)) {
         if (contains_null(once)) return {};  // a non-finite float has no JSON number
-        return name + ": its own JSON is rejected (" + error.code + ": " + error.message +
-               "): " + once.dump();
+        return name + ": its own JSON is rejected (" + std::string(to_string(error.code)) + ": " +
+               error.message + "): " + once.dump();
     }
     const orion::Payload wire_again = orion::encode(again);
     const auto twice = orion::decode<P>(wire_again.view());
@@ -159,8 +159,8 @@ std::string check_shortest_json(const P& packet) {
     orion::JsonError error;
     if (!orion::from_json(lean, back, error)) {
         if (contains_null(lean)) return {};  // a non-finite float has no JSON number
-        return std::string(P::name) + ": its shortest JSON is rejected (" + error.code + ": " +
-               error.message + "): " + lean.dump();
+        return std::string(P::name) + ": its shortest JSON is rejected (" +
+               std::string(to_string(error.code)) + ": " + error.message + "): " + lean.dump();
     }
     // Compared with what the exact JSON reads back to: strings shown as printable ASCII are
     // a normalisation both share.
@@ -247,7 +247,8 @@ inline std::string check_json(std::span<const std::uint8_t> input) {
         orion::JsonError error;
         if (!orion::from_json(j, packet, error)) {
             if (error.code != "bad_request" && error.code != "out_of_range")
-                failure = std::string(P::name) + ": unknown error code '" + error.code + "'";
+                failure = std::string(P::name) + ": unknown error code '" +
+                          std::string(to_string(error.code)) + "'";
             else if (error.message.empty())
                 failure = std::string(P::name) + ": error without a message";
             return;

@@ -193,14 +193,14 @@ int main(int argc, char** argv) {
         for (const klv::TagSpec& row : klv::st0601_tags) maker.add(row, pick, set, input);
         const klv::Encoded e = klv::encode(set);
         if (!e.ok()) {
-            std::fprintf(stderr, "klv_sample_sets: set %d: %s\n", n, e.error.c_str());
+            std::fprintf(stderr, "klv_sample_sets: set %d: %s\n", n, e.error().message.c_str());
             return 1;
         }
-        const klv::DecodeResult r = klv::decode(e.bytes, klv::Digits::exact);
+        const klv::DecodeResult r = klv::decode(e.value(), klv::Digits::exact);
         const json decoded{
             {"status", klv::to_string(r.status)}, {"reason", r.reason}, {"json", r.json}};
         const std::string base = dir + "/" + std::to_string(n);
-        if (!write(base + ".klv", std::string(e.bytes.begin(), e.bytes.end())) ||
+        if (!write(base + ".klv", std::string(e.value().begin(), e.value().end())) ||
             !write(base + ".input.json", input.dump(1)) ||
             !write(base + ".decoded.json", decoded.dump(1))) {
             std::fprintf(stderr, "klv_sample_sets: cannot write %s.*\n", base.c_str());

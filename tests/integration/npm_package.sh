@@ -2,7 +2,11 @@
 # `need_npm_package DIR MODULE` makes sure Node.js and npm exist (Debian's, installed when
 # running as root or with password-less sudo) and that DIR's pinned packages are installed
 # (`npm ci` from its package-lock.json when DIR/node_modules/MODULE is missing). Exits 77
-# (skipped) when either cannot be had. Not a test itself (no test_ prefix).
+# (skipped) when either cannot be had - with CI=true fails instead (skip.sh). Not a test
+# itself (no test_ prefix).
+
+# shellcheck source=skip.sh
+. "$(dirname "${BASH_SOURCE[0]}")/skip.sh"
 
 need_npm_package() {
     local dir=$1 module=$2
@@ -15,13 +19,12 @@ need_npm_package() {
         fi
     fi
     if ! command -v node >/dev/null || ! command -v npm >/dev/null; then
-        echo "skip: node and npm not installed (apt-get install nodejs npm)"
-        exit 77
+        skip_test "node and npm not installed (apt-get install nodejs npm)"
     fi
     if [ ! -d "$dir/node_modules/$module" ]; then
-        if ! (cd "$dir" && npm ci --no-audit --no-fund >/dev/null 2>&1); then
-            echo "skip: npm ci failed (no registry access?)"
-            exit 77
+        local log
+        if ! log=$(cd "$dir" && npm ci --no-audit --no-fund 2>&1); then
+            skip_test "npm ci in $dir failed (no registry access?): $(grep -m1 -E 'FetchError|code|ERR' <<<"$log")"
         fi
     fi
 }

@@ -17,6 +17,7 @@ import subprocess
 import time
 
 import gimbaltest as gt
+import skipping
 
 SOURCE = os.environ.get("GIMBAL_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "..", ".."))
 LUA = os.path.join(SOURCE, "dissectors", "gimbald.lua")
@@ -67,7 +68,7 @@ class DissectorReadsRecording(gt.GimbaldTestCase):
     def test_recording_matches_state(self):
         tshark = shutil.which("tshark")
         if not tshark:
-            self.skipTest("tshark not installed")
+            skipping.need(self, "tshark not installed")
         rec_dir = os.path.join(self.workdir, "rec")
         os.makedirs(rec_dir)
         sim = self.start_sim()
@@ -100,7 +101,7 @@ class DissectorReadsRecording(gt.GimbaldTestCase):
     def test_viewpro_recording_matches_state(self):
         tshark = shutil.which("tshark")
         if not tshark:
-            self.skipTest("tshark not installed")
+            skipping.need(self, "tshark not installed")
         rec_dir = os.path.join(self.workdir, "rec-viewpro")
         os.makedirs(rec_dir)
         sim = self.start_sim("--protocol", "viewpro")

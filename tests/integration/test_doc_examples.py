@@ -34,6 +34,7 @@ import time
 import unittest
 
 import gimbaltest as gt
+import skipping
 
 SOURCE = os.environ.get("GIMBAL_SOURCE_DIR",
                         os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
@@ -258,7 +259,7 @@ class DocExamples(gt.GimbaldTestCase):
     def test_wireshark_field_names_exist(self):
         tshark = shutil.which("tshark")
         if not tshark:
-            self.skipTest("tshark not installed")
+            skipping.need(self, "tshark not installed")
         import pcapng_test_writer as pw
         empty = os.path.join(self.workdir, "empty.pcapng")
         pw.PcapngWriter(empty, [("gimbal:a", "orion a")]).close()

@@ -18,6 +18,8 @@ import time
 import tty
 import unittest
 
+import skipping
+
 SIM = os.environ.get("GIMBAL_SIM")
 
 # Packet ids (OrionPktType_t).
@@ -681,6 +683,5 @@ class GimbalSimViewpro(unittest.TestCase):
 
 if __name__ == "__main__":
     if not SIM:
-        print("GIMBAL_SIM is not set: skipped")
-        sys.exit(77)
+        skipping.need_for_file("GIMBAL_SIM is not set")
     unittest.main(verbosity=2)

@@ -74,7 +74,7 @@ class OrionOverTcp(gt.GimbaldTestCase):
         reply = self.c.request("version")
         self.assertOk(reply)
         self.assertRegex(reply["version"], r"^\d+\.\d+\.\d+$")
-        self.assertEqual(sorted(reply["protocols"]), ["mavlink", "orion", "viewpro"])
+        self.assertEqual(sorted(reply["protocols"]), ["mavlink", "orion", "siyi", "viewpro"])
         self.assertNotIn("gimbal", reply)
 
     def test_list(self):

@@ -3,7 +3,8 @@
 # puppeteer-core against gimbald with an in-process simulated Orion and its video
 # (console/console_video_test.js): decoding, click-to-point on a landmark, zoom, keys,
 # layouts, reconnect; prints glass-to-glass latency figures (not checked here:
-# scripts/bench-console-video.sh). Exit 77 (skipped) when Node.js or chromium cannot be had.
+# scripts/bench-console-video.sh). Exit 77 (skipped) when Node.js or chromium cannot be had
+# (with CI=true it fails instead: skip.sh).
 # The screenshot goes to the current directory (ctest: the build tree) or
 # CONSOLE_VIDEO_SCREENSHOT.
 set -u
@@ -14,8 +15,7 @@ dir="$here/console"
 . "$here/npm_package.sh"
 CHROMIUM="${CHROMIUM:-$(command -v chromium || command -v chromium-browser || true)}"
 if [ -z "$CHROMIUM" ]; then
-    echo "skip: chromium not installed (apt-get install chromium)"
-    exit 77
+    skip_test "chromium not installed (apt-get install chromium)"
 fi
 export CHROMIUM
 need_npm_package "$dir" puppeteer-core

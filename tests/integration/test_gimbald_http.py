@@ -12,6 +12,7 @@ import subprocess
 import time
 
 import gimbaltest as gt
+import skipping
 import httptest as ht
 
 from test_gimbald_auth import Signer, write_key  # noqa: E402 (signing helpers)
@@ -225,7 +226,7 @@ class HttpWithSimulator(gt.GimbaldTestCase):
 
         promtool = shutil.which("promtool")
         if not promtool:
-            self.skipTest("promtool not installed (scripts/install-deps.sh: prometheus)")
+            skipping.need(self, "promtool not installed (scripts/install-deps.sh: prometheus)")
         result = subprocess.run([promtool, "check", "metrics"], input=text,
                                 capture_output=True, text=True, timeout=30)
         self.assertEqual(result.returncode, 0, result.stdout + result.stderr)
@@ -546,7 +547,7 @@ class HttpConfigured(gt.GimbaldTestCase):
         status, headers, body = ht.request(port, "GET", "/")
         source = os.environ.get("GIMBAL_SOURCE_DIR")
         if not source:
-            self.skipTest("GIMBAL_SOURCE_DIR not set")
+            skipping.need(self, "GIMBAL_SOURCE_DIR not set")
         with open(os.path.join(source, "web", "index.html"), "rb") as f:
             self.assertEqual(body, f.read())
         self.assertEqual(headers["content-type"], "text/html; charset=utf-8")

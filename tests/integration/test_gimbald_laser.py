@@ -99,6 +99,24 @@ class FireEnabled(LaserTestCase):
         time.sleep(1.2)
         self.assertEqual(len(laser_commands(self.sim, start)), 2)
 
+    def test_laser_fire_logs_the_index_used(self):
+        # Issue 25: a fire without `index` logged "index": null; laser 0 fired.
+        start = len(self.sim.rx())
+        self.assertOk(self.c.request("laser", **FIRE))
+        sent = self.sim.wait_rx(gt.by_name("laser_cmd"), start=start)
+        self.assertTrue(sent)
+        line = self.daemon.wait_log(lambda e: e.get("event") == "laser_fire")
+        self.assertTrue(line, "no laser_fire line")
+        self.assertEqual(line["index"], sent["packet"]["index"])
+        self.assertEqual(line["index"], 0)
+        # The audit line keeps what the client sent.
+        audit = self.daemon.wait_log(lambda e: e.get("event") == "audit" and e.get("fire"))
+        self.assertIsNone(audit["index"])
+        self.assertOk(self.c.request("laser", index=1, **FIRE))
+        fired = gt.wait_for(lambda: len(self.daemon.events("laser_fire")) >= 2 and
+                            self.daemon.events("laser_fire"), 2.0)
+        self.assertEqual([e["index"] for e in fired], [0, 1])
+
     def test_a_follow_up_command_disarms_the_dead_man(self):
         start = len(self.sim.rx())
         self.assertOk(self.c.request("laser", index=1, **FIRE))

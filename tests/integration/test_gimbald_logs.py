@@ -1,6 +1,9 @@
 #!/usr/bin/env python3
 """Logs no request can forge, and logs the journal can filter (contract section 14).
 
+- Repeated lines of one event and source are rolled up (section 14, v4): a flood of refused
+  MAVLink commands writes about ten `mavlink_refused` lines a second and `suppressed` counts,
+  while every `command` and `audit` line is written.
 - `log.format: "text"` escapes control characters in every value and the message: the issue's
   request `{"cmd":"nosuch\\n2026-... WARN audit ... fire=true: ok"}` must not start a line.
 - When standard output is the systemd journal (JOURNAL_STREAM names it), every record goes to
@@ -20,6 +23,8 @@ import subprocess
 import time
 
 import gimbaltest as gt
+import mavlinktest as mt
+import skipping
 
 JOURNALD = "/lib/systemd/systemd-journald"
 SIM = {"gimbals": [{"name": "s", "protocol": "orion", "link": {"type": "sim"}}]}
@@ -62,6 +67,69 @@ class TextLogs(gt.GimbaldTestCase):
             self.assertIn(b"nosuch\\n2026-11-21 06:41:50.123 WARN  audit", line)
 
 
+def iso_seconds(ts):
+    """Seconds of the day of a log line's `ts` (ISO UTC with microseconds)."""
+    clock = ts[11:-1]
+    h, m, sec = clock.split(":")
+    return int(h) * 3600 + int(m) * 60 + float(sec)
+
+
+class RolledUp(gt.GimbaldTestCase):
+    def test_a_flood_of_refused_mavlink_commands(self):
+        port = gt.free_port()
+        daemon = self.start_daemon(
+            {"vehicle": {"source": {"type": "udp", "bind": "127.0.0.1", "port": port}},
+             "mavlink": {"gimbal_manager": True, "system_id": 1}}, args=["--sim"])
+        self.wait_connected(self.client(daemon))
+        gcs = mt.Peer(port)
+        self.addCleanup(gcs.close)
+        # Pan 250 is out of range: DENIED by the request path, a `mavlink_refused` line, a
+        # `command` line and an `audit` line each. Bursts of 50, each answered, for ~3 s.
+        pitchyaw = mt.command_long(mt.MAV_CMD_DO_GIMBAL_MANAGER_PITCHYAW,
+                                   [-10, 250, mt.NAN, mt.NAN, 0, 0, 1])
+        def acks():
+            return [r for r in gcs.received if r[3] == 77]
+        begin = time.monotonic()
+        sent = 0
+        while time.monotonic() - begin < 3.0:
+            for _ in range(50):
+                gcs.send(76, pitchyaw)
+            sent += 50
+            deadline = time.monotonic() + 2.0
+            while len(acks()) < sent and time.monotonic() < deadline:
+                gcs.pump(0.05)
+        gcs.pump(0.3)
+        acks = acks()
+        self.assertGreater(len(acks), 300, "the flood was too small to test anything")
+        self.assertTrue(all(mt.ack_of(r[4])[1] != 0 for r in acks))
+        self.assertEqual(daemon.stop(), 0)  # at the stop, every count still owed is written
+
+        logs = daemon.logs()
+        refused = [e for e in logs if e.get("event") == "mavlink_refused"]
+        written = [e for e in refused if "suppressed" not in e]
+        summaries = [e for e in refused if "suppressed" in e]
+        duration = iso_seconds(refused[-1]["ts"]) - iso_seconds(refused[0]["ts"])
+        print("%d refused commands in %.1f s: %d mavlink_refused lines written, %d summaries "
+              "(%s suppressed)" % (len(acks), duration, len(written), len(summaries),
+                                   [e["suppressed"] for e in summaries]))
+        # At most ten a second (twenty in any one-second span across two windows)...
+        times = [iso_seconds(e["ts"]) for e in written]
+        for i, t in enumerate(times):
+            self.assertLessEqual(len([u for u in times[i:] if u < t + 1.0]), 20)
+        self.assertLessEqual(len(written), 10 * (duration + 2))
+        # ...and the rest counted: nothing lost without a word.
+        self.assertTrue(summaries, "no line says how many were rolled up")
+        self.assertEqual(len(written) + sum(e["suppressed"] for e in summaries), len(acks))
+        self.assertTrue(all(e["src"] == "mavlink:255/190" for e in summaries))
+        # Every command and audit line is there.
+        commands = [e for e in logs if e.get("event") == "command" and
+                    e.get("transport") == "mavlink"]
+        audits = [e for e in logs if e.get("event") == "audit" and
+                  e.get("transport") == "mavlink"]
+        self.assertEqual(len(commands), len(acks))
+        self.assertEqual(len(audits), len(acks))
+
+
 def run_in(namespace_pid, args, **kwargs):
     return subprocess.run(["nsenter", "-t", str(namespace_pid), "-m", *args],
                           capture_output=True, text=True, timeout=20, **kwargs)
@@ -73,7 +141,7 @@ class Journal(gt.GimbaldTestCase):
         if os.geteuid() != 0 or not shutil.which("unshare") or not shutil.which("nsenter"):
             self.skipTest("a private journald needs root, unshare and nsenter")
         if not os.path.exists(JOURNALD) or not shutil.which("journalctl"):
-            self.skipTest("systemd-journald or journalctl not installed")
+            skipping.need(self, "systemd-journald or journalctl not installed")
         # A mount namespace of our own: its /run and /var/log are empty tmpfs.
         self.holder = subprocess.Popen(
             ["unshare", "-m", "--propagation", "private", "sh", "-c",

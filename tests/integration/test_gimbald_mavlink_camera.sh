@@ -3,7 +3,7 @@
 # it: discovery, the stream URI opened with ffprobe, click-to-track on the simulated Orion
 # (tests/integration/mavlink/camera.js, node-mavlink pinned by package-lock.json and installed
 # with `npm ci` when node_modules is missing). Exit 77 (skipped) when Node.js or ffprobe cannot
-# be had.
+# be had (with CI=true: fails, skip.sh).
 set -u
 here="$(cd "$(dirname "$0")" && pwd)"
 dir="$here/mavlink"
@@ -12,8 +12,7 @@ dir="$here/mavlink"
 . "$here/npm_package.sh"
 need_npm_package "$dir" node-mavlink
 if ! command -v ffprobe >/dev/null; then
-    echo "skip: ffprobe not installed (apt-get install ffmpeg)"
-    exit 77
+    skip_test "ffprobe not installed (apt-get install ffmpeg)"
 fi
 : "${GIMBALD:?GIMBALD not set}" "${GIMBAL_SIM:?GIMBAL_SIM not set}"
 exec timeout 180 node "$dir/camera.js"

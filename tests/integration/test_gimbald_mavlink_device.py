@@ -165,7 +165,7 @@ class MavlinkDeviceTest(gt.GimbaldTestCase):
         self.assertEqual(s["protocol"], "mavlink")
         d = s["device"]
         self.assertEqual(d["model"], "simulated MAVLink gimbal")
-        self.assertEqual(d["firmware"], "1.2.3.0")
+        self.assertEqual(d["firmware"], "2.4.1")
         self.assertIn("supports_yaw_in_earth_frame", d["cap_flags"])
         self.assertAlmostEqual(d["limits"]["pitch_min"], -120, places=3)
         self.assertIn(d["attitude"]["frame"], ("vehicle", "earth"))
@@ -186,6 +186,11 @@ class MavlinkDeviceTest(gt.GimbaldTestCase):
         self.assertGreater(len(states), 10)
         span = states[-1]["t"] - states[-11]["t"]
         self.assertTrue(10 / 50 <= span <= 10 / 10, "10 AUTOPILOT_STATEs in %.3f s" % span)
+        # STATE counts them as the vehicle feed it sent (issue 25: it stayed 0).
+        sent = self.state(client)["vehicle"]["feed"]["sent"]
+        heard = len([e for e in sim.rx() if e["kind"] == "autopilot_state_for_gimbal_device"])
+        self.assertGreaterEqual(sent, len(states))
+        self.assertLessEqual(sent, heard + 5)  # a few may still be on their way
 
         # position: common.xml's quaternion, yaw in the vehicle frame, and the device gets there.
         start = len(sim.rx())

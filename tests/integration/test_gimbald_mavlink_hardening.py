@@ -77,6 +77,111 @@ class GarbageDatagrams(gt.GimbaldTestCase):
         self.assertEqual(len(commands()), len(garbage))
 
 
+HEARTBEAT = struct.pack("<IBBBBB", 0, 6, 8, 0, 4, 3)  # a ground station's (MAV_TYPE_GCS)
+
+
+class PeerSlots(gt.GimbaldTestCase):
+    """Contract section 14 (v4): only a peer whose frame passed the endpoint's checks takes one
+    of the 16 peer slots; 20 junk senders once evicted the ground station (issue 25)."""
+
+    def start(self, **mavlink):
+        self.port = gt.free_port()
+        daemon = self.start_daemon(manager_config(self.port, **mavlink), args=["--sim"])
+        self.wait_connected(self.client(daemon))
+        return daemon
+
+    def junk_senders(self, count, datagrams):
+        """`count` senders, each on its own port, each sending every one of `datagrams`."""
+        senders = []
+        for _ in range(count):
+            junk = mt.Peer(self.port, sysid=77)
+            self.addCleanup(junk.close)
+            for d in datagrams(junk):
+                junk.send_raw(d)
+            senders.append(junk)
+        return senders
+
+    def assert_still_served(self, daemon, gcs, senders):
+        time.sleep(0.5)  # every junk datagram handled
+        since = time.monotonic()
+        self.assertTrue(gcs.wait(lambda m: m[3] == 285, 2.0, since),
+                        "the ground station got no GIMBAL_DEVICE_ATTITUDE_STATUS after the junk")
+        peers = self.client(daemon).request("state")["state"]["mavlink"]["peers"]
+        self.assertEqual(peers, ["udp 127.0.0.1:%d" % gcs.sock.getsockname()[1]])
+        for junk in senders:
+            junk.pump(0.0)
+            self.assertEqual(junk.received, [], "a junk sender was sent streams")
+
+    def test_unsigned_and_forged_frames_take_no_slot_under_signing(self):
+        key = os.urandom(32)
+        daemon = self.start(signing_key_file=write_key(self.workdir, "m.key", key.hex().encode()))
+        gcs = mt.Peer(self.port, key=key)
+        self.addCleanup(gcs.close)
+        captured = gcs.send(0, HEARTBEAT)
+        self.assertTrue(gcs.wait(lambda m: m[3] == 285, 3.0), "the signed GCS got no streams")
+        other_key = os.urandom(32)
+        senders = self.junk_senders(20, lambda junk: [
+            b"\xfd\x09\x00" + os.urandom(20),                     # garbage
+            mt.frame(0, HEARTBEAT, 77, 190, 1),                     # valid but unsigned
+            mt.frame(0, HEARTBEAT, 77, 190, 2, key=other_key),      # signed with another key
+            captured,                                               # a replay from elsewhere
+        ])
+        self.assert_still_served(daemon, gcs, senders)
+
+    def test_junk_takes_no_slot_and_a_real_peer_still_does(self):
+        daemon = self.start()
+        gcs = mt.Peer(self.port)
+        self.addCleanup(gcs.close)
+        gcs.send(0, HEARTBEAT)
+        self.assertTrue(gcs.wait(lambda m: m[3] == 285, 3.0), "the GCS got no streams")
+        bad_crc = bytearray(mt.frame(0, HEARTBEAT, 77, 190))
+        bad_crc[-1] ^= 0xFF
+        senders = self.junk_senders(20, lambda junk: [
+            os.urandom(40), bytes(bad_crc), b"\xfd\xff\x00\x00\x00\x4d\xbe"])
+        self.assert_still_served(daemon, gcs, senders)
+        # Without signing any frame that parses is a peer: a second ground station joins.
+        second = mt.Peer(self.port, sysid=254)
+        self.addCleanup(second.close)
+        second.send(0, HEARTBEAT)
+        self.assertTrue(second.wait(lambda m: m[3] == 285, 3.0), "a real second GCS got nothing")
+
+
+class OneCameraEach(gt.GimbaldTestCase):
+    """Contract v4 (section 8): a manager whose gimbal has a camera component does not answer
+    CAMERA_INFORMATION; MAVSDK's Camera plugin listed [154, 100] for one gimbal."""
+
+    def test_only_the_camera_component_answers_camera_information(self):
+        port = gt.free_port()
+        daemon = self.start_daemon(manager_config(port), args=["--sim"])
+        self.wait_connected(self.client(daemon))
+        gcs = mt.Peer(port)
+        self.addCleanup(gcs.close)
+        gcs.send(0, HEARTBEAT)
+        time.sleep(1.0)  # the simulated Orion's CAMERAS packet
+
+        def camera_information(component):
+            since = time.monotonic()
+            result = gcs.command(mt.MAV_CMD_REQUEST_MESSAGE, [259, 0], target_component=component)
+            gcs.pump(0.5)  # the messages follow the ACK
+            infos = [m for m in gcs.received if m[0] >= since and m[3] == 259]
+            return result, infos
+
+        for component in (154, 0):  # the gimbal's manager, and every component
+            with self.subTest(component=component):
+                result, infos = camera_information(component)
+                self.assertEqual(result, DENIED)
+                self.assertEqual(infos, [], "a gimbal manager answered CAMERA_INFORMATION")
+        refused = daemon.wait_log(lambda e: e.get("event") == "mavlink_refused" and
+                                  e.get("command") == mt.MAV_CMD_REQUEST_MESSAGE)
+        self.assertIn("camera component: 100 (sim)", refused["msg"])
+        # The camera itself answers, once, from its own component.
+        result, infos = camera_information(100)
+        self.assertEqual(result, ACCEPTED)
+        self.assertEqual([m[2] for m in infos], [100])
+        # The manager's own information is still its own.
+        self.assertEqual(gcs.command(mt.MAV_CMD_REQUEST_MESSAGE, [280, 0]), ACCEPTED)
+
+
 class SignedAuthCoversMavlink(gt.GimbaldTestCase):
     def signed_config(self, port, **mavlink):
         key = write_key(self.workdir, "ops.key", os.urandom(32).hex().encode())

@@ -2,11 +2,13 @@
 # The MQTT bridge against a real mosquitto broker (contract section 9). paho-mqtt comes from
 # Debian (python3-paho-mqtt) and imports only under /usr/bin/python3, so the tests run there.
 here="$(cd "$(dirname "$0")" && pwd)"
+# shellcheck source=skip.sh
+. "$here/skip.sh"
 if ! command -v mosquitto >/dev/null 2>&1 && [ ! -x /usr/sbin/mosquitto ]; then
-  echo "skipped: mosquitto not installed (scripts/install-deps.sh)"; exit 77
+  skip_test "mosquitto not installed (scripts/install-deps.sh)"
 fi
 if ! /usr/bin/python3 -c "import paho.mqtt.client" 2>/dev/null; then
-  echo "skipped: python3-paho-mqtt not installed (scripts/install-deps.sh)"; exit 77
+  skip_test "python3-paho-mqtt not installed (scripts/install-deps.sh)"
 fi
 export PYTHONPATH="$here${PYTHONPATH:+:$PYTHONPATH}"
 exec /usr/bin/python3 "$here/mqtt_bridge_tests.py" "$@"

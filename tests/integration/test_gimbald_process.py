@@ -5,9 +5,12 @@ import json
 import os
 import signal
 import socket
+import subprocess
 
 import gimbaltest as gt
 
+SOURCE = os.environ.get("GIMBAL_SOURCE_DIR",
+                        os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
 TS = r"^\d{4}-\d\d-\d\dT\d\d:\d\d:\d\d\.\d{6}Z$"
 
 
@@ -104,6 +107,123 @@ class ExitCodes(gt.GimbaldTestCase):
         self.assertIn(reply["version"], result.stdout)
 
 
+class ConfigurationFiles(gt.GimbaldTestCase):
+    """Contract section 14 (v4): configuration files are regular files of at most 1 MiB with
+    no NUL; every key file is checked by --check-config; any configuration problem found at
+    start exits 1 (the unit restarts on anything else: issue 25 saw a restart every 2 s)."""
+
+    def run_both(self, path, *extra):
+        """--check-config and a start, each with a deadline (a FIFO used to hang forever)."""
+        results = []
+        for args in ([gt.GIMBALD, "--check-config", "-c", path, *extra],
+                     [gt.GIMBALD, "-c", path, *extra]):
+            try:
+                results.append(gt.run(args, timeout=10.0, stdin=subprocess.DEVNULL))
+            except subprocess.TimeoutExpired:
+                self.fail("%s did not return within 10 s" % " ".join(args))
+        return results
+
+    def assert_refused(self, path, *needles, extra=()):
+        for result in self.run_both(path, *extra):
+            text = result.stdout + result.stderr
+            self.assertEqual(result.returncode, 1, text[-2000:])
+            for needle in needles:
+                self.assertIn(needle, text)
+            self.assertNotIn('"event":"start"', result.stdout)
+
+    def test_only_regular_files_of_at_most_1_mib_without_a_nul(self):
+        self.assert_refused("/dev/zero", "/dev/zero", "not a regular file (a character device)")
+        fifo = os.path.join(self.workdir, "config.fifo")
+        os.mkfifo(fifo)
+        self.assert_refused(fifo, "not a regular file (a FIFO)")
+        self.assert_refused(self.workdir, "not a regular file (a directory)")
+        nul = os.path.join(self.workdir, "nul.json")
+        with open(nul, "wb") as f:
+            f.write(b'{"gimbals": []}\n\0{"laser": {"allow_fire": true}}')
+        self.assert_refused(nul, "line 2, column 1: a NUL byte")
+        big = os.path.join(self.workdir, "big.json")
+        with open(big, "w") as f:  # a valid configuration, padded past 1 MiB
+            f.write('{"gimbals": []}' + " " * (1024 * 1024))
+        self.assert_refused(big, "larger than 1 MiB")
+        unclosed = os.path.join(self.workdir, "unclosed.json")
+        with open(unclosed, "w") as f:
+            f.write('{"gimbals": ' + "[" * 1000000)
+        self.assert_refused(unclosed, "nested deeper than 32 levels")
+        # At exactly the limit it is read.
+        edge = os.path.join(self.workdir, "edge.json")
+        with open(edge, "w") as f:
+            f.write('{"gimbals": []}' + " " * (1024 * 1024 - 15))
+        self.assertEqual(os.path.getsize(edge), 1024 * 1024)
+        result = gt.run([gt.GIMBALD, "--check-config", "-c", edge])
+        self.assertEqual(result.returncode, 0, result.stderr)
+
+    def test_the_examples_pass_as_installed(self):
+        # Issue 25: the installed sim.json named build/release/sim-dem.tif (relative to the
+        # working directory) and gimbald.json /var/lib/gimbald/dem/*.tif. What `cmake
+        # --install` and the package install (packaging/examples.cmake) passes from anywhere.
+        build = os.path.dirname(os.path.dirname(os.path.abspath(gt.GIMBALD)))
+        examples = sorted(os.listdir(os.path.join(build, "examples")))
+        self.assertEqual([e for e in examples if e.endswith(".json")], ["gimbald.json", "sim.json"])
+        for name in ("gimbald.json", "sim.json"):
+            with self.subTest(name):
+                path = os.path.join(build, "examples", name)
+                result = gt.run([gt.GIMBALD, "--check-config", "-c", path], cwd=self.workdir)
+                self.assertEqual(result.returncode, 0, result.stderr)
+                with open(path) as f:
+                    installed = json.load(f)
+                with open(os.path.join(SOURCE, "config", name)) as f:
+                    source = json.load(f)
+                source.pop("terrain")
+                self.assertEqual(installed, source, "only the terrain section is left out")
+
+    def manager(self, key_path, **more):
+        config = {"vehicle": {"source": {"type": "udp", "bind": "127.0.0.1",
+                                         "port": gt.free_port()}},
+                  "mavlink": {"gimbal_manager": True, "system_id": 1,
+                              "signing_key_file": key_path}}
+        config.update(more)
+        path = os.path.join(self.workdir, "manager.json")
+        with open(path, "w") as f:
+            json.dump(config, f)
+        return path
+
+    def write_key(self, name, data, mode):
+        path = os.path.join(self.workdir, name)
+        with open(path, "wb") as f:
+            f.write(data)
+        os.chmod(path, mode)
+        return path
+
+    def test_the_gimbal_managers_signing_key_is_checked(self):
+        good = self.write_key("good.key", os.urandom(32).hex().encode(), 0o600)
+        result = gt.run([gt.GIMBALD, "--sim", "--check-config", "-c", self.manager(good)])
+        self.assertEqual(result.returncode, 0, result.stderr)
+        cases = [
+            ("malformed", self.write_key("short.key", b"abcd\n", 0o600),
+             "must hold 32 bytes, or 64 hex digits"),
+            ("readable by others", self.write_key("open.key", os.urandom(32), 0o644),
+             "readable by group or others (mode 0644)"),
+            ("missing", os.path.join(self.workdir, "none.key"), "missing"),
+        ]
+        fifo = os.path.join(self.workdir, "key.fifo")
+        os.mkfifo(fifo, 0o600)
+        cases.append(("a FIFO", fifo, "not a regular file (a FIFO)"))
+        for what, key, reason in cases:
+            with self.subTest(what):
+                self.assert_refused(self.manager(key), "mavlink.signing_key_file", reason,
+                                    extra=("--sim",))
+
+    def test_a_key_that_goes_bad_after_the_check_is_exit_1_at_start(self):
+        # The daemon reads the key again when it starts: the same problem is exit 1, not 2.
+        key = self.write_key("late.key", os.urandom(32).hex().encode(), 0o600)
+        path = self.manager(key)
+        self.assertEqual(gt.run([gt.GIMBALD, "--sim", "--check-config", "-c", path]).returncode, 0)
+        os.chmod(key, 0o644)
+        result = gt.run([gt.GIMBALD, "--sim", "-c", path], stdin=subprocess.DEVNULL)
+        self.assertEqual(result.returncode, 1, result.stdout[-2000:] + result.stderr)
+        self.assertIn("mavlink.signing_key_file", result.stderr)
+
+
 class SignalsAndLogs(gt.GimbaldTestCase):
     def test_sigterm_and_sigint_exit_0_with_start_and_stop(self):
         for sig, name in ((signal.SIGTERM, "SIGTERM"), (signal.SIGINT, "SIGINT")):
@@ -113,7 +233,8 @@ class SignalsAndLogs(gt.GimbaldTestCase):
             events = [e["event"] for e in daemon.logs()]
             self.assertEqual(events[:2], ["config", "start"])
             self.assertEqual(events[-2:], ["stop", "stop"])
-            self.assertEqual(daemon.logs()[-2]["signal"], name)
+            # Both lines name the signal (issue 25: the second one did not).
+            self.assertEqual([e["signal"] for e in daemon.logs()[-2:]], [name, name])
 
     def test_log_lines_are_json_with_the_required_keys(self):
         sim = self.start_sim()

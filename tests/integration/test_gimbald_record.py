@@ -22,6 +22,7 @@ import time
 import unittest
 
 import gimbaltest as gt
+import skipping
 
 TSHARK = shutil.which("tshark")
 JSON_REPLY_KEYS = ("ok", "id")
@@ -146,7 +147,7 @@ class Recording(gt.GimbaldTestCase):
     def setUp(self):
         super().setUp()
         if not TSHARK:
-            self.skipTest("tshark not installed (scripts/install-deps.sh)")
+            skipping.need(self, "tshark not installed (scripts/install-deps.sh)")
         self.dir = os.path.join(self.workdir, "rec")
         os.mkdir(self.dir)
 

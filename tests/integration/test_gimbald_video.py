@@ -7,6 +7,7 @@ gimbald's lib/klv (the `klv` command) and by the independent decoder st0601.py a
 STATE.
 """
 
+import json
 import math
 import os
 import socket
@@ -15,6 +16,7 @@ import threading
 import time
 
 import gimbaltest as gt
+import skipping
 import st0601
 import videotest as vt
 from test_gimbald_terrain import terrain_section, write_dem
@@ -83,7 +85,7 @@ def wait_video(test, client, gimbal=None, source=None, timeout=25.0, telemetry=T
 def check_tools(test):
     for tool in ("ffmpeg", "ffprobe", "gst-launch-1.0"):
         if not vt.have(tool):
-            test.skipTest("%s is not installed" % tool)
+            skipping.need(test, "%s is not installed" % tool)
 
 
 class SimulatorVideo(gt.GimbaldTestCase):
@@ -118,7 +120,9 @@ class SimulatorVideo(gt.GimbaldTestCase):
         v = self.s["video"]
         self.assertEqual(set(v), {"input", "connected", "codec", "width", "height", "fps",
                                   "bitrate_bps", "klv_source", "klv", "klv_sets",
-                                  "klv_bad_checksums", "klv_vs_telemetry"})
+                                  "klv_bad_checksums", "klv_refused", "klv_vs_telemetry",
+                                  "source", "foreign_datagrams", "dropped_datagrams",
+                                  "dropped_units", "reconnects", "last_error"})
         self.assertEqual(v["input"], "udp://127.0.0.1:%d" % self.video_port)
         self.assertIs(v["connected"], True)
         self.assertEqual(v["codec"], "h264")
@@ -128,6 +132,14 @@ class SimulatorVideo(gt.GimbaldTestCase):
         self.assertEqual(v["klv_source"], "stream")
         self.assertGreater(v["klv_sets"], 0)
         self.assertEqual(v["klv_bad_checksums"], 0)
+        self.assertEqual(v["klv_refused"], 0)
+        # The simulator is the one sender: pinned, nobody else, nothing dropped or failed.
+        self.assertRegex(v["source"], r"^127\.0\.0\.1:\d+$")
+        self.assertEqual((v["foreign_datagrams"], v["dropped_datagrams"], v["dropped_units"]),
+                         (0, 0, 0))
+        self.assertEqual((v["reconnects"], v["last_error"]), (0, None))
+        self.assertLessEqual(len(json.dumps(v["klv"], separators=(",", ":"))), 8192)
+        self.assertNotIn("truncated", v["klv"])
         self.assertIn("age_s", v["klv"])
         self.assertEqual(v["klv"]["uas_datalink_ls_version_number"], 19)
         # The simulator's KLV and gimbald's own telemetry describe the same camera: the

@@ -31,6 +31,7 @@ import time
 import unittest
 
 import gimbaltest as gt
+import skipping
 import st0601
 import videotest as vt
 from pcapng_test_writer import INBOUND, OUTBOUND
@@ -77,8 +78,8 @@ class RtspServer:
             pipe.close()
 
 
-@unittest.skipUnless(have_rtsp_server(), "GStreamer's RTSP server (python3-gi, "
-                     "gir1.2-gst-rtsp-server-1.0) is not installed")
+@skipping.requires(have_rtsp_server(), "GStreamer's RTSP server (python3-gi, "
+                   "gir1.2-gst-rtsp-server-1.0) is not installed")
 class RtspSource(gt.GimbaldTestCase):
     """A Viewpro-like camera on RTSP (no KLV of its own): gimbald generates the KLV."""
 

@@ -14,11 +14,14 @@ import csv
 import glob
 import io
 import os
+import re
+import shutil
 import subprocess
 import threading
 import time
 
 import gimbaltest as gt
+import skipping
 import st0601
 import videotest as vt
 from pcapng_test_writer import INBOUND, OUTBOUND
@@ -27,6 +30,8 @@ from test_gimbald_video import feed_forever
 
 GIMBAL_REPLAY = os.environ.get("GIMBAL_REPLAY")
 GIMBAL_EXPORT = os.environ.get("GIMBAL_EXPORT")
+SOURCE = os.environ.get("GIMBAL_SOURCE_DIR",
+                        os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
 
 
 def state_video(client, gimbal):
@@ -38,13 +43,14 @@ class VideoRecording(gt.GimbaldTestCase):
     def setUp(self):
         super().setUp()
         if not GIMBAL_REPLAY or not GIMBAL_EXPORT:
-            self.skipTest("GIMBAL_REPLAY / GIMBAL_EXPORT not given")
+            skipping.need(self, "GIMBAL_REPLAY / GIMBAL_EXPORT not given")
 
     def record(self):
         """Records the two gimbals' video; returns the recording's files."""
         video_port, nose_port = gt.free_port(), gt.free_port()
+        # Junk on the gimbal link too: docs/recording.md's junk filter must find it there.
         sim = self.start_sim("--video", "udp://127.0.0.1:%d" % video_port, "--speed", "0",
-                             want=("tcp", "video"))
+                             "--junk-every", "20", want=("tcp", "video"))
         rec = os.path.join(self.workdir, "rec")
         os.mkdir(rec)
         daemon = self.start_daemon({
@@ -72,6 +78,26 @@ class VideoRecording(gt.GimbaldTestCase):
         feeder.join()
         self.assertEqual(daemon.stop(), 0)
         return sorted(glob.glob(os.path.join(rec, "*.pcapng")))
+
+    def check_junk_filter(self, paths):
+        """docs/recording.md's display filter for junk from a gimbal finds the junk of the
+        gimbal link and nothing else - not the KLV gimbald generated (`data` as well, on a
+        `video:` interface; issue 25)."""
+        tshark = shutil.which("tshark")
+        if not tshark:
+            skipping.need(self, "tshark not installed")
+        with open(os.path.join(SOURCE, "docs", "recording.md")) as f:
+            found = re.search(r"`([^`]+)` \(junk from a\s+gimbal", f.read())
+        self.assertTrue(found, "docs/recording.md names no filter for junk from a gimbal")
+        interfaces = []
+        for path in paths:
+            r = subprocess.run([tshark, "-r", path, "-Y", found.group(1), "-T", "fields",
+                                "-e", "frame.interface_name"],
+                               capture_output=True, text=True, timeout=60)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            interfaces += r.stdout.split()
+        self.assertTrue(interfaces, "the junk filter %r found no junk" % found.group(1))
+        self.assertEqual(set(interfaces), {"gimbal:main"}, found.group(1))
 
     def export_klv(self, paths, gimbal):
         r = subprocess.run([GIMBAL_EXPORT, *paths, "--format", "klv-csv", "--gimbal", gimbal],
@@ -125,6 +151,7 @@ class VideoRecording(gt.GimbaldTestCase):
                                    places=6)
 
         print("exported at %.1f s" % (time.monotonic() - t0))
+        self.check_junk_filter(paths)
         # gimbal-replay --video into a second gimbald: the recorded KLV comes back unchanged.
         video_port = gt.free_port()
         replay = subprocess.Popen(

@@ -3,8 +3,9 @@
 # badly signed requests, dead-man laser fires; every reply arrives, every fire is ceased.
 set -uo pipefail
 src=${GIMBAL_SOURCE_DIR:-$(cd "$(dirname "$0")/../.." && pwd)}
+# shellcheck source=skip.sh
+. "$(dirname "$0")/skip.sh"
 if [ -z "${GIMBALD:-}" ] || [ -z "${GIMBALCTL:-}" ] || [ -z "${GIMBAL_SIM:-}" ]; then
-  echo "SKIP: GIMBALD, GIMBALCTL or GIMBAL_SIM not set"
-  exit 77
+  skip_test "GIMBALD, GIMBALCTL or GIMBAL_SIM not set"
 fi
 exec "$src/scripts/soak.sh" --seconds 20

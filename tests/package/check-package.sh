@@ -85,6 +85,10 @@ done
 # The operator console (contract section 11), served from here by default.
 [ -f "$src/web/index.html" ] && expect -rw-r--r-- usr/share/gimbald/web/index.html
 [ -f "$src/dissectors/gimbald.lua" ] && expect -rw-r--r-- "usr/lib/.*/wireshark/plugins/gimbald.lua"
+# A protocol's own dissector, from its home (docs/architecture.md).
+for lua in "$src"/lib/protocols/*/dissector/*.lua; do
+  [ -f "$lua" ] && expect -rw-r--r-- "usr/lib/.*/wireshark/plugins/$(basename "$lua")"
+done
 
 # --- gimbald-track: the tracking process and its OpenCV dependency
 if [ -f "$track_deb" ]; then
@@ -148,6 +152,17 @@ if out=$("${run[@]}" "$scratch/usr/sbin/gimbald" --check-config -c "$scratch/etc
 else
   fail "gimbald --check-config: $out"
 fi
+# The examples pass as installed, run from elsewhere than a checkout (issue 25: sim.json named
+# build/release/sim-dem.tif, relative to the working directory).
+examples=("$scratch"/usr/share/doc/gimbald/examples/*.json)
+[ ${#examples[@]} -ge 2 ] && pass "${#examples[@]} examples" || fail "examples: ${examples[*]}"
+for example in "${examples[@]}"; do
+  if out=$(cd / && "${run[@]}" "$scratch/usr/sbin/gimbald" --check-config -c "$example" 2>&1); then
+    pass "examples/$(basename "$example"): $out"
+  else
+    fail "examples/$(basename "$example") does not pass --check-config as installed: $out"
+  fi
+done
 out=$("${run[@]}" "$scratch/usr/bin/gimbalctl" --help)
 grep -q '^SYNOPSIS' <<<"$out" && pass "gimbalctl --help" || fail "gimbalctl --help"
 out=$("${run[@]}" "$scratch/usr/bin/gimbal-sim" --version)
@@ -172,6 +187,18 @@ for page in "$scratch"/usr/share/man/man*/*.gz; do
   warnings=$(LC_ALL=C.UTF-8 MANWIDTH=80 man --warnings -l "$page" 2>&1 >/dev/null || true)
   [ -z "$warnings" ] && grep -q "^\.TH .*gimbal.* $version\"" <<<"$(zcat "$page")" \
     && pass "man page $(basename "$page")" || fail "man page $(basename "$page"): $warnings"
+  # No Markdown shows through (issue 25: backticks and links on the pages): `code`,
+  # [text](link), **bold**, <!-- markers -->.
+  raw=$(LC_ALL=C.UTF-8 MANWIDTH=80 man -l "$page" 2>/dev/null | grep -nE '`|\]\(|\*\*[A-Za-z]|<!--' || true)
+  [ -z "$raw" ] && pass "man page $(basename "$page"): no raw Markdown" \
+    || fail "man page $(basename "$page") shows raw Markdown: $raw"
+done
+# gimbald(8) points at every program of the package.
+see_also=$(LC_ALL=C.UTF-8 MANWIDTH=200 man -l "$scratch/usr/share/man/man8/gimbald.8.gz" 2>/dev/null \
+  | sed -n '/^SEE ALSO/,/^[A-Z]/p')
+for tool in gimbalctl gimbal-sim gimbal-replay gimbal-export gimbald.json; do
+  [ -f "$scratch/usr/share/man/man1/$tool.1.gz" ] || [ -f "$scratch/usr/share/man/man5/$tool.5.gz" ] || continue
+  grep -q "$tool(" <<<"$see_also" && pass "gimbald(8) SEE ALSO $tool" || fail "gimbald(8) SEE ALSO lacks $tool: $see_also"
 done
 
 if [ $failures -gt 0 ]; then

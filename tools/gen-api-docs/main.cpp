@@ -6,12 +6,15 @@
 //   gen-api-docs                 print every block
 //   gen-api-docs --check FILE    exit 1 when a block is stale, missing or unknown
 //   gen-api-docs --write FILE    rewrite the blocks in place
+//   gen-api-docs --params        one line per command: its name, then its parameters' keys
+//                                (a test checks gimbalctl's options against them)
 #include <cstdio>
 #include <fstream>
 #include <iostream>
 #include <map>
 #include <sstream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "command/catalogue.hpp"
@@ -176,6 +179,14 @@ std::string rewrite(const std::string& text, const std::map<std::string, std::st
 int main(int argc, char** argv) {
     try {
         const auto blocks = generate();
+        if (argc == 2 && std::string_view(argv[1]) == "--params") {
+            for (const cmd::CommandSpec& c : cmd::catalogue()) {
+                std::cout << c.name;
+                for (const cmd::ParamSpec& p : c.params) std::cout << ' ' << p.name;
+                std::cout << '\n';
+            }
+            return 0;
+        }
         if (argc == 1) {
             for (const auto& [id, table] : blocks)
                 std::cout << begin_marker(id) << "\n" << table << end_marker(id) << "\n";
@@ -183,7 +194,7 @@ int main(int argc, char** argv) {
         }
         const std::string mode = argc == 3 ? argv[1] : "";
         if (mode != "--check" && mode != "--write") {
-            std::cerr << "usage: gen-api-docs [--check|--write FILE]\n";
+            std::cerr << "usage: gen-api-docs [--check|--write FILE | --params]\n";
             return 2;
         }
         const std::string path = argv[2];

@@ -1,5 +1,6 @@
 // gen-dissector: writes the OrionPublic schema table of dissectors/gimbald.lua from the codec's
-// packet declarations (lib/orion/packets_*.hpp), so the dissector cannot drift from the codec.
+// packet declarations (lib/protocols/orion/codec/packets_*.hpp), so the dissector cannot drift from
+// the codec.
 //
 //   gen-dissector                 print the generated block
 //   gen-dissector --check FILE    exit 1 if FILE's generated block differs (a ctest)
@@ -15,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "orion/packets.hpp"
+#include "protocols/orion/codec/packets.hpp"
 #include "schema.hpp"
 
 using namespace gimbal;
@@ -183,8 +184,8 @@ std::string generate() {
               [](const auto& a, const auto& b) { return a.id < b.id; });
 
     std::ostringstream out;
-    out << begin_marker
-        << " (tools/gen-dissector from lib/orion/packets_*.hpp; do not edit by hand:\n"
+    out << begin_marker << " (tools/gen-dissector from lib/protocols/orion/codec/packets_*.hpp;"
+        << " do not edit by hand:\n"
         << "-- cmake --build build/debug --target update-dissector)\n";
     out << "local orion_enums = {\n";
     for (std::size_t i = 0; i < enums.tables().size(); ++i) {
@@ -245,7 +246,7 @@ int main(int argc, char** argv) {
         if (std::string(argv[1]) == "--check") {
             if (block == generated) return 0;
             std::cerr << path
-                      << ": the generated Orion schema differs from lib/orion's declarations;\n"
+                      << ": the generated Orion schema differs from the codec's declarations;\n"
                          "run: cmake --build build/debug --target update-dissector\n";
             return 1;
         }

@@ -1,6 +1,7 @@
-// A schema visitor over the OrionPublic packet declarations (lib/orion/fields.hpp): walks every
-// packet's fields() and records, row by row, what the wire holds - so the Wireshark dissector
-// is generated from the same declarations the codec's encoder, decoder and JSON writer visit.
+// A schema visitor over the OrionPublic packet declarations
+// (lib/protocols/orion/codec/fields.hpp): walks every packet's fields() and records, row by
+// row, what the wire holds - so the Wireshark dissector is generated from the same
+// declarations the codec's encoder, decoder and JSON writer visit.
 #pragma once
 
 #include <cstdint>
@@ -11,8 +12,8 @@
 #include <utility>
 #include <vector>
 
-#include "orion/fields.hpp"
-#include "orion/wire.hpp"
+#include "protocols/orion/codec/fields.hpp"
+#include "protocols/orion/codec/wire.hpp"
 
 namespace gimbal::dissector {
 

@@ -136,9 +136,9 @@ ParsedOptions parse_options(int argc, char** argv) {
     }
     if (!o.video.empty()) {
         const auto url = gimbal::video::parse_video_url(o.video);
-        if (!url.url || url.url->scheme != gimbal::video::UrlScheme::udp || url.url->host.empty()) {
+        if (!url || url->scheme != gimbal::video::UrlScheme::udp || url->host.empty()) {
             std::cerr << "gimbal-replay: --video: expected udp://HOST:PORT"
-                      << (url.url ? "" : " (" + url.error + ")") << "\n";
+                      << (url ? "" : " (" + url.error().message + ")") << "\n";
             return {std::nullopt, 1};
         }
     }

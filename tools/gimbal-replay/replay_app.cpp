@@ -36,7 +36,7 @@ ReplayApp::ReplayApp(asio::io_context& io, const ReplayOptions& options,
         origin_us_ = video_.chunks.front().time_us;
     if (!options_.video.empty()) {
         const auto url = gimbal::video::parse_video_url(options_.video);
-        video_to_ = asio::ip::udp::endpoint(asio::ip::make_address(url.url->host), url.url->port);
+        video_to_ = asio::ip::udp::endpoint(asio::ip::make_address(url->host), url->port);
         video_socket_.emplace(io_, video_to_.protocol());
         video_socket_->non_blocking(true);
         std::cout << "video: " << options_.video << std::endl;

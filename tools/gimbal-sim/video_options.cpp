@@ -52,10 +52,9 @@ std::optional<gimbald::video::SimVideoSenderOptions> video_sender_options(
         return std::nullopt;
     }
     const auto parsed = gimbal::video::parse_video_url(o.url);
-    if (!parsed.url || parsed.url->scheme != gimbal::video::UrlScheme::udp ||
-        parsed.url->host.empty()) {
+    if (!parsed || parsed->scheme != gimbal::video::UrlScheme::udp || parsed->host.empty()) {
         error = "--video: expected udp://HOST:PORT[?ttl=N]" +
-                (parsed.url ? std::string() : " (" + parsed.error + ")");
+                (parsed ? std::string() : " (" + parsed.error().message + ")");
         return std::nullopt;
     }
     int width = 0, height = 0;
@@ -66,9 +65,9 @@ std::optional<gimbald::video::SimVideoSenderOptions> video_sender_options(
         return std::nullopt;
     }
     gimbald::video::SimVideoSenderOptions s;
-    s.host = parsed.url->host;
-    s.port = parsed.url->port;
-    s.ttl = parsed.url->ttl;
+    s.host = parsed->host;
+    s.port = parsed->port;
+    s.ttl = parsed->ttl;
     s.stream.video.scene.width = width;
     s.stream.video.scene.height = height;
     s.stream.video.h264.fps = o.fps;

@@ -251,6 +251,7 @@ void add_gimbal_commands(CommandTable& table) {
     add_laser(table);
     add_pan_tilt(table, "position", "degrees", "off");
     add_pan_tilt(table, "rate", "degrees/s", "on");
+    table.add("center", "center");  // no parameters: group and summary from the catalogue
     add_mode(table);
     add_stare_ack(table);
     add_retract(table);

@@ -28,7 +28,7 @@ void image_position(Command& command) {
     command.app
         ->add_flag("--pixels", *pixels,
                    "X and Y are pixels from the image's top-left corner, of the telemetry's "
-                   "pixel_width x pixel_height (sent as px, py)")
+                   "pixel_width x pixel_height (JSON \"px\" and \"py\" instead of \"x\" and \"y\")")
         ->default_str("off");
     command.params = [p, pixels, previous = command.params] {
         Json j = previous();

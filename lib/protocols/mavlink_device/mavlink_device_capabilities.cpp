@@ -3,24 +3,23 @@
 #include <cmath>
 
 #include "geo/wgs84.hpp"
+#include "state/precision.hpp"
 
 namespace gimbal::protocols {
 
 using nlohmann::json;
-using session::number_at;
-using session::state_at;
+using state::angle_deg;
 
 namespace {
 
-std::optional<std::string> text_at(const json& state, std::initializer_list<const char*> keys) {
-    const json* v = state_at(state, keys);
-    if (!v || !v->is_string() || v->get_ref<const std::string&>().empty()) return std::nullopt;
-    return v->get<std::string>();
+// A text of the information, when the device sent one.
+std::optional<std::string> text(std::string t) {
+    return t.empty() ? std::nullopt : std::optional(std::move(t));
 }
 
 }  // namespace
 
-session::Features MavlinkDeviceCapabilities::features() const {
+session::Features mavlink_device_features() {
     session::Features f;
     f.point_angles = f.rate = f.geopoint = true;
     f.pitch_lock = f.yaw_lock = f.yaw_in_earth_frame = true;
@@ -28,10 +27,11 @@ session::Features MavlinkDeviceCapabilities::features() const {
     return f;
 }
 
-session::Request MavlinkDeviceCapabilities::point_angles(const json& state,
-                                                         const session::AnglesTarget& t) const {
-    const auto cur_pan = number_at(state, {"telemetry", "pan"});
-    const auto cur_tilt = number_at(state, {"telemetry", "tilt"});
+session::Request MavlinkDeviceCapabilities::point_angles(const session::AnglesTarget& t) const {
+    // The device's angles read in place: copying a disengaged optional<double> makes GCC 12
+    // at -O2 warn (-Wmaybe-uninitialized) about its unset value.
+    const auto* tel = data_.telemetry ? &*data_.telemetry : nullptr;
+    const bool have_pan = tel && tel->pan, have_tilt = tel && tel->tilt;
     double pan = 0;
     if (t.yaw_deg && t.yaw_frame == session::YawFrame::earth) {
         if (!t.vehicle_heading_deg)
@@ -39,24 +39,29 @@ session::Request MavlinkDeviceCapabilities::point_angles(const json& state,
         pan = session::wrap180(*t.yaw_deg - *t.vehicle_heading_deg);
     } else if (t.yaw_deg) {
         pan = *t.yaw_deg;
-    } else if (cur_pan) {
-        pan = *cur_pan;
+    } else if (have_pan) {
+        pan = *tel->pan;
     } else {
         return session::unavailable("no attitude from the device yet for the angle left out");
     }
-    if (!t.pitch_deg && !cur_tilt)
+    // Not value_or(*tel->tilt): that would read an empty optional when a pitch is given.
+    double tilt = 0;
+    if (t.pitch_deg)
+        tilt = *t.pitch_deg;
+    else if (have_tilt)
+        tilt = *tel->tilt;
+    else
         return session::unavailable("no attitude from the device yet for the angle left out");
-    return json{{"cmd", "position"}, {"pan", pan}, {"tilt", t.pitch_deg.value_or(*cur_tilt)}};
+    return json{{"cmd", "position"}, {"pan", pan}, {"tilt", tilt}};
 }
 
-session::Request MavlinkDeviceCapabilities::rate(const json&, const session::RateTarget& t) const {
+session::Request MavlinkDeviceCapabilities::rate(const session::RateTarget& t) const {
     return json{{"cmd", "rate"},
                 {"pan", std::isnan(t.yaw_dps) ? 0.0 : t.yaw_dps},
                 {"tilt", std::isnan(t.pitch_dps) ? 0.0 : t.pitch_dps}};
 }
 
-session::Request MavlinkDeviceCapabilities::geopoint(const json&,
-                                                     const session::GeoTarget& t) const {
+session::Request MavlinkDeviceCapabilities::geopoint(const session::GeoTarget& t) const {
     return json{{"cmd", "geopoint"},
                 {"lat", t.lat_deg},
                 {"lon", t.lon_deg},
@@ -64,94 +69,95 @@ session::Request MavlinkDeviceCapabilities::geopoint(const json&,
                 {"alt_ref", "msl"}};
 }
 
-session::Request MavlinkDeviceCapabilities::stop(const json&) const {
+session::Request MavlinkDeviceCapabilities::stop() const {
     return json{{"cmd", "rate"}, {"pan", 0.0}, {"tilt", 0.0}};
 }
 
-session::Request MavlinkDeviceCapabilities::zoom(const json&, const session::ZoomTarget&) const {
+session::Request MavlinkDeviceCapabilities::zoom(const session::ZoomTarget&) const {
     return session::unsupported(
         "a MAVLink gimbal device has no zoom (the camera is another "
         "component)");
 }
 
-std::optional<geo::Quat> MavlinkDeviceCapabilities::line_of_sight(const json& state) const {
-    const auto roll = number_at(state, {"device", "attitude", "roll"});
-    const auto pitch = number_at(state, {"device", "attitude", "pitch"});
-    auto yaw = number_at(state, {"device", "attitude", "yaw"});
-    const json* frame = state_at(state, {"device", "attitude", "frame"});
-    if (!roll || !pitch || !yaw || !frame || !frame->is_string()) return std::nullopt;
-    if (*frame != "earth") {
-        const auto heading = number_at(state, {"telemetry", "yaw"});
+std::optional<geo::Quat> MavlinkDeviceCapabilities::line_of_sight() const {
+    if (!data_.attitude) return std::nullopt;
+    const DeviceAttitude& a = *data_.attitude;
+    // The attitude as STATE `device.attitude` shows it.
+    double yaw = angle_deg(a.yaw_deg);
+    if (!a.earth_frame) {
+        const auto heading = data_.telemetry ? data_.telemetry->yaw : std::nullopt;
         if (!heading) return std::nullopt;
-        *yaw += *heading;
+        yaw += *heading;
     }
-    return geo::normalized(
-        geo::euler_to_quat(geo::EulerDeg{*roll, *pitch, session::wrap180(*yaw)}));
+    return geo::normalized(geo::euler_to_quat(
+        geo::EulerDeg{angle_deg(a.roll_deg), angle_deg(a.pitch_deg), session::wrap180(yaw)}));
 }
 
-session::View MavlinkDeviceCapabilities::view(const json& state) const {
+session::View MavlinkDeviceCapabilities::view() const {
     session::View v;
-    v.lat_deg = number_at(state, {"telemetry", "lat"});
-    v.lon_deg = number_at(state, {"telemetry", "lon"});
-    v.alt_msl_m = number_at(state, {"telemetry", "alt_msl"});
-    v.alt_m = number_at(state, {"telemetry", "alt"});
-    v.target_lat_deg = number_at(state, {"telemetry", "target", "lat"});
-    v.target_lon_deg = number_at(state, {"telemetry", "target", "lon"});
-    const auto talt = number_at(state, {"telemetry", "target", "alt"});
-    const auto n = number_at(state, {"telemetry", "geoid_undulation"});
-    if (talt && n) v.target_alt_msl_m = geo::msl_from_ellipsoid(*talt, *n);
-    v.hfov_deg = number_at(state, {"telemetry", "hfov"});
-    v.vfov_deg = number_at(state, {"telemetry", "vfov"});
+    if (!data_.telemetry) return v;
+    const state::Telemetry& t = *data_.telemetry;
+    v.lat_deg = t.lat;
+    v.lon_deg = t.lon;
+    v.alt_msl_m = t.alt_msl;
+    v.alt_m = t.alt;
+    if (t.target) {
+        v.target_lat_deg = t.target->lat;
+        v.target_lon_deg = t.target->lon;
+        if (t.geoid_undulation)
+            v.target_alt_msl_m = geo::msl_from_ellipsoid(t.target->alt, *t.geoid_undulation);
+    }
+    v.hfov_deg = t.hfov;
+    v.vfov_deg = t.vfov;
     return v;
 }
 
-command::Result<session::ImageView> MavlinkDeviceCapabilities::image(const json& state) const {
-    const auto lat = number_at(state, {"telemetry", "lat"});
-    const auto lon = number_at(state, {"telemetry", "lon"});
-    const auto alt = number_at(state, {"telemetry", "alt"});
-    const auto hfov = number_at(state, {"telemetry", "hfov"});
-    const auto vfov = number_at(state, {"telemetry", "vfov"});
-    const auto los = line_of_sight(state);
-    if (!lat || !lon || !alt || !hfov || !vfov || !los)
+command::Result<session::ImageView> MavlinkDeviceCapabilities::image() const {
+    const auto* t = data_.telemetry ? &*data_.telemetry : nullptr;
+    const auto los = line_of_sight();
+    if (!t || !t->lat || !t->lon || !t->alt || !t->hfov || !t->vfov || !los)
         return command::Error{command::code::unavailable,
                               "no device attitude with a vehicle position yet"};
     session::ImageView v;
-    v.camera = geo::CameraPose{{*lat, *lon, *alt}, *los, *hfov, *vfov};
-    v.flat_alt_m = number_at(state, {"telemetry", "target", "alt"});
-    v.geoid_undulation_m = number_at(state, {"telemetry", "geoid_undulation"});
+    v.camera = geo::CameraPose{{*t->lat, *t->lon, *t->alt}, *los, *t->hfov, *t->vfov};
+    if (t->target) v.flat_alt_m = t->target->alt;
+    v.geoid_undulation_m = t->geoid_undulation;
     return v;
 }
 
-std::optional<geo::Quat> MavlinkDeviceCapabilities::platform_attitude(const json& state) const {
-    const auto roll = number_at(state, {"telemetry", "roll"});
-    const auto pitch = number_at(state, {"telemetry", "pitch"});
-    const auto yaw = number_at(state, {"telemetry", "yaw"});
-    if (!roll || !pitch || !yaw) return std::nullopt;
-    return geo::euler_to_quat(geo::EulerDeg{*roll, *pitch, *yaw});
+std::optional<geo::Quat> MavlinkDeviceCapabilities::platform_attitude() const {
+    const auto* t = data_.telemetry ? &*data_.telemetry : nullptr;
+    if (!t || !t->roll || !t->pitch || !t->yaw) return std::nullopt;
+    return geo::euler_to_quat(geo::EulerDeg{*t->roll, *t->pitch, *t->yaw});
 }
 
-session::Identity MavlinkDeviceCapabilities::identity(const json& state) const {
-    return {text_at(state, {"device", "vendor"}).value_or("MAVLink"),
-            text_at(state, {"device", "model"}).value_or("gimbal device"),
-            text_at(state, {"device", "firmware"})};
+session::Identity MavlinkDeviceCapabilities::identity() const {
+    if (!data_.information) return {"MAVLink", "gimbal device", std::nullopt};
+    const auto& i = *data_.information;
+    return {text(device_text(i.vendor_name)).value_or("MAVLink"),
+            text(device_text(i.model_name)).value_or("gimbal device"),
+            text(firmware_text(i.firmware_version))};
 }
 
-session::Limits MavlinkDeviceCapabilities::limits(const json& state) const {
+session::Limits MavlinkDeviceCapabilities::limits() const {
+    if (!data_.information) return {};
+    const auto& i = *data_.information;
+    const auto deg = [](std::optional<double> d) -> std::optional<double> {
+        if (!d) return std::nullopt;
+        return angle_deg(*d);
+    };
+    const auto [yaw_min, yaw_max] = device_limits(i.yaw_min, i.yaw_max);
+    const auto [pitch_min, pitch_max] = device_limits(i.pitch_min, i.pitch_max);
     session::Limits l;
-    l.pan_min_deg = number_at(state, {"device", "limits", "yaw_min"});
-    l.pan_max_deg = number_at(state, {"device", "limits", "yaw_max"});
-    l.tilt_min_deg = number_at(state, {"device", "limits", "pitch_min"});
-    l.tilt_max_deg = number_at(state, {"device", "limits", "pitch_max"});
+    l.pan_min_deg = deg(yaw_min);
+    l.pan_max_deg = deg(yaw_max);
+    l.tilt_min_deg = deg(pitch_min);
+    l.tilt_max_deg = deg(pitch_max);
     return l;
 }
 
-session::Camera MavlinkDeviceCapabilities::camera(const json&) const {
+session::Camera MavlinkDeviceCapabilities::camera() const {
     return {};
-}
-
-const MavlinkDeviceCapabilities& mavlink_device_capabilities() {
-    static const MavlinkDeviceCapabilities instance;
-    return instance;
 }
 
 }  // namespace gimbal::protocols

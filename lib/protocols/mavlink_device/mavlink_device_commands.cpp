@@ -14,14 +14,9 @@ namespace gimbal::protocols {
 namespace {
 
 namespace code = command::code;
-using command::Params;
+using command::JsonParams;
 using nlohmann::json;
 
-// The catalogue's ranges (lib/command/catalogue.cpp).
-constexpr double min_alt_m = -2000;
-constexpr double max_alt_m = 100000;
-constexpr double max_rate_dps = 32.767 * 180.0 / std::numbers::pi;
-constexpr double max_velocity = 327.67;
 constexpr double deg = std::numbers::pi / 180.0;
 
 command::Error no_fix(std::string_view cmd) {
@@ -32,11 +27,11 @@ command::Error no_fix(std::string_view cmd) {
 
 // The Orion's meaning of `stabilized` (contract section 4): held in the earth frame. Roll
 // and pitch are levelled by the device either way.
-command::Result<Hold> position(Params& p, const DeviceCommandContext& ctx) {
-    const auto pan = p.number("pan", -180.0, 180.0, true);
-    const auto tilt = p.number("tilt", -180.0, 180.0, true);
+command::Result<Hold> position(JsonParams& p, const DeviceCommandContext& ctx) {
+    const auto pan = p.number("pan", true);
+    const auto tilt = p.number("tilt", true);
     const bool stabilized = p.boolean_or("stabilized", false);
-    (void)p.number_or("impulse_time_s", 0.0, 25.5, 0.0);
+    (void)p.number_or("impulse_time_s", 0.0);
     p.reject_unknown();
     if (!p.ok()) return p.error();
     if (!stabilized) return Hold{HoldAngles{*pan, *tilt}};
@@ -49,11 +44,11 @@ command::Result<Hold> position(Params& p, const DeviceCommandContext& ctx) {
     return Hold{HoldHeading{session::wrap180(ctx.vehicle_heading_deg + *pan), *tilt}};
 }
 
-command::Result<Hold> rate(Params& p, const DeviceCommandContext& ctx) {
-    const auto pan = p.number("pan", -max_rate_dps, max_rate_dps, true);
-    const auto tilt = p.number("tilt", -max_rate_dps, max_rate_dps, true);
+command::Result<Hold> rate(JsonParams& p, const DeviceCommandContext& ctx) {
+    const auto pan = p.number("pan", true);
+    const auto tilt = p.number("tilt", true);
     const bool stabilized = p.boolean_or("stabilized", true);
-    const double impulse = p.number_or("impulse_time_s", 0.0, 25.5, 0.0);
+    const double impulse = p.number_or("impulse_time_s", 0.0);
     p.reject_unknown();
     if (!p.ok()) return p.error();
     HoldRates r{*pan, *tilt, std::nullopt, stabilized};
@@ -61,14 +56,13 @@ command::Result<Hold> rate(Params& p, const DeviceCommandContext& ctx) {
     return Hold{r};
 }
 
-command::Result<Hold> geopoint(Params& p, const DeviceCommandContext& ctx) {
-    const auto lat = p.number("lat", -90.0, 90.0, true);
-    const auto lon = p.number("lon", -180.0, 180.0, true);
-    const auto alt = p.number("alt", min_alt_m, max_alt_m, true);
-    static constexpr std::array<std::string_view, 3> refs{"wgs84", "msl", "terrain"};
-    const auto ref = p.choice("alt_ref", refs, false).value_or("wgs84");
-    const auto vel = p.numbers("vel_ned", 3, -max_velocity, max_velocity, false);
-    const auto joystick_range = p.integer_or("joystick_range_m", 0, 65535, 0);
+command::Result<Hold> geopoint(JsonParams& p, const DeviceCommandContext& ctx) {
+    const auto lat = p.number("lat", true);
+    const auto lon = p.number("lon", true);
+    const auto alt = p.number("alt", true);
+    const auto ref = p.choice("alt_ref", false).value_or("wgs84");
+    const auto vel = p.numbers("vel_ned", false);
+    const auto joystick_range = p.integer_or("joystick_range_m", 0);
     // stare: gimbald watches the device's line of sight (mavlink_device_stare.hpp). closure
     // (the Orion's "drive at maximum performance"): a device always slews at its own
     // maximum rate towards the set-point, so the flag changes nothing.
@@ -92,7 +86,7 @@ command::Result<Hold> geopoint(Params& p, const DeviceCommandContext& ctx) {
     return Hold{g};
 }
 
-command::Result<Hold> path(Params& p, const DeviceCommandContext& ctx) {
+command::Result<Hold> path(JsonParams& p, const DeviceCommandContext& ctx) {
     auto read = command::read_path_request(p);
     if (!read) return read.error();
     if (read->down) return Hold{HoldAngles{0, -90}};
@@ -113,14 +107,19 @@ command::Result<Hold> path(Params& p, const DeviceCommandContext& ctx) {
 }  // namespace
 
 bool is_device_command(std::string_view cmd) {
-    return cmd == "position" || cmd == "rate" || cmd == "geopoint" || cmd == "path" ||
-           cmd == "stare_ack";
+    return cmd == "position" || cmd == "center" || cmd == "rate" || cmd == "geopoint" ||
+           cmd == "path" || cmd == "stare_ack";
 }
 
 command::Result<Hold> plan_device_command(std::string_view cmd, const json& request,
                                           const DeviceCommandContext& context) {
-    Params p(request);
+    JsonParams p(request, cmd);
     if (cmd == "position") return position(p, context);
+    if (cmd == "center") {  // forward and level in the aircraft's frame, held
+        p.reject_unknown();
+        if (!p.ok()) return p.error();
+        return Hold{HoldAngles{0.0, 0.0}};
+    }
     if (cmd == "rate") return rate(p, context);
     if (cmd == "geopoint") return geopoint(p, context);
     if (cmd == "path") return path(p, context);

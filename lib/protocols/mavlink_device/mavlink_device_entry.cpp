@@ -24,6 +24,7 @@ constexpr PlannedCommand commands[] = {
     {"position",
      "GIMBAL_DEVICE_SET_ATTITUDE (284), yaw in the vehicle frame; `stabilized`: held from "
      "north (heading + pan)"},
+    {"center", "GIMBAL_DEVICE_SET_ATTITUDE (284) at yaw 0, pitch 0 in the vehicle frame"},
     {"rate",
      "GIMBAL_DEVICE_SET_ATTITUDE (284) with angular velocities, from north when `stabilized`"},
 };
@@ -62,6 +63,9 @@ bool needs_geoid(const nlohmann::json& gimbal) {
     return !read_mavlink_device_options(gimbal).geoid_undulation_m.has_value();
 }
 
+// STATE `device`: the gimbal device's own report (contract section 19).
+constexpr std::string_view state_keys[] = {"device"};
+
 std::size_t frame_size(const ScannedFrame& f) {
     return f.bytes.size();
 }
@@ -73,7 +77,8 @@ Entry make_entry() {
     e.display_name = "MAVLink";
     e.dissector = "mavlink";
     e.commands = commands;
-    e.capabilities = &mavlink_device_capabilities();
+    e.state_keys = state_keys;
+    e.features = mavlink_device_features();
     e.config_section = "mavlink";
     e.read_config = read_config;
     e.make_session = make_session;

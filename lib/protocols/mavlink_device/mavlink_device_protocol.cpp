@@ -124,13 +124,16 @@ void MavlinkDeviceProtocol::check_stare(double now_s, std::vector<state::Event>&
     events.push_back(state::Event{"stare_start", std::move(*fields)});
 }
 
-void MavlinkDeviceProtocol::steer(const vehicle::VehicleState& vehicle, double vehicle_now_s,
-                                  double now_s, std::vector<session::Bytes>& out) {
+std::size_t MavlinkDeviceProtocol::steer(const vehicle::VehicleState& vehicle, double vehicle_now_s,
+                                         double now_s, std::vector<session::Bytes>& out) {
     const auto fix = vehicle_fix(vehicle, vehicle_now_s);
     state_.set_vehicle(fix);
+    const std::size_t before = out.size();
     feed_vehicle(fix, vehicle_now_s, out);
+    const std::size_t fed = out.size() - before;  // AUTOPILOT_STATE_FOR_GIMBAL_DEVICE
     housekeeping(now_s, out);
     if (const auto m = set_attitude(now_s)) out.push_back(frame(*m));
+    return fed;
 }
 
 void MavlinkDeviceProtocol::feed_vehicle(const std::optional<VehicleFix>& fix, double vehicle_now_s,
@@ -154,10 +157,6 @@ session::FrameCounters MavlinkDeviceProtocol::counters() const {
 
 bool MavlinkDeviceProtocol::supports(std::string_view cmd) const {
     return is_device_command(cmd);
-}
-
-const session::Capabilities& MavlinkDeviceProtocol::capabilities() const {
-    return mavlink_device_capabilities();
 }
 
 std::optional<command::Error> MavlinkDeviceProtocol::plan(std::string_view cmd,
@@ -184,8 +183,8 @@ std::optional<command::Error> MavlinkDeviceProtocol::plan(std::string_view cmd,
 
 std::optional<command::Error> MavlinkDeviceProtocol::acknowledge_stare(
     const nlohmann::json& request) {
-    command::Params p(request);
-    const auto time = p.integer("system_time_ms", 0, 4294967295LL, false);
+    command::JsonParams p(request, "stare_ack");
+    const auto time = p.integer("system_time_ms", false);
     p.reject_unknown();
     if (!p.ok()) return p.error();
     if (!time && !last_stare_time_ms_)

@@ -8,6 +8,7 @@
 #pragma once
 
 #include "mavlink/framer.hpp"
+#include "protocols/mavlink_device/mavlink_device_capabilities.hpp"
 #include "protocols/mavlink_device/mavlink_device_options.hpp"
 #include "protocols/mavlink_device/mavlink_device_state.hpp"
 #include "protocols/mavlink_device/mavlink_device_steering.hpp"
@@ -24,15 +25,23 @@ class MavlinkDeviceProtocol final : public session::Protocol {
     void receive(std::span<const std::uint8_t> bytes, double now_s,
                  std::vector<state::Event>& events, std::vector<session::Bytes>& replies) override;
     void tick(double now_s, std::vector<state::Event>& events) override;
-    void steer(const vehicle::VehicleState& vehicle, double vehicle_now_s, double now_s,
-               std::vector<session::Bytes>& out) override;
+    std::size_t steer(const vehicle::VehicleState& vehicle, double vehicle_now_s, double now_s,
+                      std::vector<session::Bytes>& out) override;
     std::vector<session::Bytes> on_connect() override;
     bool stale(double now_s) const override { return state_.stale(now_s); }
+    std::optional<double> telemetry_age_s(double now_s) const override {
+        return state_.telemetry_age_s(now_s);
+    }
     std::uint64_t telemetry_count() const override { return state_.telemetry_count(); }
-    nlohmann::json snapshot(double now_s) const override { return state_.snapshot(now_s); }
+    void write_state(state::JsonWriter& w, const session::StateContext& c) const override {
+        state_.write(w, c.now_s);
+    }
     session::FrameCounters counters() const override;
     bool supports(std::string_view cmd) const override;
-    const session::Capabilities& capabilities() const override;
+    const session::Capabilities& capabilities() const override { return capabilities_; }
+    const state::Telemetry* telemetry() const override {
+        return state_.telemetry() ? &*state_.telemetry() : nullptr;
+    }
     std::optional<command::Error> plan(std::string_view cmd, const nlohmann::json& request,
                                        const session::Now& now, command::Plan& plan) override;
 
@@ -62,6 +71,7 @@ class MavlinkDeviceProtocol final : public session::Protocol {
     SignatureCheck signatures_;  // before framer_: it configures it
     mavlink::Framer framer_;
     MavlinkDeviceState state_;
+    MavlinkDeviceCapabilities capabilities_{state_.data()};
     MavlinkDeviceSteering steering_;
     MavlinkSender sender_;
     std::optional<double> last_heartbeat_s_;

@@ -182,7 +182,7 @@ void MavlinkDeviceSim::send_status(double now_s, std::vector<std::uint8_t>& out)
 void MavlinkDeviceSim::send_information(std::vector<std::uint8_t>& out) {
     mavlink::GimbalDeviceInformation i;
     i.uid = 0x6769'6D62'616C'6400ULL | options_.component_id;
-    i.firmware_version = 1 | (2 << 8) | (3 << 16);  // 1.2.3
+    i.firmware_version = firmware_version;
     i.hardware_version = 1;
     i.roll_min = static_cast<float>(-45 * deg_to_rad);
     i.roll_max = static_cast<float>(45 * deg_to_rad);

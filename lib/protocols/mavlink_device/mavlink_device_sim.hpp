@@ -37,6 +37,10 @@ struct MavlinkDeviceSimOptions {
 
 class MavlinkDeviceSim final : public sim::Device {
   public:
+    // GIMBAL_DEVICE_INFORMATION.firmware_version as common.xml encodes it (Major in the low
+    // byte, then Minor, Patch, Dev): 2.4.1, a release (Dev 0). STATE shows "2.4.1".
+    static constexpr std::uint32_t firmware_version = 2 | (4 << 8) | (1 << 16);
+
     explicit MavlinkDeviceSim(const MavlinkDeviceSimOptions& options);
 
     void receive(std::span<const std::uint8_t> bytes, double now_s) override;

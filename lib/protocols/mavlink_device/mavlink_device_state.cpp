@@ -2,12 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
+#include <utility>
 
 #include "geo/ground.hpp"
 #include "geo/wgs84.hpp"
 #include "protocols/mavlink_device/mavlink_device_flags.hpp"
 #include "session/capabilities.hpp"
-#include "state/ground_json.hpp"
 #include "state/precision.hpp"
 
 namespace gimbal::protocols {
@@ -21,12 +22,25 @@ namespace {
 
 constexpr double rad_to_deg = 180.0 / 3.14159265358979323846;
 
-json degrees_or_null(float rad) {
-    return std::isfinite(rad) ? json(angle_deg(rad * rad_to_deg)) : json(nullptr);
+}  // namespace
+
+// A limit outside -360..360 degrees, or a pair whose min exceeds its max, is unknown (null)
+// and is not relayed (contract section 14, v4): a device's +-5.7e39 would reach every ground
+// station as GIMBAL_MANAGER_INFORMATION.
+std::pair<std::optional<double>, std::optional<double>> device_limits(float min_rad,
+                                                                      float max_rad) {
+    const auto sane = [](float rad) -> std::optional<double> {
+        if (!std::isfinite(rad) || std::abs(rad * rad_to_deg) > 360.0) return std::nullopt;
+        return rad * rad_to_deg;
+    };
+    auto min = sane(min_rad);
+    auto max = sane(max_rad);
+    if (min && max && min_rad > max_rad) min = max = std::nullopt;
+    return {min, max};
 }
 
 // A fixed-size, possibly unterminated char[32] of the wire.
-std::string text_of(const std::array<std::uint8_t, 32>& chars) {
+std::string device_text(const std::array<std::uint8_t, 32>& chars) {
     std::string s;
     for (const auto c : chars) {
         if (c == 0) break;
@@ -35,11 +49,16 @@ std::string text_of(const std::array<std::uint8_t, 32>& chars) {
     return s;
 }
 
-// common.xml: (Dev & 0xff) << 24 + (Patch & 0xff) << 16 + (Minor & 0xff) << 8 + (Major & 0xff).
-std::string version_text(std::uint32_t v) {
-    return std::to_string(v & 0xFF) + "." + std::to_string((v >> 8) & 0xFF) + "." +
-           std::to_string((v >> 16) & 0xFF) + "." + std::to_string(v >> 24);
+// common.xml: (Dev & 0xff) << 24 + (Patch & 0xff) << 16 + (Minor & 0xff) << 8 + (Major & 0xff),
+// shown as "Major.Minor.Patch", with ".Dev" only for a development build (Dev not 0).
+std::string firmware_text(std::uint32_t v) {
+    std::string text = std::to_string(v & 0xFF) + "." + std::to_string((v >> 8) & 0xFF) + "." +
+                       std::to_string((v >> 16) & 0xFF);
+    if ((v >> 24) != 0) text += "." + std::to_string(v >> 24);
+    return text;
 }
+
+namespace {
 
 double radians_per_second(float v) {
     return std::isfinite(v) ? v * rad_to_deg : 0.0;
@@ -72,7 +91,7 @@ bool MavlinkDeviceState::apply(const mavlink::Message& message, double now_s) {
 
 void MavlinkDeviceState::on_attitude(const mavlink::GimbalDeviceAttitudeStatus& m, double now_s) {
     const auto e = euler_of(m.q);
-    DeviceAttitude a = attitude_.value_or(DeviceAttitude{});
+    DeviceAttitude a = data_.attitude.value_or(DeviceAttitude{});
     // A NaN quaternion keeps the last angles (the device says it has none now) but counts as
     // a report: its failure flags and rates are current.
     if (e) {
@@ -87,14 +106,14 @@ void MavlinkDeviceState::on_attitude(const mavlink::GimbalDeviceAttitudeStatus& 
     a.failure_flags = m.failure_flags;
     a.time_boot_ms = m.time_boot_ms;
     a.received_s = now_s;
-    attitude_ = a;
+    data_.attitude = a;
     ++attitudes_;
     lost_reported_ = false;
-    telemetry_ = telemetry_json();
+    data_.telemetry = derive_telemetry();
 }
 
 void MavlinkDeviceState::on_information(const mavlink::GimbalDeviceInformation& m, double) {
-    information_ = m;
+    data_.information = m;
 }
 
 void MavlinkDeviceState::set_vehicle(const std::optional<VehicleFix>& fix) {
@@ -113,114 +132,114 @@ std::optional<geo::Lla> MavlinkDeviceState::camera() const {
 
 bool MavlinkDeviceState::earth_frame_supported() const {
     constexpr std::uint16_t supports_yaw_in_earth_frame = 4096;
-    return information_ && (information_->cap_flags & supports_yaw_in_earth_frame) != 0;
+    return data_.information && (data_.information->cap_flags & supports_yaw_in_earth_frame) != 0;
 }
 
 std::optional<double> MavlinkDeviceState::pan_deg() const {
-    if (!attitude_) return std::nullopt;
-    if (!attitude_->earth_frame) return session::wrap180(attitude_->yaw_deg);
+    if (!data_.attitude) return std::nullopt;
+    if (!data_.attitude->earth_frame) return session::wrap180(data_.attitude->yaw_deg);
     if (!vehicle_) return std::nullopt;
-    return session::wrap180(attitude_->yaw_deg - vehicle_->yaw_deg);
+    return session::wrap180(data_.attitude->yaw_deg - vehicle_->yaw_deg);
 }
 
 std::optional<geo::Quat> MavlinkDeviceState::line_of_sight() const {
-    if (!attitude_) return std::nullopt;
-    double yaw = attitude_->yaw_deg;
-    if (!attitude_->earth_frame) {
+    if (!data_.attitude) return std::nullopt;
+    double yaw = data_.attitude->yaw_deg;
+    if (!data_.attitude->earth_frame) {
         if (!vehicle_) return std::nullopt;
         yaw += vehicle_->yaw_deg;
     }
     return geo::normalized(geo::euler_to_quat(
-        geo::EulerDeg{attitude_->roll_deg, attitude_->pitch_deg, session::wrap180(yaw)}));
+        geo::EulerDeg{data_.attitude->roll_deg, data_.attitude->pitch_deg, session::wrap180(yaw)}));
 }
 
-json MavlinkDeviceState::telemetry_json() const {
-    json t = json::object();
-    const auto pan = pan_deg();
-    t["pan"] = pan ? json(angle_deg(*pan)) : json(nullptr);
-    t["tilt"] = angle_deg(attitude_->pitch_deg);
-    t["hfov"] = angle_deg(options_.hfov_deg);
-    t["vfov"] = angle_deg(options_.vfov_deg);
+state::Telemetry MavlinkDeviceState::derive_telemetry() const {
+    state::Telemetry t;
+    if (const auto pan = pan_deg()) t.pan = angle_deg(*pan);
+    t.tilt = angle_deg(data_.attitude->pitch_deg);
+    t.hfov = angle_deg(options_.hfov_deg);
+    t.vfov = angle_deg(options_.vfov_deg);
     const auto los = line_of_sight();
-    if (!vehicle_ || !los) {
-        for (const char* key : {"lat", "lon", "alt", "alt_msl", "geoid_undulation", "roll", "pitch",
-                                "yaw", "target", "footprint", "footprint_surface", "ground"})
-            t[key] = nullptr;
-        return t;
-    }
+    if (!vehicle_ || !los) return t;
     const VehicleFix& v = *vehicle_;
     const geo::Lla camera_at = *camera();
-    t["lat"] = latlon_deg(camera_at.lat_deg);
-    t["lon"] = latlon_deg(camera_at.lon_deg);
-    t["alt"] = metres(camera_at.alt_m);
-    t["alt_msl"] = metres(v.alt_msl_m);
-    t["geoid_undulation"] = metres(geoid_undulation_m_);
-    t["roll"] = angle_deg(v.roll_deg);
-    t["pitch"] = angle_deg(v.pitch_deg);
-    t["yaw"] = angle_deg(v.yaw_deg);
+    t.lat = latlon_deg(camera_at.lat_deg);
+    t.lon = latlon_deg(camera_at.lon_deg);
+    t.alt = metres(camera_at.alt_m);
+    t.alt_msl = metres(v.alt_msl_m);
+    t.geoid_undulation = metres(geoid_undulation_m_);
+    t.roll = angle_deg(v.roll_deg);
+    t.pitch = angle_deg(v.pitch_deg);
+    t.yaw = angle_deg(v.yaw_deg);
     const geo::CameraPose camera{camera_at, *los, options_.hfov_deg, options_.vfov_deg};
     const geo::Ground ground{options_.terrain, options_.ground_alt_m};
     // The device reports no target of its own: where its line of sight meets the ground.
     if (const auto centre = geo::locate_ground(camera, {0, 0}, ground))
-        t["target"] = {{"lat", latlon_deg(centre->point.lat_deg)},
-                       {"lon", latlon_deg(centre->point.lon_deg)},
-                       {"alt", metres(centre->point.alt_m)}};
-    else
-        t["target"] = nullptr;
-    state::add_ground_keys(t, camera, ground);
+        t.target = state::GeoPoint{latlon_deg(centre->point.lat_deg),
+                                   latlon_deg(centre->point.lon_deg), metres(centre->point.alt_m)};
+    t.view = state::ground_view(camera, ground);
     return t;
 }
 
-json MavlinkDeviceState::device_json(double now_s) const {
-    json d = json::object();
-    if (information_) {
-        const auto& i = *information_;
-        d["vendor"] = text_of(i.vendor_name);
-        d["model"] = text_of(i.model_name);
-        d["firmware"] = version_text(i.firmware_version);
-        d["cap_flags"] = cap_flag_names(i.cap_flags);
-        d["limits"] = {{"roll_min", degrees_or_null(i.roll_min)},
-                       {"roll_max", degrees_or_null(i.roll_max)},
-                       {"pitch_min", degrees_or_null(i.pitch_min)},
-                       {"pitch_max", degrees_or_null(i.pitch_max)},
-                       {"yaw_min", degrees_or_null(i.yaw_min)},
-                       {"yaw_max", degrees_or_null(i.yaw_max)}};
+void MavlinkDeviceState::write_device(state::JsonWriter& d, double now_s) const {
+    if (data_.information) {
+        const auto& i = *data_.information;
+        d.string("vendor", device_text(i.vendor_name));
+        d.string("model", device_text(i.model_name));
+        d.string("firmware", firmware_text(i.firmware_version));
+        d.array("cap_flags", cap_flag_names(i.cap_flags));
+        d.object("limits", [&](state::JsonWriter& l) {
+            for (const auto& [axis, min, max] : {std::tuple{"roll", i.roll_min, i.roll_max},
+                                                 std::tuple{"pitch", i.pitch_min, i.pitch_max},
+                                                 std::tuple{"yaw", i.yaw_min, i.yaw_max}}) {
+                const auto [lo, hi] = device_limits(min, max);
+                l.angle(std::string(axis) + "_min", lo);
+                l.angle(std::string(axis) + "_max", hi);
+            }
+        });
     } else {
-        for (const char* key : {"vendor", "model", "firmware", "cap_flags", "limits"})
-            d[key] = nullptr;
+        for (const char* key : {"vendor", "model", "firmware", "cap_flags", "limits"}) d.null(key);
     }
-    if (attitude_) {
-        const auto& a = *attitude_;
-        d["attitude"] = {{"roll", angle_deg(a.roll_deg)},
-                         {"pitch", angle_deg(a.pitch_deg)},
-                         {"yaw", angle_deg(a.yaw_deg)},
-                         {"frame", a.earth_frame ? "earth" : "vehicle"}};
-        d["angular_velocity"] = {angle_deg(a.angular_velocity_dps[0]),
-                                 angle_deg(a.angular_velocity_dps[1]),
-                                 angle_deg(a.angular_velocity_dps[2])};
-        d["failure_flags"] = failure_flag_names(a.failure_flags);
-        d["age_s"] = state::seconds(std::max(0.0, now_s - a.received_s));
+    if (data_.attitude) {
+        const auto& a = *data_.attitude;
+        d.object("attitude", [&](state::JsonWriter& at) {
+            at.angle("roll", a.roll_deg);
+            at.angle("pitch", a.pitch_deg);
+            at.angle("yaw", a.yaw_deg);
+            at.string("frame", a.earth_frame ? "earth" : "vehicle");
+        });
+        d.array("angular_velocity", a.angular_velocity_dps, state::angle_json);
+        d.array("failure_flags", failure_flag_names(a.failure_flags));
+        d.seconds("age_s", std::max(0.0, now_s - a.received_s));
     } else {
         for (const char* key : {"attitude", "angular_velocity", "failure_flags", "age_s"})
-            d[key] = nullptr;
+            d.null(key);
     }
-    return d;
 }
 
 bool MavlinkDeviceState::stale(double now_s) const {
-    return !attitude_ || now_s - attitude_->received_s > options_.stale_after_s;
+    return !data_.attitude || now_s - data_.attitude->received_s > options_.stale_after_s;
 }
 
 void MavlinkDeviceState::tick(double now_s, std::vector<state::Event>& events) {
-    if (attitude_ && !lost_reported_ && stale(now_s)) {
+    if (data_.attitude && !lost_reported_ && stale(now_s)) {
         lost_reported_ = true;
         events.push_back(
-            state::Event{"lost", {{"age_s", state::seconds(now_s - attitude_->received_s)}}});
+            state::Event{"lost", {{"age_s", state::seconds(now_s - data_.attitude->received_s)}}});
     }
 }
 
+void MavlinkDeviceState::write(state::JsonWriter& w, double now_s) const {
+    w.object("device", [&](state::JsonWriter& d) { write_device(d, now_s); });
+    w.object("telemetry", data_.telemetry);
+    w.json("stare", stare_);
+}
+
 json MavlinkDeviceState::snapshot(double now_s) const {
-    return {{"device", device_json(now_s)}, {"telemetry", telemetry_}, {"stare", stare_}};
+    json out = json::object();
+    state::JsonWriter w(out);
+    write(w, now_s);
+    return out;
 }
 
 }  // namespace gimbal::protocols

@@ -4,6 +4,7 @@
 // ground). Pure: every call takes now_s (monotonic seconds).
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <nlohmann/json.hpp>
@@ -17,6 +18,7 @@
 #include "protocols/mavlink_device/mavlink_device_options.hpp"
 #include "protocols/mavlink_device/mavlink_device_wire.hpp"
 #include "state/event.hpp"
+#include "state/telemetry.hpp"
 
 namespace gimbal::protocols {
 
@@ -29,6 +31,22 @@ struct DeviceAttitude {
     std::uint32_t time_boot_ms = 0;  // the device's clock at the report
     double received_s = 0;
 };
+
+// What the device reported, typed: what its capabilities read (mavlink_device_capabilities.hpp).
+struct MavlinkDeviceData {
+    std::optional<DeviceAttitude> attitude;
+    std::optional<mavlink::GimbalDeviceInformation> information;
+    // STATE `telemetry`: the shared keys, from the latest attitude and the vehicle's fix then.
+    std::optional<state::Telemetry> telemetry;
+};
+
+// The information's texts as STATE shows them: a char[32] of the wire (printable ASCII, '?'
+// for anything else), and the firmware version "Major.Minor.Patch[.Dev]".
+std::string device_text(const std::array<std::uint8_t, 32>& chars);
+std::string firmware_text(std::uint32_t version);
+// One axis's reported limits (min, max) in degrees, as STATE shows them before rounding: a
+// limit outside -360..360 degrees, or a pair whose min exceeds its max, is unknown.
+std::pair<std::optional<double>, std::optional<double>> device_limits(float min_rad, float max_rad);
 
 class MavlinkDeviceState {
   public:
@@ -50,15 +68,25 @@ class MavlinkDeviceState {
     void tick(double now_s, std::vector<state::Event>& events);
 
     bool stale(double now_s) const;
+    // Seconds since the latest attitude report; nullopt before the first.
+    std::optional<double> telemetry_age_s(double now_s) const {
+        if (!data_.attitude) return std::nullopt;
+        return std::max(0.0, now_s - data_.attitude->received_s);
+    }
     std::uint64_t telemetry_count() const { return attitudes_; }
-    nlohmann::json snapshot(double now_s) const;
+    // STATE `device`, `telemetry` and `stare`.
+    void write(state::JsonWriter& w, double now_s) const;
+    nlohmann::json snapshot(double now_s) const;  // write() as a JSON object
 
-    const std::optional<DeviceAttitude>& attitude() const { return attitude_; }
-    bool has_information() const { return information_.has_value(); }
+    const std::optional<DeviceAttitude>& attitude() const { return data_.attitude; }
+    // STATE `telemetry`: the shared keys, from the latest attitude and the vehicle's fix then.
+    const std::optional<state::Telemetry>& telemetry() const { return data_.telemetry; }
+    const MavlinkDeviceData& data() const { return data_; }
+    bool has_information() const { return data_.information.has_value(); }
     // GIMBAL_DEVICE_CAP_FLAGS_SUPPORTS_YAW_IN_EARTH_FRAME, from the information.
     bool earth_frame_supported() const;
     // GIMBAL_DEVICE_CAP_FLAGS, from the information (0 before it).
-    std::uint32_t cap_flags() const { return information_ ? information_->cap_flags : 0; }
+    std::uint32_t cap_flags() const { return data_.information ? data_.information->cap_flags : 0; }
     // The device's MAVLink address (from its messages), once heard.
     std::optional<std::uint8_t> device_system() const { return device_system_; }
     std::uint8_t device_component() const { return device_component_; }
@@ -71,18 +99,16 @@ class MavlinkDeviceState {
   private:
     void on_attitude(const mavlink::GimbalDeviceAttitudeStatus& m, double now_s);
     void on_information(const mavlink::GimbalDeviceInformation& m, double now_s);
-    nlohmann::json telemetry_json() const;
-    nlohmann::json device_json(double now_s) const;
+    state::Telemetry derive_telemetry() const;
+    void write_device(state::JsonWriter& d, double now_s) const;
 
     MavlinkDeviceOptions options_;
     std::optional<VehicleFix> vehicle_;
     double geoid_undulation_m_ = 0;
     nlohmann::json stare_ = nullptr;
-    std::optional<DeviceAttitude> attitude_;
-    std::optional<mavlink::GimbalDeviceInformation> information_;
+    MavlinkDeviceData data_;
     std::optional<std::uint8_t> device_system_;
     std::uint8_t device_component_ = 154;
-    nlohmann::json telemetry_ = nullptr;
     std::uint64_t attitudes_ = 0;
     bool lost_reported_ = false;
 };

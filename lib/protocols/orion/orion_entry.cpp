@@ -10,13 +10,14 @@ namespace gimbal::protocols {
 
 namespace {
 
-// The catalogue commands an Orion plans (command/orion_commands.cpp), with their packets.
+// The catalogue commands an Orion plans (orion_commands.cpp), with their packets.
 constexpr PlannedCommand commands[] = {
     {"geopoint", "GeopointCmd, id 213, 21 bytes"},
     {"path", "OrionPath, id 215, 5 + 9 x points bytes"},
     {"laser", "OrionLaserCommand, id 3, 14 + len(password) bytes"},
     {"position", "OrionCmd, id 1, mode position"},
     {"rate", "OrionCmd, id 1, mode rate"},
+    {"center", "OrionCmd, id 1, mode position at 0, 0, not stabilized"},
     {"mode", "OrionCmd with zero targets"},
     {"stare_ack", "StareAck, id 218"},
     {"retract", "OrionRetractCommand, id 160"},
@@ -25,6 +26,25 @@ constexpr PlannedCommand commands[] = {
     {"range", "OrionRangeData, id 214"},
     {"request", "zero-length packet(s) of that id"},
 };
+
+// STATE keys of an Orion's own packets (contract section 5), besides the shared ones.
+constexpr std::string_view state_keys[] = {"ins",
+                                           "gps",
+                                           "diagnostics",
+                                           "performance",
+                                           "software",
+                                           "network_diagnostics",
+                                           "vibration",
+                                           "retract",
+                                           "cameras",
+                                           "limits",
+                                           "network_settings",
+                                           "network_video",
+                                           "uart_config",
+                                           "ins_options",
+                                           "versions",
+                                           "reset_source",
+                                           "boards"};
 
 std::size_t frame_size(const orion::Frame& f) {
     return orion::header_size + f.payload.size + orion::checksum_size;
@@ -47,7 +67,8 @@ Entry make_entry() {
     e.display_name = "Orion";
     e.dissector = "orion";
     e.commands = commands;
-    e.capabilities = &orion_capabilities();
+    e.state_keys = state_keys;
+    e.features = orion_features();
     e.read_config = [](config::Fields& gimbal, const ConfigContext&) {
         return config::read_and_write<OrionConfig>(gimbal);
     };
@@ -58,6 +79,7 @@ Entry make_entry() {
             std::make_unique<framing::FramerSplitter<orion::Framer, frame_size>>());
     };
     e.make_track_decoder = make_orion_track_decoder;
+    e.discovery = orion_discovery();
     e.simulator = orion_simulator();
     return e;
 }

@@ -1,6 +1,6 @@
 // Orion's registry entry (Trillium OrionPublic protocol): the session, framer, feed, export,
-// simulator and capabilities of lib/orion, state/orion_state, command/orion_commands and
-// sim/orion_sim behind the registry's interfaces.
+// discovery, simulator and capabilities of its codec (codec/), state (orion_state), planner
+// (orion_commands) and simulated gimbal (sim/) behind the registry's interfaces.
 #pragma once
 
 #include "protocols/registry.hpp"
@@ -9,5 +9,6 @@ namespace gimbal::protocols {
 
 const Entry& orion_entry();
 Simulator orion_simulator();
+Discovery orion_discovery();
 
 }  // namespace gimbal::protocols

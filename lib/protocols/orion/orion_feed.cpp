@@ -1,8 +1,8 @@
 #include "protocols/orion/orion_feed.hpp"
 
-#include "orion/framing.hpp"
+#include "protocols/orion/codec/framing.hpp"
 #include "protocols/orion/orion_config.hpp"
-#include "vehicle/feeds.hpp"
+#include "protocols/orion/orion_feed_packets.hpp"
 
 namespace gimbal::protocols {
 

@@ -1,7 +1,7 @@
 #include "protocols/orion/orion_protocol.hpp"
 
-#include "orion/enums.hpp"
-#include "orion/framing.hpp"
+#include "protocols/orion/codec/enums.hpp"
+#include "protocols/orion/codec/framing.hpp"
 
 namespace gimbal::protocols {
 
@@ -42,6 +42,13 @@ std::vector<Bytes> OrionProtocol::on_connect() {
     return out;
 }
 
+void OrionProtocol::write_state(state::JsonWriter& w, const session::StateContext& c) const {
+    if (c.lasers)
+        state_.write(w, c.now_s, [&](std::uint8_t i) { return c.lasers->firing(i); });
+    else
+        state_.write(w, c.now_s);
+}
+
 FrameCounters OrionProtocol::counters() const {
     const auto& s = framer_.stats();
     return FrameCounters{s.packets, s.bad_checksums, s.dropped_bytes, state_.decode_errors()};
@@ -51,17 +58,13 @@ bool OrionProtocol::supports(std::string_view cmd) const {
     return command::is_orion_command(cmd);
 }
 
-const session::Capabilities& OrionProtocol::capabilities() const {
-    return orion_capabilities();
-}
-
 std::optional<command::Error> OrionProtocol::plan(std::string_view cmd,
                                                   const nlohmann::json& request, const Now&,
                                                   command::Plan& plan) {
     command::OrionContext ctx;
     ctx.allow_fire = options_.allow_fire;
     ctx.allow_safety_bypass = options_.allow_safety_bypass;
-    if (const auto& t = state_.telemetry()) ctx.geoid_undulation_m = t->geoid_undulation;
+    if (const auto& t = state_.telemetry()) ctx.geoid_undulation_m = t->packet.geoid_undulation;
     ctx.last_stare_time_ms = state_.last_stare_time_ms();
     return command::plan_orion(cmd, request, ctx, plan);
 }

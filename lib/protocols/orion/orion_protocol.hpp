@@ -3,11 +3,11 @@
 
 #include <memory>
 
-#include "command/orion_commands.hpp"
-#include "orion/framer.hpp"
+#include "protocols/orion/codec/framer.hpp"
 #include "protocols/orion/orion_capabilities.hpp"
+#include "protocols/orion/orion_commands.hpp"
+#include "protocols/orion/orion_state.hpp"
 #include "session/protocol.hpp"
-#include "state/orion_state.hpp"
 
 namespace gimbal::protocols {
 
@@ -33,11 +33,17 @@ class OrionProtocol final : public session::Protocol {
     void tick(double now_s, std::vector<state::Event>& events) override;
     std::vector<Bytes> on_connect() override;
     bool stale(double now_s) const override { return state_.stale(now_s); }
+    std::optional<double> telemetry_age_s(double now_s) const override {
+        return state_.telemetry_age_s(now_s);
+    }
     std::uint64_t telemetry_count() const override { return state_.telemetry_count(); }
-    nlohmann::json snapshot(double now_s) const override { return state_.snapshot(now_s); }
+    void write_state(state::JsonWriter& w, const session::StateContext& c) const override;
     FrameCounters counters() const override;
     bool supports(std::string_view cmd) const override;
-    const session::Capabilities& capabilities() const override;
+    const session::Capabilities& capabilities() const override { return capabilities_; }
+    const state::Telemetry* telemetry() const override {
+        return state_.telemetry() ? &state_.telemetry()->shared : nullptr;
+    }
     std::optional<command::Error> plan(std::string_view cmd, const nlohmann::json& request,
                                        const Now& now, command::Plan& plan) override;
 
@@ -47,6 +53,7 @@ class OrionProtocol final : public session::Protocol {
     OrionOptions options_;
     orion::Framer framer_;
     state::OrionState state_;
+    OrionCapabilities capabilities_{state_.data()};
 };
 
 }  // namespace gimbal::protocols

@@ -1,10 +1,11 @@
 #include "protocols/orion/orion_entry.hpp"
 
-#include "orion/framer.hpp"
-#include "orion/json.hpp"
-#include "orion/packets.hpp"
-#include "sim/orion_sim.hpp"
-#include "sim/sim_camera.hpp"
+#include "protocols/orion/codec/framer.hpp"
+#include "protocols/orion/codec/json.hpp"
+#include "protocols/orion/codec/packets.hpp"
+#include "protocols/orion/sim/orion_fault_frames.hpp"
+#include "protocols/orion/sim/orion_sim.hpp"
+#include "protocols/orion/sim/sim_camera.hpp"
 
 namespace gimbal::protocols {
 
@@ -131,8 +132,7 @@ bool is_discovery_request(std::span<const std::uint8_t> datagram) {
 std::optional<sim::CameraView> camera(const sim::Device& device) {
     const auto v = sim::orion_sim_camera(device);
     if (!v) return std::nullopt;
-    return sim::CameraView{v->model_time_s, sim::camera_pose(*v), v->mount_to_ned,
-                           v->geoid_undulation_m, v->infrared};
+    return sim::camera_view(*v);
 }
 
 }  // namespace

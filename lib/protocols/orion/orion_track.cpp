@@ -1,8 +1,8 @@
 #include "protocols/orion/orion_track.hpp"
 
-#include "orion/framer.hpp"
+#include "protocols/orion/codec/framer.hpp"
+#include "protocols/orion/orion_state.hpp"
 #include "protocols/track_values.hpp"
-#include "state/orion_state.hpp"
 #include "state/precision.hpp"
 
 namespace gimbal::protocols {

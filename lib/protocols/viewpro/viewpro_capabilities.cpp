@@ -6,18 +6,25 @@
 namespace gimbal::protocols {
 
 using nlohmann::json;
-using session::number_at;
 
-session::Features ViewproCapabilities::features() const {
+namespace {
+
+// A reported value that is a number (a frame's field may be absent).
+std::optional<double> finite(const std::optional<double>& v) {
+    return v && std::isfinite(*v) ? v : std::nullopt;
+}
+
+}  // namespace
+
+session::Features viewpro_features() {
     session::Features f;
     f.point_angles = true;
     return f;
 }
 
-session::Request ViewproCapabilities::point_angles(const json& state,
-                                                   const session::AnglesTarget& t) const {
-    const auto cur_pitch = number_at(state, {"output", "gimbal", "pitch"});
-    const auto cur_yaw = number_at(state, {"output", "gimbal", "yaw"});
+session::Request ViewproCapabilities::point_angles(const session::AnglesTarget& t) const {
+    const auto cur_pitch = output_ ? finite(output_->gimbal_pitch_deg) : std::nullopt;
+    const auto cur_yaw = output_ ? finite(output_->gimbal_yaw_deg) : std::nullopt;
     if (!cur_pitch || !cur_yaw) return session::unavailable("no Viewpro angles reported yet");
     double yaw = t.yaw_deg.value_or(*cur_yaw);
     if (t.yaw_frame == session::YawFrame::earth && t.yaw_deg) {
@@ -37,47 +44,49 @@ session::Request ViewproCapabilities::point_angles(const json& state,
     return r;
 }
 
-session::Request ViewproCapabilities::rate(const json&, const session::RateTarget&) const {
+session::Request ViewproCapabilities::rate(const session::RateTarget&) const {
     return session::unsupported("Viewpro takes no rate commands");
 }
 
-session::Request ViewproCapabilities::geopoint(const json&, const session::GeoTarget&) const {
+session::Request ViewproCapabilities::geopoint(const session::GeoTarget&) const {
     return session::unsupported("Viewpro has no geopoint");
 }
 
-session::Request ViewproCapabilities::stop(const json&) const {
+session::Request ViewproCapabilities::stop() const {
     return session::unsupported("Viewpro has no ROI");
 }
 
-session::Request ViewproCapabilities::zoom(const json&, const session::ZoomTarget&) const {
+session::Request ViewproCapabilities::zoom(const session::ZoomTarget&) const {
     return session::unsupported("Viewpro zoom is not supported");
 }
 
-std::optional<geo::Quat> ViewproCapabilities::line_of_sight(const json& state) const {
+std::optional<geo::Quat> ViewproCapabilities::line_of_sight() const {
     // The aircraft's attitude (output.uav), then the gimbal's relative to it (output.gimbal).
-    const auto uav = platform_attitude(state);
-    const auto gr = number_at(state, {"output", "gimbal", "roll"});
-    const auto gp = number_at(state, {"output", "gimbal", "pitch"});
-    const auto gy = number_at(state, {"output", "gimbal", "yaw"});
-    if (!uav || !gp || !gy) return std::nullopt;
+    const auto uav = platform_attitude();
+    if (!uav) return std::nullopt;
+    const auto gr = finite(output_->gimbal_roll_deg);
+    const auto gp = finite(output_->gimbal_pitch_deg);
+    const auto gy = finite(output_->gimbal_yaw_deg);
+    if (!gp || !gy) return std::nullopt;
     return geo::normalized(*uav * geo::euler_to_quat(geo::EulerDeg{gr.value_or(0), *gp, *gy}));
 }
 
-session::View ViewproCapabilities::view(const json& state) const {
+session::View ViewproCapabilities::view() const {
     session::View v;
-    v.lat_deg = number_at(state, {"output", "uav", "lat"});
-    v.lon_deg = number_at(state, {"output", "uav", "lon"});
-    v.alt_msl_m = number_at(state, {"output", "uav", "alt_msl"});
-    v.target_lat_deg = number_at(state, {"output", "target", "lat"});
-    v.target_lon_deg = number_at(state, {"output", "target", "lon"});
-    v.target_alt_msl_m = number_at(state, {"output", "target", "alt_msl"});
+    if (!output_) return v;
+    const auto& o = *output_;
+    v.lat_deg = finite(o.uav_lat_deg);
+    v.lon_deg = finite(o.uav_lon_deg);
+    v.alt_msl_m = finite(o.uav_alt_msl_m);
+    v.target_lat_deg = finite(o.target_lat_deg);
+    v.target_lon_deg = finite(o.target_lon_deg);
+    v.target_alt_msl_m = finite(o.target_alt_msl_m);
     // The laser range finder's distance; 0 when it measures nothing.
-    if (const auto lrf = number_at(state, {"output", "lrf_m"}); lrf && *lrf > 0)
-        v.measured_range_m = lrf;
+    if (const auto lrf = finite(o.lrf_m); lrf && *lrf > 0) v.measured_range_m = lrf;
     return v;  // OUTx frames carry no field of view
 }
 
-command::Result<session::ImageView> ViewproCapabilities::image(const json&) const {
+command::Result<session::ImageView> ViewproCapabilities::image() const {
     // OUT1..OUT4 carry the angles but no field of view or image size: an image position
     // cannot be turned into a ray.
     return command::Error{command::code::unsupported,
@@ -85,29 +94,25 @@ command::Result<session::ImageView> ViewproCapabilities::image(const json&) cons
                           "cannot be located"};
 }
 
-std::optional<geo::Quat> ViewproCapabilities::platform_attitude(const json& state) const {
-    const auto roll = number_at(state, {"output", "uav", "roll"});
-    const auto pitch = number_at(state, {"output", "uav", "pitch"});
-    const auto yaw = number_at(state, {"output", "uav", "yaw"});
+std::optional<geo::Quat> ViewproCapabilities::platform_attitude() const {
+    if (!output_) return std::nullopt;
+    const auto roll = finite(output_->uav_roll_deg);
+    const auto pitch = finite(output_->uav_pitch_deg);
+    const auto yaw = finite(output_->uav_yaw_deg);
     if (!roll || !pitch || !yaw) return std::nullopt;
     return geo::euler_to_quat(geo::EulerDeg{*roll, *pitch, *yaw});
 }
 
-session::Identity ViewproCapabilities::identity(const json&) const {
+session::Identity ViewproCapabilities::identity() const {
     return {"Viewpro", "Viewpro", std::nullopt};
 }
 
-session::Limits ViewproCapabilities::limits(const json&) const {
+session::Limits ViewproCapabilities::limits() const {
     return {};  // not reported
 }
 
-session::Camera ViewproCapabilities::camera(const json&) const {
+session::Camera ViewproCapabilities::camera() const {
     return {};
-}
-
-const ViewproCapabilities& viewpro_capabilities() {
-    static const ViewproCapabilities instance;
-    return instance;
 }
 
 }  // namespace gimbal::protocols

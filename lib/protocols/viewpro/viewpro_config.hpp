@@ -8,7 +8,7 @@
 #include <array>
 
 #include "config/fields.hpp"
-#include "viewpro/mode.hpp"
+#include "protocols/viewpro/codec/mode.hpp"
 
 namespace gimbal::protocols {
 

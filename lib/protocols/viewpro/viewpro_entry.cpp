@@ -10,7 +10,7 @@ namespace gimbal::protocols {
 
 namespace {
 
-// The catalogue commands a Viewpro plans (command/viewpro_commands.cpp), with their frames.
+// The catalogue commands a Viewpro plans (viewpro_commands.cpp), with their frames.
 constexpr PlannedCommand commands[] = {
     {"viewpro_output", "`AA 55 0F MM FF`, `sent: [{\"frame\":\"mode\",\"len\":5}]`"},
     {"viewpro_adjust",
@@ -18,6 +18,9 @@ constexpr PlannedCommand commands[] = {
      "adds `steps`"},
     {"vehicle", "IN2 (40 bytes) with `vel_ned`, else IN1 (34 bytes)"},
 };
+
+// STATE `output`: the Viewpro's latest OUTx frame (contract section 8).
+constexpr std::string_view state_keys[] = {"output"};
 
 std::size_t frame_size(const viewpro::OutputFrame& f) {
     return f.size;
@@ -38,7 +41,8 @@ Entry make_entry() {
     e.display_name = "Viewpro";
     e.dissector = "viewpro";
     e.commands = commands;
-    e.capabilities = &viewpro_capabilities();
+    e.state_keys = state_keys;
+    e.features = viewpro_features();
     e.config_section = "viewpro";
     e.read_config = [](config::Fields& gimbal, const ConfigContext&) {
         return config::read_and_write<ViewproConfig>(gimbal);

@@ -1,6 +1,6 @@
 // Viewpro's registry entry (target GPS-coordinates protocol): the session, framer, feed,
-// export, simulator and capabilities of lib/viewpro, state/viewpro_state,
-// command/viewpro_commands and sim/viewpro_sim behind the registry's interfaces.
+// export, simulator and capabilities of its codec (codec/), state (viewpro_state), planner
+// (viewpro_commands) and simulated gimbal (sim/) behind the registry's interfaces.
 #pragma once
 
 #include "protocols/registry.hpp"

@@ -1,5 +1,6 @@
 #include "protocols/viewpro/viewpro_feed.hpp"
 
+#include "protocols/viewpro/viewpro_feed_packets.hpp"
 #include "vehicle/feeds.hpp"
 
 namespace gimbal::protocols {

@@ -1,6 +1,6 @@
 #include "protocols/viewpro/viewpro_protocol.hpp"
 
-#include "command/viewpro_commands.hpp"
+#include "protocols/viewpro/viewpro_commands.hpp"
 
 namespace gimbal::protocols {
 
@@ -29,10 +29,6 @@ FrameCounters ViewproProtocol::counters() const {
 
 bool ViewproProtocol::supports(std::string_view cmd) const {
     return command::is_viewpro_command(cmd);
-}
-
-const session::Capabilities& ViewproProtocol::capabilities() const {
-    return viewpro_capabilities();
 }
 
 std::optional<command::Error> ViewproProtocol::plan(std::string_view cmd,

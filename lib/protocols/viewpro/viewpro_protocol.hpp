@@ -2,11 +2,11 @@
 // every (re)connect it sends the configured mode command so the gimbal starts reporting.
 #pragma once
 
+#include "protocols/viewpro/codec/mode.hpp"
+#include "protocols/viewpro/codec/output_framer.hpp"
 #include "protocols/viewpro/viewpro_capabilities.hpp"
+#include "protocols/viewpro/viewpro_state.hpp"
 #include "session/protocol.hpp"
-#include "state/viewpro_state.hpp"
-#include "viewpro/mode.hpp"
-#include "viewpro/output_framer.hpp"
 
 namespace gimbal::protocols {
 
@@ -29,11 +29,16 @@ class ViewproProtocol final : public session::Protocol {
     void tick(double now_s, std::vector<state::Event>& events) override;
     std::vector<Bytes> on_connect() override;
     bool stale(double now_s) const override { return state_.stale(now_s); }
+    std::optional<double> telemetry_age_s(double now_s) const override {
+        return state_.telemetry_age_s(now_s);
+    }
     std::uint64_t telemetry_count() const override { return state_.telemetry_count(); }
-    nlohmann::json snapshot(double now_s) const override { return state_.snapshot(now_s); }
+    void write_state(state::JsonWriter& w, const session::StateContext& c) const override {
+        state_.write(w, c.now_s);
+    }
     FrameCounters counters() const override;
     bool supports(std::string_view cmd) const override;
-    const session::Capabilities& capabilities() const override;
+    const session::Capabilities& capabilities() const override { return capabilities_; }
     std::optional<command::Error> plan(std::string_view cmd, const nlohmann::json& request,
                                        const Now& now, command::Plan& plan) override;
 
@@ -41,6 +46,7 @@ class ViewproProtocol final : public session::Protocol {
     ViewproOptions options_;
     viewpro::OutputFramer framer_;
     state::ViewproState state_;
+    ViewproCapabilities capabilities_{state_.output()};
 };
 
 }  // namespace gimbal::protocols

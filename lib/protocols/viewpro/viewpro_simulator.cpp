@@ -1,8 +1,9 @@
 #include "protocols/viewpro/viewpro_entry.hpp"
 
-#include "sim/viewpro_sim.hpp"
-#include "viewpro/input_framer.hpp"
-#include "viewpro/json.hpp"
+#include "protocols/viewpro/codec/input_framer.hpp"
+#include "protocols/viewpro/codec/json.hpp"
+#include "protocols/viewpro/sim/viewpro_fault_frames.hpp"
+#include "protocols/viewpro/sim/viewpro_sim.hpp"
 
 namespace gimbal::protocols {
 

@@ -1,8 +1,8 @@
 #include "protocols/viewpro/viewpro_track.hpp"
 
 #include "protocols/track_values.hpp"
-#include "viewpro/json.hpp"
-#include "viewpro/output_framer.hpp"
+#include "protocols/viewpro/codec/json.hpp"
+#include "protocols/viewpro/codec/output_framer.hpp"
 
 namespace gimbal::protocols {
 

@@ -57,11 +57,11 @@
 #include <vector>
 
 #include "mavlink/mavlink.hpp"
-#include "orion/codec.hpp"
-#include "orion/framer.hpp"
-#include "orion/framing.hpp"
-#include "orion/packets_control.hpp"
-#include "orion/packets_telemetry.hpp"
+#include "protocols/orion/codec/codec.hpp"
+#include "protocols/orion/codec/framer.hpp"
+#include "protocols/orion/codec/framing.hpp"
+#include "protocols/orion/codec/packets_control.hpp"
+#include "protocols/orion/codec/packets_telemetry.hpp"
 
 namespace {
 

@@ -4,7 +4,7 @@
 Starts gimbal-sim (TCP, free port) and gimbald connected to it, subscribes 16 UDP sockets at
 rate_hz 10 (spread over --stagger seconds, renewing well before ttl_s), drains them, and after
 a warm-up measures the daemon's CPU time (utime + stime from /proc/PID/stat) over a window,
-its resident memory (VmRSS, sampled every second, and the peak VmHWM) and what each
+its memory (anonymous memory RssAnon sampled every second, VmRSS, VmHWM, Pss) and what each
 subscriber received.
 
 A benchmark, not a test (never run by ctest). Python 3 standard library only. Usage:
@@ -14,8 +14,10 @@ A benchmark, not a test (never run by ctest). Python 3 standard library only. Us
 
     load_bench.py ... --changes [--full-every 10]    (delta streams, contract section 14)
 
-Targets (from the issue): under 1 % of one core and under 20 MB; with --changes at most
-0.6 % of a core (issue 17: no more than the plain stream). --check makes the run fail
+Targets: under 1 % of one core (issue 8) and under 20 MB of anonymous memory (RssAnon: the
+daemon's own heap and stacks; issue 25 moved the 20 MB target from VmRSS, which since the
+video and terrain work is mostly shared library pages); with --changes at most 0.6 % of a
+core (issue 17: no more than the plain stream). A missed target is printed as MISSED. --check makes the run fail
 (exit 1) when a subscriber missed a STATE or got an error reply (scripts/bench-daemon.sh
 --smoke).
 """
@@ -34,7 +36,7 @@ import time
 
 CPU_TARGET_PCT = 1.0
 CHANGES_CPU_TARGET_PCT = 0.6
-RSS_TARGET_KB = 20 * 1024
+ANON_TARGET_KB = 20 * 1024
 CLOCK_TICKS = os.sysconf("SC_CLK_TCK")
 
 
@@ -73,14 +75,36 @@ def cpu_seconds(pid):
 
 
 def memory_kb(pid):
-    """{'VmRSS': kB, 'VmHWM': kB, ...} from /proc/PID/status."""
+    """{'VmRSS': kB, 'VmHWM': kB, 'RssAnon': kB, 'RssFile': kB, ...} from /proc/PID/status,
+    and 'Pss', 'Pss_Anon', 'Pss_File' from /proc/PID/smaps_rollup (when the kernel has it).
+
+    RSS counts every resident page the process maps, shared libraries included (gimbald
+    links GDAL's and FFmpeg's trees: tens of MB of library pages that other processes share).
+    RssAnon is the memory the daemon itself allocated - heap, stacks, buffers - and is what
+    the memory targets are set on; Pss shares each shared page among the processes mapping it."""
     out = {}
     with open("/proc/%d/status" % pid) as f:
         for line in f:
             m = re.match(r"(Vm\w+|Rss\w+):\s+(\d+) kB", line)
             if m:
                 out[m.group(1)] = int(m.group(2))
+    try:
+        with open("/proc/%d/smaps_rollup" % pid) as f:
+            for line in f:
+                m = re.match(r"(Pss\w*):\s+(\d+) kB", line)
+                if m:
+                    out[m.group(1)] = int(m.group(2))
+    except OSError:
+        pass
     return out
+
+
+def memory_line(mem, anon_peak_kb):
+    """One line of a benchmark's memory figures (memory_kb())."""
+    return ("RssAnon %d kB (peak sample %d kB), VmRSS %d kB (of which file-backed, mostly shared "
+            "libraries, %d kB), VmHWM %d kB, Pss %s kB"
+            % (mem["RssAnon"], anon_peak_kb, mem["VmRSS"], mem.get("RssFile", 0), mem["VmHWM"],
+               mem.get("Pss", "?")))
 
 
 def load_average():
@@ -239,7 +263,7 @@ def main():
         next_sample = measure_at
         cpu0 = sim_cpu0 = None
         base = {}
-        rss_samples = []
+        anon_samples = []
         while True:
             now = time.monotonic()
             if now >= end:
@@ -255,13 +279,13 @@ def main():
                 cpu0, sim_cpu0, t0 = cpu_seconds(daemon.pid), cpu_seconds(sim.pid), now
                 base = {s: s.snapshot() for s in subscribers}
             if cpu0 is not None and now >= next_sample:
-                rss_samples.append(memory_kb(daemon.pid)["VmRSS"])
+                anon_samples.append(memory_kb(daemon.pid)["RssAnon"])
                 next_sample += 1.0
         cpu1, sim_cpu1, t1 = cpu_seconds(daemon.pid), cpu_seconds(sim.pid), time.monotonic()
         for s in subscribers:
             s.drain()
         mem = memory_kb(daemon.pid)
-        rss_samples.append(mem["VmRSS"])
+        anon_samples.append(mem["RssAnon"])
         load_after = load_average()
         ok = True
     finally:
@@ -284,7 +308,7 @@ def main():
         errors += counts["error"]
         state_bytes += nbytes - before_bytes
     total_states = sum(states)
-    rss_peak = max(rss_samples)
+    anon_peak = max(anon_samples)
 
     print("gimbald load: 1 gimbal (gimbal-sim, GeolocateTelemetry 10 Hz), %d subscribers at "
           "%g Hz%s" % (len(subscribers), args.rate_hz,
@@ -295,8 +319,7 @@ def main():
           % (elapsed, args.warmup, args.stagger, args.log_level, load_before, load_after))
     print("  gimbald CPU: %.2f %% of one core (%.3f s in %.1f s); gimbal-sim %.2f %%"
           % (cpu_pct, cpu1 - cpu0, elapsed, sim_pct))
-    print("  gimbald memory: VmRSS %d kB (peak sample %d kB), VmHWM %d kB"
-          % (mem["VmRSS"], rss_peak, mem["VmHWM"]))
+    print("  gimbald memory: " + memory_line(mem, anon_peak))
     print("  STATE datagrams per subscriber in the window (expected %.0f): %s"
           % (args.rate_hz * elapsed, " ".join(str(n) for n in states)))
     print("  %.1f STATE/s in total, %.0f bytes each on average; events per subscriber: %s; "
@@ -304,16 +327,20 @@ def main():
           % (total_states / elapsed, state_bytes / max(1, total_states),
              " ".join(str(n) for n in events), errors))
     cpu_target = CHANGES_CPU_TARGET_PCT if args.changes else CPU_TARGET_PCT
-    print("  targets: CPU %s %g %%: %s; RSS < %d MB: %s"
-          % ("<=" if args.changes else "<", cpu_target,
-             "met" if cpu_pct <= cpu_target else "MISSED",
-             RSS_TARGET_KB // 1024, "met" if mem["VmHWM"] < RSS_TARGET_KB else "MISSED"))
+    cpu_met = cpu_pct <= cpu_target if args.changes else cpu_pct < cpu_target
+    anon_met = anon_peak < ANON_TARGET_KB
+    print("  targets: CPU %s %g %%: %s; anonymous memory (RssAnon) < %d MB: %s"
+          % ("<=" if args.changes else "<", cpu_target, "met" if cpu_met else "MISSED",
+             ANON_TARGET_KB // 1024, "met" if anon_met else "MISSED"))
     # Every period of the window must have brought its STATE (one may straddle an edge).
     complete = errors == 0 and min(states) >= int(args.rate_hz * elapsed) - 1
-    print("RESULT cpu_pct=%.2f rss_kb=%d hwm_kb=%d states_min=%d states_max=%d sim_cpu_pct=%.2f "
-          "expected=%d errors=%d complete=%s"
-          % (cpu_pct, mem["VmRSS"], mem["VmHWM"], min(states), max(states), sim_pct,
-             int(args.rate_hz * elapsed), errors, "yes" if complete else "no"))
+    print("RESULT cpu_pct=%.2f cpu_met=%s anon_kb=%d anon_met=%s rss_kb=%d file_kb=%d hwm_kb=%d "
+          "pss_kb=%s states_min=%d states_max=%d sim_cpu_pct=%.2f expected=%d errors=%d "
+          "complete=%s"
+          % (cpu_pct, "yes" if cpu_met else "no", anon_peak, "yes" if anon_met else "no",
+             mem["VmRSS"], mem.get("RssFile", 0), mem["VmHWM"], mem.get("Pss", 0), min(states),
+             max(states), sim_pct, int(args.rate_hz * elapsed), errors,
+             "yes" if complete else "no"))
     if args.keep or (args.check and not complete):
         print("kept %s (config, logs)" % workdir)
     else:

@@ -20,13 +20,13 @@
 #include <iostream>
 #include <vector>
 
-#include "orion/codec.hpp"
-#include "orion/framing.hpp"
-#include "orion/packets.hpp"
+#include "protocols/orion/codec/codec.hpp"
+#include "protocols/orion/codec/framing.hpp"
+#include "protocols/orion/codec/packets.hpp"
+#include "protocols/orion/sim/orion_sim.hpp"
+#include "protocols/orion/sim/sim_camera.hpp"
 #include "sim/frame_code.hpp"
-#include "sim/orion_sim.hpp"
 #include "sim/scene_renderer.hpp"
-#include "sim/sim_camera.hpp"
 #include "sim/terrain.hpp"
 #include "sim_video/h264_encoder.hpp"
 
@@ -82,8 +82,8 @@ void BM_RenderEncode(benchmark::State& state) {
     device->advance(3, sink);  // let the axes get there
 
     auto opened = sim_video::H264Encoder::open({});
-    if (!opened.encoder) {
-        state.SkipWithError(opened.error.c_str());
+    if (!opened) {
+        state.SkipWithError(opened.error().message.c_str());
         return;
     }
     sim::SceneRenderer renderer;
@@ -105,9 +105,8 @@ void BM_RenderEncode(benchmark::State& state) {
         sim::draw_frame_code(picture, 1735689600000ull + static_cast<std::uint64_t>(t * 1000));
         const double c1 = thread_cpu_s();
         units.clear();
-        if (!opened.encoder->encode(picture, static_cast<std::int64_t>(frame) * 90000 / fps,
-                                    units)) {
-            state.SkipWithError(opened.encoder->error().c_str());
+        if (!(*opened)->encode(picture, static_cast<std::int64_t>(frame) * 90000 / fps, units)) {
+            state.SkipWithError((*opened)->error().c_str());
             return;
         }
         const double c2 = thread_cpu_s();

@@ -1,8 +1,10 @@
 // The video relay budget of contract section 17: a 1080p30 8 Mbit/s H.264 MPEG-TS with KLV
-// arrives over UDP, goes through daemon/video's UdpTsInput (lib/video demuxer) and out
-// through two TsUdpOutputs (lib/video muxer), all on one io_context thread as in gimbald.
+// arrives over UDP, goes through daemon/video's UdpTsInput (its worker thread demultiplexes
+// and checks the KLV, contract section 14 v4) and out through two TsUdpOutputs (lib/video
+// muxer) on one io_context thread, as in gimbald.
 //
-//   CPU      the relay thread's CPU time / wall time (CLOCK_THREAD_CPUTIME_ID): target < 3 %
+//   CPU      the io thread's and the input's worker thread's CPU time together against the
+//            stream's duration (CLOCK_THREAD_CPUTIME_ID, /proc schedstat): target < 3 %
 //   latency  per access unit, from sending the input datagram that completes it to
 //            receiving the output datagram that completes it (output 1): target p99 < 5 ms
 //
@@ -32,6 +34,7 @@
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/ip/udp.hpp>
 
+#include "klv/local_set.hpp"
 #include "logging.hpp"
 #include "video/ts_demuxer.hpp"
 #include "video/ts_muxer.hpp"
@@ -53,6 +56,23 @@ double thread_cpu_s() {
     return static_cast<double>(ts.tv_sec) + static_cast<double>(ts.tv_nsec) * 1e-9;
 }
 
+// CPU time of this process's threads named `name` (/proc/self/task/*/comm), from schedstat
+// (nanoseconds on a CPU).
+double named_threads_cpu_s(const std::string& name) {
+    double total = 0;
+    for (const auto& task : fs::directory_iterator("/proc/self/task")) {
+        std::ifstream comm(task.path() / "comm");
+        std::string n;
+        std::getline(comm, n);
+        if (n != name) continue;
+        std::ifstream stat(task.path() / "schedstat");
+        unsigned long long run_ns = 0;
+        stat >> run_ns;
+        total += static_cast<double>(run_ns) * 1e-9;
+    }
+    return total;
+}
+
 Bytes read_file(const fs::path& p) {
     std::ifstream f(p, std::ios::binary);
     return Bytes((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
@@ -62,12 +82,21 @@ std::uint16_t port_of(const asio::ip::udp::socket& s) {
     return s.local_endpoint().port();
 }
 
-// A KLV set the size of a typical ST 0601 local set (~170 bytes).
+// A valid ST 0601 local set the size of a typical one (~170 bytes): the input checks and
+// decodes it as it would a camera's.
 Bytes klv_set(std::size_t frame) {
-    Bytes b = {0x06, 0x0E, 0x2B, 0x34, 0x02, 0x0B, 0x01, 0x01, 0x0E,
-               0x01, 0x03, 0x01, 0x01, 0x00, 0x00, 0x00, 0x81, 150};
-    for (std::size_t i = 0; i < 150; ++i) b.push_back(static_cast<std::uint8_t>(frame + i));
-    return b;
+    gimbal::klv::LocalSet set;
+    set.add(gimbal::klv::tag_of("precision_time_stamp"),
+            std::uint64_t{1'700'000'000'000'000} + frame * 33'333);
+    set.add(gimbal::klv::tag_of("mission_id"), std::string("BENCH"));
+    set.add(gimbal::klv::tag_of("image_source_sensor"), std::string(100, 'S'));
+    set.add(gimbal::klv::tag_of("sensor_latitude"), 45.0 + static_cast<double>(frame) * 1e-6);
+    set.add(gimbal::klv::tag_of("sensor_longitude"), -121.0);
+    set.add(gimbal::klv::tag_of("sensor_true_altitude"), 1500.0);
+    set.add(gimbal::klv::tag_of("slant_range"), 1700.0);
+    set.add(gimbal::klv::tag_of("uas_datalink_ls_version_number"),
+            std::uint64_t{gimbal::klv::st0601_version});
+    return gimbal::klv::encode(set).value();
 }
 
 double percentile(std::vector<double> v, double p) {
@@ -151,33 +180,41 @@ int main(int argc, char** argv) {
     std::size_t units2 = 0;
     std::atomic<bool> stop{false};
     std::atomic<bool> relay_ready{false};
-    double relay_cpu = 0, relay_wall = 0;
+    double relay_cpu = 0, relay_wall = 0, worker_cpu = 0;
+    std::size_t klv_sets = 0;
     vd::VideoInputStatus in_status;
     vd::UdpSenderStats out_stats[2];
 
     std::thread relay([&] {
         asio::io_context io;
         vd::VideoOutputOptions oo;
-        auto url = [](const std::string& s) { return *gv::parse_video_url(s).url; };
+        auto url = [](const std::string& s) { return *gv::parse_video_url(s); };
         vd::TsUdpOutput out1(io, url("udp://127.0.0.1:" + std::to_string(port_of(rx1))), oo);
         vd::TsUdpOutput out2(io, url("udp://127.0.0.1:" + std::to_string(port_of(rx2))), oo);
+        std::optional<std::uint64_t> klv_pts;  // the latest video DTS, as gimbald's KlvClock
         vd::UdpTsInput input(io, url("udp://127.0.0.1:" + std::to_string(in_port)), {},
                              {[&](const gv::AccessUnit& au, Clock::time_point) {
+                                  klv_pts = au.dts ? au.dts : au.pts;
                                   out1.write_video(au);
                                   out2.write_video(au);
                               },
-                              [&](const gv::KlvUnit& k, Clock::time_point) {
-                                  out1.write_klv(k.data, k.pts);
-                                  out2.write_klv(k.data, k.pts);
+                              [&](gimbal::klv::CheckedSets& checked, Clock::time_point) {
+                                  klv_sets += checked.sets.size();
+                                  for (const auto& set : checked.sets) {
+                                      out1.write_klv(set.bytes, klv_pts);
+                                      out2.write_klv(set.bytes, klv_pts);
+                                  }
                               },
                               {},
                               {}});
         input.start();
         relay_ready = true;
         const double cpu0 = thread_cpu_s();
+        const double worker0 = named_threads_cpu_s("video-input");
         const auto t0 = Clock::now();
         while (!stop) io.run_for(std::chrono::milliseconds(50));
         relay_cpu = thread_cpu_s() - cpu0;
+        worker_cpu = named_threads_cpu_s("video-input") - worker0;
         relay_wall = std::chrono::duration<double>(Clock::now() - t0).count();
         in_status = input.status();
         out_stats[0] = out1.stats();
@@ -239,7 +276,7 @@ int main(int argc, char** argv) {
     // Against the stream's duration, not the thread's lifetime: the idle time before and
     // after the stream would flatter the figure.
     const double stream_s = static_cast<double>(units.size()) / 30.0;
-    const double cpu_pct = 100.0 * relay_cpu / stream_s;
+    const double cpu_pct = 100.0 * (relay_cpu + worker_cpu) / stream_s;
     const double p50 = percentile(latency_ms, 0.50), p99 = percentile(latency_ms, 0.99);
     const double max =
         latency_ms.empty() ? 0 : *std::max_element(latency_ms.begin(), latency_ms.end());
@@ -248,9 +285,9 @@ int main(int argc, char** argv) {
         "UDP in -> 2 UDP outputs\n",
         input_bps / 1e6, units.size(), stream_s);
     std::printf(
-        "  relay thread CPU: %.2f %% of a core (%.3f s for %.2f s of stream; thread ran %.2f s)"
-        "   target < 3 %%: %s\n",
-        cpu_pct, relay_cpu, stream_s, relay_wall, cpu_pct < 3 ? "met" : "MISSED");
+        "  relay CPU: %.2f %% of a core (io thread %.3f s + input worker %.3f s for %.2f s of "
+        "stream; ran %.2f s)   target < 3 %%: %s\n",
+        cpu_pct, relay_cpu, worker_cpu, stream_s, relay_wall, cpu_pct < 3 ? "met" : "MISSED");
     std::printf(
         "  latency input -> output: p50 %.3f ms  p99 %.3f ms  max %.3f ms   target p99 < 5 ms: "
         "%s\n",
@@ -264,7 +301,9 @@ int main(int argc, char** argv) {
         static_cast<unsigned long long>(out_stats[1].datagrams),
         static_cast<unsigned long long>(out_stats[0].dropped_full + out_stats[0].dropped_error),
         static_cast<unsigned long long>(out_stats[1].dropped_full + out_stats[1].dropped_error));
-    const bool complete = received.size() == units.size() && units2 == units.size();
+    std::printf("  KLV sets checked and relayed: %zu/%zu\n", klv_sets, units.size());
+    const bool complete =
+        received.size() == units.size() && units2 == units.size() && klv_sets == units.size();
     if (!complete) std::fprintf(stderr, "video relay: units were lost\n");
     return complete ? 0 : 1;
 }

@@ -65,6 +65,19 @@ function startGimbald(args, logs) {
   return child;
 }
 
+// A program's standard output, run without blocking this loop: a spawnSync (ffprobe, seconds)
+// left the ground station's socket unread, it dropped datagrams, and the next command's ACK
+// was lost (TRACK_POINT failed 3 runs in 4 on a loaded machine).
+function output(program, args, timeoutMs) {
+  return new Promise((resolve) => {
+    const child = spawn(program, args, { stdio: ['ignore', 'pipe', 'ignore'] });
+    let out = '';
+    child.stdout.on('data', (d) => { out += d.toString(); });
+    const timer = setTimeout(() => child.kill('SIGKILL'), timeoutMs);
+    child.on('close', () => { clearTimeout(timer); resolve(out); });
+  });
+}
+
 // One request on gimbald's JSON command socket.
 function request(port, req) {
   return new Promise((resolve) => {
@@ -188,6 +201,18 @@ async function qgcDiscovery(gcs) {
 function playableUrl(uri) {
   if (/^\d+$/.test(uri)) return `udp://0.0.0.0:${uri}`;
   return uri.replace(/^mpegts:\/\//, 'udp://');
+}
+
+// MAVSDK's Camera plugin asks every component it hears for CAMERA_INFORMATION and lists each
+// one that answers: the gimbal manager must not (contract v4), or one gimbal is two cameras.
+async function oneCameraPerGimbal(gcs, cam) {
+  const manager = await gcs.command(154, CMD.REQUEST_MESSAGE, [MSG.CAMERA_INFORMATION], MSG.CAMERA_INFORMATION);
+  check(manager.result === RESULT.DENIED && manager.from === 154 && manager.replies.length === 0,
+    `REQUEST_MESSAGE CAMERA_INFORMATION to the gimbal manager 154: ${manager.result} (want DENIED), ${manager.replies.length} CAMERA_INFORMATION`);
+  const since = Date.now();
+  await gcs.command(cam, CMD.REQUEST_MESSAGE, [MSG.CAMERA_INFORMATION], MSG.CAMERA_INFORMATION);
+  const answering = new Set(gcs.messages.filter((x) => x.at >= since && x.msgid === MSG.CAMERA_INFORMATION).map((x) => x.compid));
+  check(answering.size === 1 && answering.has(cam), `components answering CAMERA_INFORMATION: [${[...answering]}] (want [${cam}])`);
 }
 
 async function clickToTrack(gcs, cam, commandPort, logs) {
@@ -400,14 +425,15 @@ async function main() {
     }
 
     const { cam, stream } = await qgcDiscovery(gcs);
+    await oneCameraPerGimbal(gcs, cam);
     if (stream) {
       const uri = text(stream.uri);
       check(stream.type === 3 && uri === String(videoOut) && stream.streamId === 1 && stream.count === 1 && stream.encoding === 1,
         `VIDEO_STREAM_INFORMATION: type ${stream.type} (MPEG_TS), uri "${uri}", encoding ${stream.encoding}, ${stream.resolutionH}x${stream.resolutionV}, name "${text(stream.name)}"`);
       const url = playableUrl(uri);
-      const probe = spawnSync('ffprobe', ['-v', 'quiet', '-analyzeduration', '3000000', '-probesize', '2000000',
-        '-show_entries', 'stream=codec_type,codec_name,width,height', '-of', 'json', url], { encoding: 'utf8', timeout: 30000 });
-      const found = JSON.parse(probe.stdout || '{}').streams || [];
+      const probe = await output('ffprobe', ['-v', 'quiet', '-analyzeduration', '3000000', '-probesize', '2000000',
+        '-show_entries', 'stream=codec_type,codec_name,width,height', '-of', 'json', url], 30000);
+      const found = JSON.parse(probe || '{}').streams || [];
       const video = found.find((s) => s.codec_type === 'video');
       check(video && video.codec_name === 'h264' && video.width === stream.resolutionH,
         `ffprobe ${url}: ${JSON.stringify(found)}`);

@@ -4,10 +4,11 @@
 #include <cmath>
 
 #include "command/envelope.hpp"
-#include "command/orion_commands.hpp"
+#include "command/request.hpp"
 #include "geo/wgs84.hpp"
-#include "orion/framer.hpp"
-#include "orion/packets.hpp"
+#include "protocols/orion/codec/framer.hpp"
+#include "protocols/orion/codec/packets.hpp"
+#include "protocols/orion/orion_commands.hpp"
 
 using namespace gimbal;
 using nlohmann::json;
@@ -247,6 +248,15 @@ TEST_CASE("position, rate and mode write OrionCmd", "[command][cmd]") {
     CHECK(cmd.mode == orion::Mode::ffc_auto);
     CHECK(cmd.target == std::array<double, 2>{0, 0});
 
+    // center: position 0, 0 in the aircraft's frame, whatever was held before.
+    p = plan("center", json::object());
+    REQUIRE_FALSE(p.error);
+    cmd = only_packet<orion::Cmd>(p.plan).cmd;
+    CHECK(cmd.mode == orion::Mode::position);
+    CHECK(cmd.target == std::array<double, 2>{0, 0});
+    CHECK_FALSE(cmd.stabilized);
+    require_error(plan("center", {{"pan", 10}}), "bad_request", "pan");
+
     require_error(plan("mode", {{"mode", "geopoint"}}), "bad_request", "mode");
     require_error(plan("position", {{"pan", 181}, {"tilt", 0}}), "out_of_range", "pan");
     require_error(plan("rate", {{"pan", 0}, {"tilt", 5000}}), "out_of_range", "tilt");
@@ -267,45 +277,43 @@ TEST_CASE("stare_ack echoes the latest StareStart by default", "[command][stare]
 }
 
 TEST_CASE("envelope: the reply shapes and the first checks", "[command][envelope]") {
-    command::Envelope env;
-    auto known = [](std::string_view c) { return c == "ping" || c == "geopoint"; };
-    auto err = command::parse_envelope("not json", known, env);
-    REQUIRE(err);
-    CHECK(err->error.code == "bad_json");
-    err = command::parse_envelope("[1,2]", known, env);
-    REQUIRE(err);
-    CHECK(err->error.code == "bad_json");
-    err = command::parse_envelope(std::string(9000, ' '), known, env);
-    REQUIRE(err);
-    CHECK(err->error.code == "too_large");
-    // Still JSON, but over the limit: refused unread, so id and cmd are not echoed
-    // (contract section 14; test_request_limits.cpp).
+    auto err = command::parse_request("not json");
+    REQUIRE_FALSE(err);
+    CHECK(err.error().code == "bad_json");
+    err = command::parse_request("[1,2]");
+    REQUIRE_FALSE(err);
+    CHECK(err.error().code == "bad_json");
+    err = command::parse_request(std::string(9000, ' '));
+    REQUIRE_FALSE(err);
+    CHECK(err.error().code == "too_large");
+    // Still JSON, but over the limit: refused unread (contract section 14;
+    // test_request_limits.cpp).
     const std::string big = R"({"cmd": "ping", "id": 9, "pad": ")" + std::string(8200, 'x') + "\"}";
-    err = command::parse_envelope(big, known, env);
-    REQUIRE(err);
-    CHECK(err->error.code == "too_large");
-    CHECK(err->id->is_null());
-    CHECK_FALSE(err->cmd);
-    err = command::parse_envelope(R"({"id": "a1"})", known, env);
-    REQUIRE(err);
-    CHECK(err->error.code == "unknown_cmd");
-    CHECK(*err->id == "a1");
-    err = command::parse_envelope(R"({"cmd": "fly", "id": 3})", known, env);
-    REQUIRE(err);
-    CHECK(err->error.code == "unknown_cmd");
-    CHECK(*err->cmd == "fly");
-    const auto reply = command::error_reply(err->id, err->cmd, err->error);
+    err = command::parse_request(big);
+    REQUIRE_FALSE(err);
+    CHECK(err.error().code == "too_large");
+    const json no_cmd = {{"id", "a1"}};
+    auto refused = command::read_envelope(no_cmd);
+    REQUIRE_FALSE(refused);
+    CHECK(refused.error().code == "unknown_cmd");
+    CHECK(*command::echo_of(no_cmd).id == "a1");
+    const json fly = {{"cmd", "fly"}, {"id", 3}};
+    refused = command::read_envelope(fly);
+    REQUIRE_FALSE(refused);
+    CHECK(refused.error().code == "unknown_cmd");
+    const auto echo = command::echo_of(fly);
+    CHECK(*echo.cmd == "fly");
+    const auto reply = command::error_reply(echo.id, echo.cmd, refused.error());
     CHECK(reply["id"] == 3);
     CHECK(reply["ok"] == false);
     CHECK(reply["cmd"] == "fly");
     CHECK(reply["error"]["code"] == "unknown_cmd");
 
-    err =
-        command::parse_envelope(R"({"cmd": "ping", "id": {"x": [1]}, "gimbal": "a"})", known, env);
-    REQUIRE_FALSE(err);
-    CHECK(env.cmd == "ping");
-    CHECK(*env.gimbal == "a");
-    const auto ok = command::ok_reply(env.id, env.cmd, env.gimbal, {{"pong", true}});
+    const auto env = command::parse_request(R"({"cmd": "ping", "id": {"x": [1]}, "gimbal": "a"})");
+    REQUIRE(env);
+    CHECK(env->cmd() == "ping");
+    CHECK(*env->gimbal == "a");
+    const auto ok = command::ok_reply(env->id, env->cmd(), env->gimbal, {{"pong", true}});
     CHECK(
         ok ==
         json{{"id", {{"x", {1}}}}, {"ok", true}, {"cmd", "ping"}, {"gimbal", "a"}, {"pong", true}});

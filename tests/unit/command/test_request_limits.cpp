@@ -5,15 +5,12 @@
 #include <string>
 
 #include "command/envelope.hpp"
+#include "command/request.hpp"
 #include "command/request_limits.hpp"
 
 namespace command = gimbal::command;
 
 namespace {
-
-bool known(std::string_view c) {
-    return c == "ping";
-}
 
 // A ping of exactly `size` bytes with id 9.
 std::string padded(std::size_t size) {
@@ -57,46 +54,43 @@ TEST_CASE("limits: nesting is counted outside strings only", "[command][limits]"
     CHECK(refused->message == "JSON nested deeper than 32 levels");
 }
 
-TEST_CASE("envelope: an oversize request is refused unread, id null", "[command][envelope]") {
-    command::Envelope env;
-    // 70,000 nested arrays in `id`: 140 KB, the issue's crash. Never parsed, never echoed.
+TEST_CASE("envelope: an oversize request is refused unread", "[command][envelope]") {
+    // 70,000 nested arrays in `id`: 140 KB, the issue's crash. Never parsed.
     const auto huge = nested_id(70000);
     REQUIRE(huge.size() > 140000);
-    auto err = command::parse_envelope(huge, known, env);
-    REQUIRE(err);
-    CHECK(err->error.code == "too_large");
-    REQUIRE(err->id);
-    CHECK(err->id->is_null());
-    CHECK_FALSE(err->cmd);
-    const auto reply = command::error_reply(err->id, err->cmd, err->error);
+    const auto parses = command::request_parses();
+    auto err = command::parse_request(huge);
+    REQUIRE_FALSE(err);
+    CHECK(err.error().code == "too_large");
+    // The request path's reply to it echoes nothing of it: "id": null, "cmd": null.
+    const auto reply = command::error_reply(nlohmann::json(nullptr), std::nullopt, err.error());
     CHECK(reply.dump() == R"({"cmd":null,"error":{"code":"too_large","message":"the request is )" +
                               std::to_string(huge.size()) +
                               R"( bytes, the limit is 8192"},"id":null,"ok":false})");
 
-    err = command::parse_envelope(padded(8193), known, env);
-    REQUIRE(err);
-    CHECK(err->error.code == "too_large");
-    CHECK(err->id->is_null());  // the request's id 9 is not read
-    CHECK_FALSE(err->cmd);
+    err = command::parse_request(padded(8193));
+    REQUIRE_FALSE(err);
+    CHECK(err.error().code == "too_large");
+    CHECK(command::request_parses() == parses);  // neither was parsed
 
-    command::Envelope at_limit;
-    CHECK_FALSE(command::parse_envelope(padded(8192), known, at_limit));
-    CHECK(*at_limit.id == 9);
+    const auto at_limit = command::parse_request(padded(8192));
+    REQUIRE(at_limit);  // parsed: its parameters are its planner's to read
+    CHECK(at_limit->doc.contains("pad"));
+    CHECK(*command::echo_of(nlohmann::json::parse(padded(8192))).id == 9);
 }
 
-TEST_CASE("envelope: nesting over 32 is bad_json, echoing nothing", "[command][envelope]") {
-    command::Envelope env;
-    CHECK_FALSE(command::parse_envelope(nested_id(31), known, env));
-    CHECK(env.id->dump() == std::string(31, '[') + std::string(31, ']'));
+TEST_CASE("envelope: nesting over 32 is bad_json, parsed never", "[command][envelope]") {
+    const auto env = command::parse_request(nested_id(31));
+    REQUIRE(env);
+    CHECK(env->id->dump() == std::string(31, '[') + std::string(31, ']'));
 
-    command::Envelope deep;
-    auto err = command::parse_envelope(nested_id(32), known, deep);
-    REQUIRE(err);
-    CHECK(err->error.code == "bad_json");
-    CHECK_FALSE(err->id);
-    CHECK_FALSE(err->cmd);
+    const auto parses = command::request_parses();
+    auto err = command::parse_request(nested_id(32));
+    REQUIRE_FALSE(err);
+    CHECK(err.error().code == "bad_json");
     // 4,000 levels fit in 8192 bytes: refused by the scan just the same.
-    err = command::parse_envelope(nested_id(4000), known, deep);
-    REQUIRE(err);
-    CHECK(err->error.code == "bad_json");
+    err = command::parse_request(nested_id(4000));
+    REQUIRE_FALSE(err);
+    CHECK(err.error().code == "bad_json");
+    CHECK(command::request_parses() == parses);
 }

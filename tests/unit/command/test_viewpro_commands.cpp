@@ -1,8 +1,8 @@
 // Viewpro commands of contract section 4.3: parameters -> exact frames.
 #include <catch2/catch.hpp>
 
-#include "command/viewpro_commands.hpp"
-#include "viewpro/input.hpp"
+#include "protocols/viewpro/codec/input.hpp"
+#include "protocols/viewpro/viewpro_commands.hpp"
 
 using namespace gimbal;
 using nlohmann::json;

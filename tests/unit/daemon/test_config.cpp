@@ -2,15 +2,20 @@
 // path and message, unknown keys at every level, CIDR matching and the --sim gimbals.
 #include <catch2/catch.hpp>
 
+#include <fcntl.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "config.hpp"
@@ -357,7 +362,7 @@ TEST_CASE("each invalid value is reported with its path and message", "[config]"
         {"missing name", [](json& c) { c["gimbals"][0].erase("name"); },
          "gimbals[0].name: required"},
         {"protocol", [](json& c) { c["gimbals"][0]["protocol"] = "trillium"; },
-         "gimbals[0].protocol: must be one of \"orion\", \"viewpro\", \"mavlink\""},
+         "gimbals[0].protocol: must be one of \"orion\", \"viewpro\", \"mavlink\", \"siyi\""},
         {"missing link", [](json& c) { c["gimbals"][0].erase("link"); },
          "gimbals[0].link: required"},
         {"link not an object", [](json& c) { c["gimbals"][0]["link"] = "tcp"; },
@@ -368,6 +373,12 @@ TEST_CASE("each invalid value is reported with its path and message", "[config]"
          "gimbals[0].link.host: required"},
         {"host with space", [](json& c) { c["gimbals"][0]["link"]["host"] = "my host"; },
          "gimbals[0].link.host: must be a host name, an IP address or \"discover\""},
+        {"discover without a discovery",
+         [](json& c) {
+             c["gimbals"][1]["link"] = {{"type", "tcp"}, {"host", "discover"}, {"port", 2000}};
+         },
+         "gimbals[1].link.host: \"discover\" only for a protocol with broadcast discovery "
+         "(\"orion\")"},
         {"missing port", [](json& c) { c["gimbals"][0]["link"].erase("port"); },
          "gimbals[0].link.port: required"},
         {"port zero", [](json& c) { c["gimbals"][0]["link"]["port"] = 0; },
@@ -637,6 +648,42 @@ TEST_CASE("an unreadable file is one problem", "[config]") {
     CHECK(problem_texts(result) ==
           std::vector<std::string>{
               "cannot read /nonexistent/gimbald.json: No such file or directory"});
+}
+
+TEST_CASE("a configuration is a regular file of at most 1 MiB with no NUL", "[config]") {
+    // Contract section 14 (v4): /dev/zero aborted with bad_alloc at 2.1 GB, a FIFO hung,
+    // text after a NUL was accepted, a 5 MB unclosed array took 1.1 GB.
+    CHECK(
+        problem_texts(load_config_file("/dev/zero")) ==
+        std::vector<std::string>{"cannot read /dev/zero: not a regular file (a character device)"});
+    CHECK(problem_texts(load_config_file("/tmp")) ==
+          std::vector<std::string>{"cannot read /tmp: not a regular file (a directory)"});
+    const std::string fifo =
+        (std::filesystem::temp_directory_path() / ("gimbald-config-" + std::to_string(::getpid())))
+            .string();
+    REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+    // Were the FIFO waited on, this writer would end the wait after 2 s (and the text read
+    // would be empty): the check below tells the two apart without hanging.
+    std::thread unblock([&fifo] {
+        std::this_thread::sleep_for(std::chrono::seconds(2));
+        const int fd = ::open(fifo.c_str(), O_WRONLY | O_NONBLOCK);
+        if (fd >= 0) ::close(fd);
+    });
+    CHECK(problem_texts(load_config_file(fifo)) ==
+          std::vector<std::string>{"cannot read " + fifo + ": not a regular file (a FIFO)"});
+    unblock.join();
+    std::filesystem::remove(fifo);
+
+    using namespace std::string_literals;
+    CHECK(problem_texts(parse_config("{\"gimbals\": []}\n\0{\"laser\": {}}"s)) ==
+          std::vector<std::string>{"line 2, column 1: a NUL byte: not a JSON text file"});
+    CHECK(problem_texts(parse_config("{\"gimbals\": [" + std::string(5'000'000, '['))) ==
+          std::vector<std::string>{"larger than 1 MiB: not a gimbald configuration"});
+    CHECK(problem_texts(parse_config("{\"gimbals\": [" + std::string(40, '['))) ==
+          std::vector<std::string>{"JSON nested deeper than 32 levels"});
+    std::string padded = "{\"gimbals\": []}";
+    padded.resize(max_config_bytes, ' ');
+    CHECK(parse_config(padded).ok());
 }
 
 TEST_CASE("under --sim the file's gimbals are not read", "[config]") {

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "journal.hpp"
+#include "log_rollup.hpp"
 #include "logging.hpp"
 
 // A named namespace: an alias `log` at global scope would clash with ::log() of <cmath>.
@@ -417,6 +418,123 @@ TEST_CASE("RateLimitedLog writes the first occurrence and rolled-up summaries", 
     REQUIRE(lines.size() == 3);
     CHECK(json::parse(lines[2])["msg"] == "bad checksums: 1 more in the last 5 s");
     CHECK(bad_checksums.total() == 14);
+}
+
+TEST_CASE("repeated lines: 10 a second per event and source, then one summary per 10 s",
+          "[logging][rollup]") {
+    // Contract section 14 (v4): a flood of `mavlink_refused` wrote 63,811 lines in 40 s.
+    std::ostringstream out;
+    FakeSteadyClock clock;
+    log::Logger logger(
+        {}, out, [] { return example_time(); }, clock.function());
+    const auto refused = [&](const char* src, int n) {
+        for (int i = 0; i < n; ++i)
+            logger.write(log::Level::info, "mavlink_refused", "out of range",
+                         {{"src", src}, {"n", i}});
+    };
+    const auto events = [&] {
+        std::vector<json> v;
+        for (const auto& line : lines_of(out.str())) v.push_back(json::parse(line));
+        return v;
+    };
+
+    refused("mavlink:255/190", 500);
+    refused("mavlink:254/190", 3);  // another source has its own ten
+    logger.write(log::Level::info, "command", "ok", {{"src", "mavlink:255/190"}});
+    for (int i = 0; i < 30; ++i)  // never rolled up
+        logger.write(log::Level::warn, "audit", "ok", {{"src", "mavlink:255/190"}, {"i", i}});
+    auto v = events();
+    REQUIRE(v.size() == 10 + 3 + 1 + 30);
+    CHECK(v[9]["n"] == 9);
+    CHECK(logger.suppressed() == 490);
+
+    // The next second: ten more; the first suppressed line's 10 s are not over yet.
+    clock.now += 1s;
+    refused("mavlink:255/190", 100);
+    v = events();
+    REQUIRE(v.size() == 54);
+    CHECK(v.back()["n"] == 9);
+    for (const auto& e : v) CHECK_FALSE(e.contains("suppressed"));
+
+    // 10 s after the first line was suppressed: the summary comes with the next line...
+    clock.now += 9s;
+    refused("mavlink:255/190", 1);
+    v = events();
+    REQUIRE(v.size() == 56);
+    const json& summary = v[54];
+    CHECK(summary["event"] == "mavlink_refused");
+    CHECK(summary["level"] == "info");
+    CHECK(summary["suppressed"] == 490 + 90);
+    CHECK(summary["interval_s"] == 10.0);
+    CHECK(summary["src"] == "mavlink:255/190");
+    CHECK(summary["n"] == 99);  // the last suppressed line's fields
+    CHECK(summary["msg"].get<std::string>().find("580 more mavlink_refused lines") == 0);
+    CHECK(v[55]["n"] == 0);
+    CHECK_FALSE(v[55].contains("suppressed"));
+
+    // ...or from poll() when the burst stopped.
+    refused("mavlink:255/190", 20);  // 9 more this second, 11 suppressed
+    clock.now += 9s;
+    logger.poll();
+    CHECK(events().size() == 65);
+    clock.now += 1s;
+    logger.poll();
+    v = events();
+    REQUIRE(v.size() == 66);
+    CHECK(v.back()["suppressed"] == 11);
+    logger.poll();
+    CHECK(events().size() == 66);  // once
+    // At shutdown every count is written, due or not.
+    refused("mavlink:255/190", 25);
+    logger.poll();
+    CHECK(events().size() == 76);
+    logger.poll(true);
+    v = events();
+    REQUIRE(v.size() == 77);
+    CHECK(v.back()["suppressed"] == 15);
+}
+
+TEST_CASE("the roll-up's key: src, else gimbal; a bounded table", "[logging][rollup]") {
+    using T = log::LineRollUp::TimePoint;
+    log::LineRollUp r;
+    std::vector<log::LineRollUp::Summary> due;
+    const T t0{};
+    const auto admitted = [&](const json& fields, int n, T at) {
+        int written = 0;
+        for (int i = 0; i < n; ++i)
+            written += r.admit(log::Level::warn, "video_viewer", "m", fields, at, due) ? 1 : 0;
+        return written;
+    };
+    CHECK(admitted({{"gimbal", "a"}}, 20, t0) == 10);
+    CHECK(admitted({{"gimbal", "b"}}, 20, t0) == 10);
+    CHECK(admitted({{"gimbal", "a"}, {"src", "1.2.3.4:5"}}, 20, t0) == 10);
+    CHECK(admitted(json(), 20, t0) == 10);
+    // One host reconnecting from new ports is one source; "mavlink:SYS/COMP" is one as is.
+    int from_one_host = 0;
+    for (int port = 40000; port < 40020; ++port)
+        from_one_host += admitted({{"src", "http:10.1.1.1:" + std::to_string(port)}}, 1, t0);
+    CHECK(from_one_host == 10);
+    from_one_host = 0;
+    for (int port = 40000; port < 40020; ++port)
+        from_one_host += admitted({{"src", "[::1]:" + std::to_string(port)}}, 1, t0);
+    CHECK(from_one_host == 10);
+    CHECK(admitted({{"src", "mavlink:255/190"}}, 20, t0) == 10);
+    CHECK(admitted({{"src", "mavlink:255/191"}}, 20, t0) == 10);
+    CHECK(log::LineRollUp::exempt("laser_deadman"));
+    CHECK(log::LineRollUp::exempt("laser_fire"));
+    CHECK_FALSE(log::LineRollUp::exempt("mavlink_refused"));
+    // Sources come from the network: past max_keys they share one count per event.
+    for (std::size_t i = 0; i < 2 * log::LineRollUp::max_keys; ++i)
+        admitted(
+            {{"src", "10.0." + std::to_string(i / 256) + "." + std::to_string(i % 256) + ":5000"}},
+            1, t0);
+    CHECK(r.keys() <= log::LineRollUp::max_keys + 1);       // and the shared "*"
+    CHECK(admitted({{"src", "10.0.9.9:1"}}, 20, t0) == 0);  // "*" had its ten already
+    // Quiet sources are forgotten once they have nothing to report.
+    r.poll(t0 + 30s, due);
+    CHECK(r.keys() == 0);
+    CHECK(due.size() == 9);  // a, b, 1.2.3.4, none, 10.1.1.1, [::1], the two mavlink, "*"
+    CHECK(admitted({{"gimbal", "a"}}, 20, t0 + 31s) == 10);
 }
 
 }  // namespace logging_test

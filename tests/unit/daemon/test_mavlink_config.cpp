@@ -45,11 +45,16 @@ TEST_CASE("mavlink section: defaults and every key", "[config]") {
     CHECK(r.config.mavlink.commands);
     CHECK_FALSE(r.config.mavlink.home_alt_msl);
     CHECK_FALSE(r.config.mavlink.signing_state_file);
+    // The key file is read by the check (contract section 14, v4): a real one.
+    const auto key_file =
+        std::filesystem::temp_directory_path() / ("gimbald-mavkey-" + std::to_string(::getpid()));
+    std::ofstream(key_file) << std::string(64, 'b') << "\n";
+    ::chmod(key_file.c_str(), 0600);
     c["mavlink"] = {{"gimbal_manager", true},
                     {"system_id", 7},
                     {"component_id", 171},
                     {"targets", {"127.0.0.1:14550", "gcs.local:14551"}},
-                    {"signing_key_file", "/etc/gimbald/mavlink.key"},
+                    {"signing_key_file", key_file.string()},
                     {"commands", false},
                     {"home_alt_msl", 412.5},
                     {"signing_state_file", "/var/lib/gimbald/signing.json"}};
@@ -60,11 +65,43 @@ TEST_CASE("mavlink section: defaults and every key", "[config]") {
     CHECK(r.config.mavlink.system_id == 7);
     CHECK(r.config.mavlink.component_id == 171);
     CHECK(r.config.mavlink.targets.size() == 2);
-    CHECK(r.config.mavlink.signing_key_file == "/etc/gimbald/mavlink.key");
+    CHECK(r.config.mavlink.signing_key_file == key_file.string());
     CHECK_FALSE(r.config.mavlink.commands);
     CHECK(r.config.mavlink.home_alt_msl == 412.5);
     CHECK(r.config.mavlink.signing_state_file == "/var/lib/gimbald/signing.json");
     CHECK(to_json(r.config)["mavlink"] == c["mavlink"]);
+    std::filesystem::remove(key_file);
+}
+
+TEST_CASE("mavlink.signing_key_file is checked with the configuration", "[config]") {
+    // Issue 25: a malformed or 0644 key passed --check-config, then gimbald exited 2 at start.
+    const auto dir = std::filesystem::temp_directory_path();
+    const auto write = [&](const std::string& name, const std::string& text, mode_t mode) {
+        const auto path = dir / ("gimbald-mavkey-" + std::to_string(::getpid()) + "-" + name);
+        std::ofstream(path) << text;
+        ::chmod(path.c_str(), mode);
+        return path;
+    };
+    const auto good = write("good", std::string(64, 'c'), 0600);
+    const auto shortkey = write("short", "abcd\n", 0600);
+    const auto open = write("open", std::string(64, 'c'), 0644);
+    const auto check = [&](const std::string& key_file) {
+        json c = base();
+        c["mavlink"] = {{"gimbal_manager", false}, {"signing_key_file", key_file}};
+        return problems(c);
+    };
+    CHECK(check(good.string()).empty());
+    const auto short_problems = check(shortkey.string());
+    REQUIRE(short_problems.size() == 1);
+    CHECK(short_problems[0] == "mavlink.signing_key_file: " + shortkey.string() +
+                                   ": must hold 32 bytes, or 64 hex digits");
+    const auto open_problems = check(open.string());
+    REQUIRE(open_problems.size() == 1);
+    CHECK(open_problems[0].find("readable by group or others (mode 0644)") != std::string::npos);
+    const auto missing = check((dir / "gimbald-no-such.key").string());
+    REQUIRE(missing.size() == 1);
+    CHECK(missing[0].rfind("mavlink.signing_key_file: ", 0) == 0);
+    for (const auto& p : {good, shortkey, open}) std::filesystem::remove(p);
 }
 
 TEST_CASE("mavlink section: problems with their paths", "[config]") {
@@ -120,7 +157,7 @@ TEST_CASE("command.auth signed covers MAVLink: a signing key, or commands off", 
     c["mavlink"]["commands"] = false;
     CHECK(problems(c).empty());
     c["mavlink"]["commands"] = true;
-    c["mavlink"]["signing_key_file"] = "/etc/gimbald/mavlink.key";
+    c["mavlink"]["signing_key_file"] = key_file.string();  // 64 hex digits: a MAVLink key too
     CHECK(problems(c).empty());
     c["mavlink"] = {{"gimbal_manager", false}};
     CHECK(problems(c).empty());

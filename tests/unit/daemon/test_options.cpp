@@ -124,7 +124,8 @@ TEST_CASE("command line options", "[options]") {
         auto p = parse({"--sim", "orion,gopro"});
         CHECK(p.command_line.exit_code == exit_config_error);
         CHECK(p.err ==
-              "gimbald: --sim: unknown protocol \"gopro\" (expected orion, viewpro, mavlink)\n");
+              "gimbald: --sim: unknown protocol \"gopro\" (expected orion, viewpro, mavlink, "
+              "siyi)\n");
         p = parse({"--sim", "orion,orion"});
         CHECK(p.command_line.exit_code == exit_config_error);
         CHECK(p.err == "gimbald: --sim: protocol \"orion\" listed twice\n");
@@ -167,28 +168,31 @@ TEST_CASE("help output reads like a man page", "[options]") {
         const bool space = c == ' ' || c == '\n';
         if (!(space && !flat.empty() && flat.back() == ' ')) flat += space ? ' ' : c;
     }
-    for (const char* text : {"SYNOPSIS",
-                             "DESCRIPTION",
-                             "OPTIONS",
-                             "-c, --config FILE",
-                             "--sim [PROTOCOLS]",
-                             "--check-config",
-                             "--log-level LEVEL",
-                             "--log-format FORMAT",
-                             "--version",
-                             "--help",
-                             "Default: /etc/gimbald/gimbald.json",
-                             "\"sim-orion\", \"sim-viewpro\", \"sim-mavlink\". Default: off.",
-                             "1 if not. Opens every terrain file, no device. Default: off.",
-                             "Default: the file's (info)",
-                             "Default: the file's (json)",
-                             "EXAMPLES",
-                             "EXIT STATUS",
-                             "SIGNALS",
-                             "SIGHUP",
-                             "SIGTERM",
-                             "NOTIFY_SOCKET",
-                             "2 runtime failure"}) {
+    for (const char* text :
+         {"SYNOPSIS",
+          "DESCRIPTION",
+          "OPTIONS",
+          "-c, --config FILE",
+          "--sim [PROTOCOLS]",
+          "--check-config",
+          "--log-level LEVEL",
+          "--log-format FORMAT",
+          "--version",
+          "--help",
+          "Default: /etc/gimbald/gimbald.json",
+          "\"sim-orion\", \"sim-viewpro\", \"sim-mavlink\", \"sim-siyi\". Default:",
+          "Reads every key file and opens every terrain file, no device. "
+          "Default: off.",
+          "gimbal-replay(1), gimbal-export(1)",
+          "Default: the file's (info)",
+          "Default: the file's (json)",
+          "EXAMPLES",
+          "EXIT STATUS",
+          "SIGNALS",
+          "SIGHUP",
+          "SIGTERM",
+          "NOTIFY_SOCKET",
+          "2 runtime failure"}) {
         INFO(text);
         CHECK_THAT(flat, Catch::Contains(text));
     }

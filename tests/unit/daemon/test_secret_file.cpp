@@ -1,9 +1,12 @@
 // Secret files answer with the result type: the text, or a coded error naming the file.
+#include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 #include <catch2/catch.hpp>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <thread>
 
 #include "secret_file.hpp"
 
@@ -46,4 +49,35 @@ TEST_CASE("read_secret_file: text, or unavailable / forbidden / bad_request") {
     CHECK(directory.error().code == ErrorCode::bad_request);
     fs::remove(good);
     fs::remove(open);
+}
+
+TEST_CASE("read_secret_file: a FIFO or a device is refused, not waited on or read") {
+    // Issue 25: a key file that is a FIFO hung --check-config and the start.
+    const fs::path fifo =
+        fs::temp_directory_path() / ("gimbald-secret-fifo-" + std::to_string(::getpid()));
+    REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+    // Were the FIFO waited on, this writer would end the wait after 2 s with nothing to read;
+    // the message below tells the two apart without hanging the test.
+    std::thread unblock([&fifo] {
+        std::this_thread::sleep_for(std::chrono::seconds(2));
+        const int fd = ::open(fifo.c_str(), O_WRONLY | O_NONBLOCK);
+        if (fd >= 0) ::close(fd);
+    });
+    auto refused = read_secret_file(fifo.string());
+    unblock.join();
+    fs::remove(fifo);
+    REQUIRE_FALSE(refused);
+    CHECK(refused.error().code == ErrorCode::bad_request);
+    CHECK(refused.error().message == fifo.string() + ": not a regular file (a FIFO)");
+    auto zero = read_secret_file("/dev/zero");
+    REQUIRE_FALSE(zero);
+    CHECK(zero.error().message == "/dev/zero: not a regular file (a character device)");
+    const auto big =
+        fs::temp_directory_path() / ("gimbald-secret-big-" + std::to_string(::getpid()));
+    std::ofstream(big) << std::string(64 * 1024 + 1, 'a');
+    ::chmod(big.c_str(), 0600);
+    auto large = read_secret_file(big.string());
+    fs::remove(big);
+    REQUIRE_FALSE(large);
+    CHECK(large.error().message == big.string() + ": larger than 64 KiB: not a secret file");
 }

@@ -20,9 +20,9 @@ namespace {
 
 gv::VideoUrl url(const std::string& text) {
     const auto r = gv::parse_video_url(text);
-    INFO(r.error);
-    REQUIRE(r.url);
-    return *r.url;
+    INFO((r ? "" : r.error().message));
+    REQUIRE(r);
+    return *r;
 }
 
 struct Received {

@@ -17,6 +17,7 @@
 #include <boost/asio/ip/udp.hpp>
 
 #include "../video/ts_builder.hpp"
+#include "klv/local_set.hpp"
 #include "video/ts_muxer.hpp"
 
 namespace video_test {
@@ -46,6 +47,17 @@ inline std::uint16_t free_udp_port() {
     return s.local_endpoint().port();
 }
 
+// A valid UAS Datalink set (checksum right) whose time stamp and latitude follow `i`.
+inline Bytes klv_set(int i) {
+    gimbal::klv::LocalSet set;
+    set.add(gimbal::klv::tag_of("precision_time_stamp"),
+            std::uint64_t{1'700'000'000'000'000} + static_cast<std::uint64_t>(i) * 33'333);
+    set.add(gimbal::klv::tag_of("sensor_latitude"), 45.0 + i * 1e-4);
+    set.add(gimbal::klv::tag_of("uas_datalink_ls_version_number"),
+            std::uint64_t{gimbal::klv::st0601_version});
+    return gimbal::klv::encode(set).value();
+}
+
 // `count` access units (key frame every 10, 640x360 SPS) at 30 fps with a KLV set after
 // each, as the datagrams a TsMuxer produces.
 struct TestStream {
@@ -64,7 +76,7 @@ struct TestStream {
             au.data = gimbal::test::h264_au(au.key_frame, slice, static_cast<std::uint8_t>(i));
             au.pts = 90000 + static_cast<std::uint64_t>(i) * 3000;
             mux.write_video(au.view());
-            klv.push_back(gimbal::test::klv_packet(static_cast<std::uint8_t>(i)));
+            klv.push_back(klv_set(i));
             mux.write_klv(klv.back(), au.pts);
             units.push_back(std::move(au));
         }

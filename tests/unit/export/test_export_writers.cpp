@@ -7,8 +7,8 @@
 
 #include "export/writers.hpp"
 #include "geo/wgs84.hpp"
-#include "orion/framing.hpp"
-#include "orion/packets.hpp"
+#include "protocols/orion/codec/framing.hpp"
+#include "protocols/orion/codec/packets.hpp"
 
 namespace fe = gimbal::flight_export;
 namespace o = gimbal::orion;

@@ -25,10 +25,16 @@ std::vector<ExposedCamera> cameras() {
     return {orion, viewpro};
 }
 
-nlohmann::json orion_with_video() {
-    nlohmann::json s = orion_state();
-    s["video"] = {{"connected", true}, {"codec", "h264"}, {"width", 1280},
-                  {"height", 720},     {"fps", 30.0},     {"bitrate_bps", 4000000}};
+Fixture<OrionGimbal> orion_with_video() {
+    auto s = orion_state();
+    gimbal::state::VideoState v;
+    v.connected = true;
+    v.codec = "h264";
+    v.width = 1280;
+    v.height = 720;
+    v.fps = 30.0;
+    v.bitrate_bps = 4000000;
+    s->video = v;
     return s;
 }
 
@@ -74,17 +80,21 @@ TEST_CASE("CAMERA_INFORMATION: flags from the capabilities and the video, device
 TEST_CASE("a gimbal that reports its maker is announced by it, not by a protocol's name") {
     // A MAVLink gimbal device names itself in STATE `device` (GIMBAL_DEVICE_INFORMATION).
     const ExposedGimbal device{"gremsy", "mavlink", 3, 172};
-    const nlohmann::json state = {{"device", {{"vendor", "Gremsy"}, {"model", "T3V3"}}}};
+    const auto state = empty_device();
+    gimbal::mavlink::GimbalDeviceInformation named;
+    mav::set_text(named.vendor_name, "Gremsy");
+    mav::set_text(named.model_name, "T3V3");
+    state->data.information = named;
     const auto info = device_information(device, state, 7);
     CHECK(text(info.vendor_name) == "Gremsy");
     CHECK(text(info.model_name) == "T3V3");
     const auto camera = camera_information(device, state, 7);
     CHECK(text(camera.vendor_name) == "Gremsy");
     // Not reported yet: the protocol's own maker, never another protocol's.
-    const auto unnamed = device_information(device, nlohmann::json::object(), 7);
+    const auto unnamed = device_information(device, empty_device(), 7);
     CHECK(text(unnamed.vendor_name) == "MAVLink");
-    CHECK(text(device_information({"main", "orion", 1, 154}, nlohmann::json::object(), 7)
-                   .vendor_name) == "Trillium");
+    CHECK(text(device_information({"main", "orion", 1, 154}, empty_orion(), 7).vendor_name) ==
+          "Trillium");
 }
 
 TEST_CASE("TRACK_POINT: MAVLink's 0..1 becomes point x, y -1..1 with stare") {

@@ -290,7 +290,7 @@ TEST_CASE("DO_GIMBAL_MANAGER_PITCHYAW: angles, rates, earth frame, Viewpro steps
         CHECK(r.result == MavResult::unsupported);
         const Mapped none =
             m.command(long_cmd(cmd::do_gimbal_manager_pitchyaw, {-10, 0, NaN, NaN, 0, 0, 2}), gcs,
-                      vehicle(), states(orion_state(), nlohmann::json{{"output", nullptr}}), 0);
+                      vehicle(), states(orion_state(), empty_viewpro()), 0);
         CHECK(none.result == MavResult::temporarily_rejected);
     }
     SECTION("device id 0: every gimbal") {
@@ -440,8 +440,8 @@ TEST_CASE("SET_CAMERA_ZOOM: range and continuous -> Orion camera_zoom") {
     CHECK(zoom(4, 30).result == MavResult::unsupported);     // horizontal fov
     CHECK(zoom(2, 50, 2).result == MavResult::unsupported);  // Viewpro
     CHECK(zoom(2, 50, 9).result == MavResult::denied);
-    nlohmann::json no_cameras = orion_state();
-    no_cameras.erase("cameras");
+    auto no_cameras = orion_state();
+    no_cameras->data.packets.cameras.reset();
     CHECK(zoom(2, 50, 1, states(no_cameras)).result == MavResult::temporarily_rejected);
 }
 
@@ -482,6 +482,32 @@ TEST_CASE("REQUEST_MESSAGE: information messages per gimbal") {
     CHECK(request(NaN).result == MavResult::denied);
     CHECK(request(-1).result == MavResult::denied);
     CHECK(request(280, 8).result == MavResult::denied);
+}
+
+TEST_CASE("a manager whose gimbal has a camera component leaves CAMERA_INFORMATION to it") {
+    // Contract v4 (section 8): MAVSDK's Camera plugin listed every camera twice, [154, 100].
+    auto gimbals = two_gimbals();
+    gimbals[0].camera_component = 100;  // main has a camera component, nose has none
+    GimbalManager m(gimbals);
+    const auto request = [&](std::uint8_t component, float device) {
+        auto c = long_cmd(cmd::request_message, {259, device, 0, 0, 0, 0, 0});
+        c.target_component = component;
+        return m.command(c, gcs, vehicle(), states(), 0);
+    };
+    Mapped r = request(154, 0);
+    CHECK(r.result == MavResult::denied);  // the command is known; this message is not ours
+    CHECK(r.replies.empty());
+    CHECK(r.reason.find("camera component: 100 (main)") != std::string::npos);
+    // The broadcast: only the gimbal without a camera component answers, from its manager.
+    r = request(0, 0);
+    CHECK(r.result == MavResult::accepted);
+    REQUIRE(r.replies.size() == 1);
+    CHECK(r.replies[0].component_id == 171);
+    CHECK(std::holds_alternative<mav::CameraInformation>(r.replies[0].payload));
+    CHECK(request(0, 1).result == MavResult::denied);
+    // Every other message is still the manager's.
+    auto info = long_cmd(cmd::request_message, {280, 0, 0, 0, 0, 0, 0});
+    CHECK(m.command(info, gcs, vehicle(), states(), 0).replies.size() == 2);
 }
 
 TEST_CASE("unknown commands: UNSUPPORTED; nothing maps to the laser") {
@@ -533,7 +559,8 @@ TEST_CASE("gimbald error codes -> MAV_RESULT, every code as the enum and its spe
 
 TEST_CASE("a MAVLink gimbal device is steered and reported through its capabilities") {
     GimbalManager m(expose({{"gremsy", "mavlink"}}));
-    const StateLookup state = [](const std::string&) { return device_state(); };
+    const auto device = device_state();
+    const StateLookup state = [device](const std::string&) { return device->view(); };
 
     // PITCHYAW angles: a position (yaw from north converted with the heading), rates: a rate.
     auto out =

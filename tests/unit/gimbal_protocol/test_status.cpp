@@ -1,4 +1,5 @@
-// STATE -> GIMBAL_DEVICE_ATTITUDE_STATUS, CAMERA_FOV_STATUS, GIMBAL_MANAGER_STATUS, HEARTBEAT.
+// A gimbal's typed state -> GIMBAL_DEVICE_ATTITUDE_STATUS, CAMERA_FOV_STATUS,
+// GIMBAL_MANAGER_STATUS, HEARTBEAT.
 #include <catch2/catch.hpp>
 
 #include "fixtures.hpp"
@@ -23,7 +24,7 @@ TEST_CASE("HEARTBEAT of a gimbal component") {
 
 TEST_CASE("line of sight: mount attitude, then pan, then tilt, in NED") {
     const auto g = two_gimbals();
-    nlohmann::json s = orion_state();
+    auto s = orion_state();
     SECTION("level mount: yaw = pan, pitch = tilt") {
         const auto st = attitude_status(g[0], s, 99);
         const auto e = euler_of(st.q);
@@ -36,16 +37,14 @@ TEST_CASE("line of sight: mount attitude, then pan, then tilt, in NED") {
         CHECK(st.failure_flags == 0);
     }
     SECTION("mount yawed 90 degrees (aircraft heading east): line of sight yaw 120") {
-        const auto mount = gimbal::geo::euler_to_quat(gimbal::geo::EulerDeg{0, 0, 90});
-        s["telemetry"]["quat"] = {mount.w, mount.x, mount.y, mount.z};
+        s->set_quat(gimbal::geo::euler_to_quat(gimbal::geo::EulerDeg{0, 0, 90}));
         const auto e = euler_of(attitude_status(g[0], s, 0).q);
         CHECK(e.yaw_deg == Approx(120).margin(1e-3));
         CHECK(e.pitch_deg == Approx(-20).margin(1e-3));
     }
     SECTION("mount pitched up 10 degrees, pan 0: pitch adds") {
-        const auto mount = gimbal::geo::euler_to_quat(gimbal::geo::EulerDeg{0, 10, 0});
-        s["telemetry"]["quat"] = {mount.w, mount.x, mount.y, mount.z};
-        s["telemetry"]["pan"] = 0.0;
+        s->set_quat(gimbal::geo::euler_to_quat(gimbal::geo::EulerDeg{0, 10, 0}));
+        s->shared().pan = 0.0;
         const auto e = euler_of(attitude_status(g[0], s, 0).q);
         CHECK(e.pitch_deg == Approx(-10).margin(1e-3));
         CHECK(e.yaw_deg == Approx(0).margin(1e-3));
@@ -56,17 +55,17 @@ TEST_CASE("line of sight: mount attitude, then pan, then tilt, in NED") {
         CHECK(e.pitch_deg == Approx(-45).margin(1e-3));
     }
     SECTION("link down or stale: comms failure flag; no telemetry: NaN quaternion") {
-        s["link"]["connected"] = false;
+        s->connected = false;
         CHECK((attitude_status(g[0], s, 0).failure_flags & mav::gimbal_error::comms_error) != 0);
         s = orion_state();
-        s["stale"] = true;
+        s->stale = true;
         CHECK((attitude_status(g[0], s, 0).failure_flags & mav::gimbal_error::comms_error) != 0);
         s = orion_state();
-        s["telemetry"] = nullptr;
+        s->data.telemetry.reset();
         const auto st = attitude_status(g[0], s, 0);
         for (const float c : st.q) CHECK(std::isnan(c));
-        s["telemetry"] = orion_state()["telemetry"];
-        s["telemetry"]["pan"] = "bad";
+        s = orion_state();
+        s->shared().pan.reset();  // not a number
         CHECK(std::isnan(attitude_status(g[0], s, 0).q[0]));
     }
 }
@@ -84,9 +83,9 @@ TEST_CASE("CAMERA_FOV_STATUS: position, image centre (MSL), fovs; unknown as INT
     CHECK(f.camera_device_id == 1);
     CHECK(euler_of(f.q).yaw_deg == Approx(30).margin(1e-3));
 
-    nlohmann::json s = orion_state();
-    s["telemetry"]["target"] = nullptr;
-    s["telemetry"]["hfov"] = nullptr;
+    auto s = orion_state();
+    s->shared().target.reset();
+    s->shared().hfov.reset();
     const auto u = fov_status(g[0], s, 5);
     CHECK(u.lat_image == mav::CameraFovStatus::unknown);
     CHECK(u.alt_image == mav::CameraFovStatus::unknown);
@@ -99,7 +98,7 @@ TEST_CASE("CAMERA_FOV_STATUS: position, image centre (MSL), fovs; unknown as INT
     CHECK(v.alt_image == mav::CameraFovStatus::unknown);  // OUT3 carries no target altitude
     CHECK(std::isnan(v.hfov));
 
-    const auto empty = fov_status(g[0], nlohmann::json::object(), 5);
+    const auto empty = fov_status(g[0], gimbal::session::GimbalView{}, 5);
     CHECK(empty.lat_camera == mav::CameraFovStatus::unknown);
     CHECK(std::isnan(empty.q[0]));
 }

@@ -32,9 +32,9 @@ inline std::string to_hex(const gimbal::klv::Bytes& bytes) {
 inline std::string encoded_hex(std::uint32_t tag, const gimbal::klv::Value& value,
                                std::uint8_t length = 0, std::string* error = nullptr) {
     gimbal::klv::Bytes out;
-    std::string why;
-    if (!gimbal::klv::encode_value({tag, value, length}, out, why)) {
-        if (error != nullptr) *error = why;
+    const auto encoded = gimbal::klv::encode_value({tag, value, length}, out);
+    if (!encoded) {
+        if (error != nullptr) *error = encoded.error().message;
         return "";
     }
     return to_hex(out);

@@ -42,12 +42,12 @@ LocalSet with_time(std::uint32_t tag, Value value, std::uint8_t length = 0) {
 
 json round_trip(const LocalSet& set) {
     const Encoded e = encode(set);
-    INFO(e.error);
+    INFO((e ? "" : e.error().message));
     REQUIRE(e.ok());
-    const DecodeResult r = decode(e.bytes, Digits::exact);
+    const DecodeResult r = decode(e.value(), Digits::exact);
     INFO(r.reason);
     REQUIRE(r.ok());
-    CHECK(r.consumed == e.bytes.size());
+    CHECK(r.consumed == e.value().size());
     return r.json;
 }
 
@@ -90,18 +90,27 @@ TEST_CASE("ST 0902.5 dynamic-only example: checksum 0xC850 and every value") {
     }
     const Encoded e = encode(set);
     REQUIRE(e.ok());
-    CHECK(to_hex(e.bytes) == to_hex(st0902_dynamic_only));
+    CHECK(to_hex(e.value()) == to_hex(st0902_dynamic_only));
 }
 
-TEST_CASE("ST 0902.5 dynamic-and-constant example: values readable, printed checksum wrong") {
+TEST_CASE("ST 0902.5 dynamic-and-constant example: printed checksum wrong, values readable") {
     // The standard prints 0xAA43 for this packet; the running sum of its bytes is 0x3E1E (and
-    // its CRC-16-CCITT is not 0xAA43 either), so a decoder counts it as a bad checksum. The
-    // dynamic-only example above, whose sum matches, shows the algorithm is the right one.
-    const DecodeResult r = decode(st0902_dynamic_and_constant);
-    CHECK(r.status == DecodeStatus::bad_checksum);
-    CHECK(r.checksum_stored == 0xAA43);
-    CHECK(r.checksum_computed == 0x3E1E);
-    CHECK(r.consumed == st0902_dynamic_and_constant.size());
+    // its CRC-16-CCITT is not 0xAA43 either), so a decoder counts it as a bad checksum - and
+    // decodes nothing of it. The dynamic-only example above, whose sum matches, shows the
+    // algorithm is the right one.
+    const DecodeResult bad = decode(st0902_dynamic_and_constant);
+    CHECK(bad.status == DecodeStatus::bad_checksum);
+    CHECK(bad.checksum_stored == 0xAA43);
+    CHECK(bad.checksum_computed == 0x3E1E);
+    CHECK(bad.consumed == st0902_dynamic_and_constant.size());
+    CHECK(bad.items.empty());
+    CHECK(bad.json.empty());
+    // With the sum written in, its values read as the standard lists them.
+    Bytes fixed = st0902_dynamic_and_constant;
+    fixed[fixed.size() - 2] = 0x3E;
+    fixed[fixed.size() - 1] = 0x1E;
+    const DecodeResult r = decode(fixed);
+    REQUIRE(r.ok());
     CHECK(r.json["mission_id"] == "Mission 12");
     CHECK(r.json["platform_designation"] == "Predator");
     CHECK(r.json["image_source_sensor"] == "EO Nose");
@@ -236,9 +245,9 @@ TEST_CASE("Every tag round-trips at the ends of its range and in between") {
 TEST_CASE("Tags above 127 are written as two-byte BER-OIDs") {
     const Encoded e = encode(with_time(143, Bytes{0xAB}));
     REQUIRE(e.ok());
-    const std::string hex = to_hex(e.bytes);
+    const std::string hex = to_hex(e.value());
     CHECK(hex.find("810F01AB") != std::string::npos);
-    CHECK(decode(e.bytes).json["metadata_substream_id_pack"] == "AB");
+    CHECK(decode(e.value()).json["metadata_substream_id_pack"] == "AB");
 }
 
 TEST_CASE("Encoder: order kept, checksum last, long-form set length") {
@@ -249,9 +258,9 @@ TEST_CASE("Encoder: order kept, checksum last, long-form set length") {
     set.add(65, std::uint64_t{st0601_version});
     const Encoded e = encode(set);
     REQUIRE(e.ok());
-    CHECK(e.bytes[16] == 0x81);  // the value is 10 + 122 + 3 + 4 = 139 bytes
-    CHECK(e.bytes[17] == 139);
-    const DecodeResult r = decode(e.bytes);
+    CHECK(e.value()[16] == 0x81);  // the value is 10 + 122 + 3 + 4 = 139 bytes
+    CHECK(e.value()[17] == 139);
+    const DecodeResult r = decode(e.value());
     REQUIRE(r.ok());
     REQUIRE(r.items.size() == 4);
     CHECK(r.items[0].tag == 2);
@@ -349,12 +358,19 @@ TEST_CASE("Malformed input: truncated at every byte, wrong key, over-long length
 }
 
 TEST_CASE("Malformed input: items past the set, no checksum last") {
-    // An item whose length runs past the set's value.
-    Bytes past = from_hex("060E2B34020B01010E01030101000000 06 0D 09 5595B66D 0102");
+    // An item whose length runs past the set's value (which ends with a checksum that
+    // matches: items are read only once the checksum is right).
+    Bytes past = from_hex("060E2B34020B01010E01030101000000 0A 0D 09 5595B66D 0102");
+    const std::uint16_t sum = checksum16(past);
+    past.push_back(static_cast<std::uint8_t>(sum >> 8));
+    past.push_back(static_cast<std::uint8_t>(sum & 0xFF));
     CHECK(decode(past).reason == "tag 13 runs past the set");
+    // Without a checksum that fits, the same bytes are refused before any item is read.
+    Bytes no_sum = from_hex("060E2B34020B01010E01030101000000 06 0D 09 5595B66D 0102");
+    CHECK(decode(no_sum).reason == "no checksum (tag 1, 2 bytes) as the last item");
     // A set whose last item is not the checksum.
     LocalSet set = with_time(13, 60.0);
-    Bytes bytes = encode(set).bytes;
+    Bytes bytes = encode(set).value();
     bytes.resize(bytes.size() - 4);
     bytes[16] = static_cast<std::uint8_t>(bytes[16] - 4);
     CHECK(decode(bytes).reason == "no checksum (tag 1, 2 bytes) as the last item");
@@ -369,18 +385,20 @@ TEST_CASE("Malformed input: items past the set, no checksum last") {
     CHECK(r.consumed == st0902_dynamic_only.size());
 }
 
-TEST_CASE("Bad checksum: counted, values still shown") {
+TEST_CASE("Bad checksum: counted, nothing decoded") {
     for (std::size_t at = 0; at < st0902_dynamic_only.size(); ++at) {
         if (at == 16) continue;  // the set's length: malformed, not a bad checksum
         Bytes bad = st0902_dynamic_only;
         bad[at] ^= 0x01;
         const DecodeResult r = decode(bad);
         INFO("byte " << at);
-        if (at < 16) {
+        const std::size_t trailer = st0902_dynamic_only.size() - 4;  // the checksum's 01 02
+        if (at < 16 || at == trailer || at == trailer + 1) {
             CHECK(r.status == DecodeStatus::malformed);
-        } else if (r.status != DecodeStatus::malformed) {  // a flipped tag or length may be
+        } else {  // any flipped bit changes the sum: refused before an item is read
             CHECK(r.status == DecodeStatus::bad_checksum);
             CHECK(r.consumed == st0902_dynamic_only.size());
+            CHECK(r.items.empty());
         }
     }
     Bytes bad = st0902_dynamic_only;
@@ -388,7 +406,8 @@ TEST_CASE("Bad checksum: counted, values still shown") {
     const DecodeResult r = decode(bad);
     CHECK(r.status == DecodeStatus::bad_checksum);
     CHECK(r.reason == "checksum 0xC8AF, computed 0xC850");
-    CHECK(r.json["uas_datalink_ls_version_number"] == 6);
+    CHECK(r.json.empty());
+    CHECK(r.items.empty());
 }
 
 TEST_CASE("Unknown tags and items of the wrong length are kept as hex") {
@@ -397,7 +416,7 @@ TEST_CASE("Unknown tags and items of the wrong length are kept as hex") {
     set.add(14, Bytes{});  // a zero-length item: "unknown" in ST 0601
     Encoded e = encode(set);
     REQUIRE(e.ok());
-    DecodeResult r = decode(e.bytes);
+    DecodeResult r = decode(e.value());
     REQUIRE(r.ok());
     CHECK(r.json["unknown"] == json{{"200", "ABCD"}});
     CHECK(r.json["sensor_longitude"].is_null());
@@ -419,7 +438,7 @@ TEST_CASE("Unknown tags and items of the wrong length are kept as hex") {
 }
 
 TEST_CASE("Encoder refusals name the tag and the reason") {
-    const auto error_of = [](LocalSet set) { return encode(set).error; };
+    const auto error_of = [](LocalSet set) { return encode(set).error().message; };
     CHECK(error_of(with_time(13, std::string("north"))) ==
           "tag 13 (sensor_latitude) takes a number");
     CHECK(error_of(with_time(3, 1.0)) == "tag 3 (mission_id) takes a string");
@@ -445,7 +464,7 @@ TEST_CASE("Encoder refusals name the tag and the reason") {
 
 TEST_CASE("find_sets: several sets, junk between, a set cut at the end") {
     const Bytes a = st0902_dynamic_only;
-    const Bytes b = encode(with_time(13, 1.5)).bytes;
+    const Bytes b = encode(with_time(13, 1.5)).value();
     Bytes buffer{0x00, 0x06, 0x0E, 0xFF};  // junk, including a false start of the key
     buffer.insert(buffer.end(), a.begin(), a.end());
     buffer.insert(buffer.end(), {0x06, 0x0E, 0x2B, 0x34, 0x02, 0x0B, 0x01, 0x01, 0x0E, 0x01, 0x03,
@@ -474,7 +493,7 @@ TEST_CASE("find_sets: several sets, junk between, a set cut at the end") {
 TEST_CASE("find_sets: a stream split at every byte offset loses no set") {
     Bytes stream;
     for (int i = 0; i < 3; ++i) {
-        const Bytes one = encode(with_time(13, 10.0 * i)).bytes;
+        const Bytes one = encode(with_time(13, 10.0 * i)).value();
         stream.insert(stream.end(), one.begin(), one.end());
         stream.push_back(0x55);  // junk between sets
     }

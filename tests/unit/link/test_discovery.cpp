@@ -5,8 +5,9 @@
 #include "link/discovery.hpp"
 #include "link/tcp_link.hpp"
 #include "link_test_support.hpp"
-#include "orion/enums.hpp"
-#include "orion/framing.hpp"
+#include "protocols/orion/codec/enums.hpp"
+#include "protocols/orion/codec/framing.hpp"
+#include "protocols/registry.hpp"
 
 using namespace link_test;
 namespace asio = boost::asio;
@@ -53,6 +54,11 @@ class DiscoveryResponder {
     udp::endpoint sender_;
 };
 
+// The Orion's discovery: what these tests answer.
+gimbal::protocols::Discovery orion_discovery() {
+    return gimbal::protocols::entry(gimbal::protocols::ProtocolId::orion).discovery;
+}
+
 gimbald::TcpLinkOptions discovering(std::uint16_t tcp_port, std::uint16_t discover_port) {
     gimbald::TcpLinkOptions options;
     options.host = "discover";
@@ -65,6 +71,7 @@ gimbald::TcpLinkOptions discovering(std::uint16_t tcp_port, std::uint16_t discov
     options.discover_port = discover_port;
     options.discover_reply_port = 0;
     options.discover_timeout_s = 0.2;
+    options.discovery = orion_discovery();
     return options;
 }
 
@@ -75,8 +82,11 @@ const Bytes crown_version_request{0xD0, 0x0D, 0x28, 0x00, 0x0B, 0xCA};
 TEST_CASE("discovery finds the gimbal's address from the first reply", "[discovery]") {
     asio::io_context io;
     DiscoveryResponder responder(io, 0);
-    gimbald::Discovery discovery(
-        io, {.address = "127.0.0.1", .port = responder.port(), .reply_port = 0, .timeout_s = 1.0});
+    gimbald::Discovery discovery(io, {.address = "127.0.0.1",
+                                      .port = responder.port(),
+                                      .reply_port = 0,
+                                      .timeout_s = 1.0,
+                                      .protocol = orion_discovery()});
     std::optional<asio::ip::address> found;
     std::string error;
     bool done = false;
@@ -96,8 +106,11 @@ TEST_CASE("discovery finds the gimbal's address from the first reply", "[discove
 TEST_CASE("discovery reports a round without a reply", "[discovery]") {
     asio::io_context io;
     DiscoveryResponder responder(io, 1000);
-    gimbald::Discovery discovery(
-        io, {.address = "127.0.0.1", .port = responder.port(), .reply_port = 0, .timeout_s = 0.1});
+    gimbald::Discovery discovery(io, {.address = "127.0.0.1",
+                                      .port = responder.port(),
+                                      .reply_port = 0,
+                                      .timeout_s = 0.1,
+                                      .protocol = orion_discovery()});
     std::optional<asio::ip::address> found;
     std::string error;
     bool done = false;
@@ -109,6 +122,30 @@ TEST_CASE("discovery reports a round without a reply", "[discovery]") {
     REQUIRE(run_until(io, [&] { return done; }));
     CHECK_FALSE(found.has_value());
     CHECK_THAT(error, Catch::Contains("no reply"));
+}
+
+TEST_CASE("discovery of a protocol without one fails every round and sends nothing",
+          "[discovery]") {
+    asio::io_context io;
+    DiscoveryResponder responder(io, 0);
+    gimbald::Discovery discovery(io, {.address = "127.0.0.1",
+                                      .port = responder.port(),
+                                      .reply_port = 0,
+                                      .timeout_s = 1.0,
+                                      .protocol = {}});
+    std::optional<asio::ip::address> found;
+    std::string error;
+    bool done = false;
+    discovery.start([&](std::optional<asio::ip::address> gimbal, std::string why) {
+        found = gimbal;
+        error = std::move(why);
+        done = true;
+    });
+    REQUIRE(run_until(io, [&] { return done; }));
+    CHECK_FALSE(found.has_value());
+    CHECK(error == "this protocol has no broadcast discovery");
+    run_for(io, 50ms);
+    CHECK(responder.requests.empty());
 }
 
 TEST_CASE("tcp link discovers the gimbal, connects, and re-discovers after a loss",

@@ -65,9 +65,9 @@ std::vector<state::Event> receive_events(MavlinkDeviceProtocol& p,
     return events;
 }
 
-// The device's line of sight: its yaw from north (degrees), from STATE.
-double sight_yaw(const MavlinkDeviceProtocol& p, double now_s) {
-    const auto los = p.capabilities().line_of_sight(p.snapshot(now_s));
+// The device's line of sight: its yaw from north (degrees), from its state.
+double sight_yaw(const MavlinkDeviceProtocol& p) {
+    const auto los = p.capabilities().line_of_sight();
     REQUIRE(los);
     return geo::quat_to_euler(*los).yaw_deg;
 }
@@ -225,14 +225,14 @@ TEST_CASE("position stabilized on the simulated device: the camera keeps its dir
     const double north = turning(0.1).yaw + 60;
     double worst = 0;
     fly(p, sim, v, 0.1, 12.0, turning, [&](double t, const auto&) {
-        if (t > 2.0) worst = std::max(worst, std::abs(session::wrap180(sight_yaw(p, t) - north)));
+        if (t > 2.0) worst = std::max(worst, std::abs(session::wrap180(sight_yaw(p) - north)));
     });
     INFO("worst yaw error " << worst);
     CHECK(worst < 1.0);
     // Unstabilized, the same pan turns with the aircraft.
     planned_attitude(p, "position", {{"pan", 60}, {"tilt", -30}}, 12.0);
     fly(p, sim, v, 12.0, 16.0, turning, [](double, const auto&) {});
-    CHECK(session::wrap180(sight_yaw(p, 16.0) - turning(16.0).yaw - 60) == Approx(0).margin(1.0));
+    CHECK(session::wrap180(sight_yaw(p) - turning(16.0).yaw - 60) == Approx(0).margin(1.0));
 }
 
 TEST_CASE("rate: stabilized (the default) integrates from north, false from the nose") {
@@ -281,15 +281,15 @@ TEST_CASE("rate on the simulated device: stabilized 0 holds north, unstabilized 
     fly(p, sim, v, 0.1, 1.0, turning, [](double, const auto&) {});
     planned_attitude(p, "rate", {{"pan", 0}, {"tilt", 0}}, 1.0);
     fly(p, sim, v, 1.0, 1.5, turning, [](double, const auto&) {});
-    const double held = sight_yaw(p, 1.5);
+    const double held = sight_yaw(p);
     fly(p, sim, v, 1.5, 5.5, turning, [](double, const auto&) {});
-    CHECK(session::wrap180(sight_yaw(p, 5.5) - held) == Approx(0).margin(1.0));
+    CHECK(session::wrap180(sight_yaw(p) - held) == Approx(0).margin(1.0));
     // Unstabilized the camera turns with the aircraft: 80 degrees in 4 s.
     planned_attitude(p, "rate", {{"pan", 0}, {"tilt", 0}, {"stabilized", false}}, 5.5);
     fly(p, sim, v, 5.5, 6.0, turning, [](double, const auto&) {});
-    const double before = sight_yaw(p, 6.0);
+    const double before = sight_yaw(p);
     fly(p, sim, v, 6.0, 10.0, turning, [](double, const auto&) {});
-    CHECK(session::wrap180(sight_yaw(p, 10.0) - before) == Approx(-80).margin(1.5));
+    CHECK(session::wrap180(sight_yaw(p) - before) == Approx(-80).margin(1.5));
 }
 
 TEST_CASE("geopoint stare: stare_start once the line of sight is on the point, not before") {

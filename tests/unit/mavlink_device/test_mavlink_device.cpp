@@ -9,9 +9,11 @@
 
 #include "device_fixtures.hpp"
 #include "geo/wgs84.hpp"
+#include "gimbal_protocol/status.hpp"
 #include "mavlink/framer.hpp"
 #include "protocols/mavlink_device/mavlink_device_protocol.hpp"
 #include "protocols/mavlink_device/mavlink_device_sim.hpp"
+#include "protocols/orion/orion_capabilities.hpp"
 #include "protocols/registry.hpp"
 
 using namespace gimbal;
@@ -40,6 +42,17 @@ TEST_CASE("position: the quaternion of common.xml's GIMBAL_DEVICE_SET_ATTITUDE")
         CHECK(std::isnan(m.angular_velocity_y));
         CHECK(m.target_component == 154);
     }
+}
+
+TEST_CASE("center: yaw 0 and pitch 0 from the vehicle's nose, held") {
+    MavlinkDeviceProtocol p(MavlinkDeviceOptions{});
+    (void)planned_attitude(p, "position", {{"pan", 40}, {"tilt", -30}});
+    const auto m = planned_attitude(p, "center", json::object());
+    CHECK(m.q[0] == Approx(1).margin(1e-6));  // the identity: forward and level
+    CHECK(m.q[1] == Approx(0).margin(1e-6));
+    CHECK(m.q[2] == Approx(0).margin(1e-6));
+    CHECK(m.q[3] == Approx(0).margin(1e-6));
+    CHECK(m.flags == (4 | 8 | 32));
 }
 
 TEST_CASE("rate: angular velocities with a NaN quaternion; an impulse stops") {
@@ -135,12 +148,15 @@ TEST_CASE("STATE device: information and attitude, yaw frames per common.xml") {
         CHECK(d["age_s"].get<double>() == Approx(0.2));
         CHECK(d["vendor"] == "Gremsy");
         CHECK(d["model"] == "T7");
-        CHECK(d["firmware"] == "7.4.2.0");
+        CHECK(d["firmware"] == "7.4.2");  // Dev 0: a release
         CHECK(d["cap_flags"] ==
               json{"has_pitch_axis", "has_yaw_axis", "supports_yaw_in_earth_frame"});
         CHECK(d["limits"]["pitch_min"].get<double>() == Approx(-2.0 / deg).margin(1e-3));
         CHECK(d["limits"]["yaw_min"].is_null());
     }
+    info.firmware_version |= 9u << 24;  // a development build
+    receive(p, device_frame(info), 1.8);
+    CHECK(p.snapshot(1.8)["device"]["firmware"] == "7.4.2.9");
     CHECK(p.telemetry_count() == 5);
     CHECK_FALSE(p.stale(2.0));
     CHECK(p.stale(2.6));  // stale_after_s 1.0
@@ -182,17 +198,17 @@ TEST_CASE("STATE telemetry: Orion's derived keys from the vehicle and the device
     CHECK(t["target"]["alt"].get<double>() == Approx(-20).margin(0.01));
     CHECK(t["footprint"].is_array());
     CHECK(t["ground"].is_object());
-    // The capabilities read the same STATE.
+    // The capabilities read the same state.
     const auto& caps = p.capabilities();
-    const auto los = caps.line_of_sight(state);
+    const auto los = caps.line_of_sight();
     REQUIRE(los);
     const auto e = geo::quat_to_euler(*los);
     CHECK(std::abs(e.yaw_deg) == Approx(180).margin(1e-3));
-    CHECK(caps.view(state).lat_deg.value() == Approx(45.7));
-    CHECK(caps.identity(state).vendor == "MAVLink");
+    CHECK(caps.view().lat_deg.value() == Approx(45.7));
+    CHECK(caps.identity().vendor == "MAVLink");
     session::AnglesTarget target;
     target.yaw_deg = 10.0;
-    const auto r = caps.point_angles(state, target);
+    const auto r = caps.point_angles(target);
     REQUIRE(r);
     CHECK(r.value() == json{{"cmd", "position"}, {"pan", 10.0}, {"tilt", -45.0}});
 }
@@ -215,14 +231,21 @@ TEST_CASE("the vehicle feed: AUTOPILOT_STATE_FOR_GIMBAL_DEVICE at every tick, on
                 found.push_back(*a);
         return found;
     };
-    p.steer(v, 1.0, 1.0, out);
+    CHECK(p.steer(v, 1.0, 1.0, out) == 0);
     CHECK(autopilot_states(decode(out)).empty());  // nothing known of the vehicle
     Aircraft a;
     a.roll = 10;
     a.yaw = -60;
     a.vn = 12;
     report(v, a, 1.0);
-    for (int tick = 0; tick < 4; ++tick) p.steer(v, 1.0 + tick * 0.05, 1.0 + tick * 0.05, out);
+    // Each tick's first frame is the feed's: STATE vehicle.feed.sent counts it.
+    for (int tick = 0; tick < 4; ++tick) {
+        std::vector<session::Bytes> one;
+        CHECK(p.steer(v, 1.0 + tick * 0.05, 1.0 + tick * 0.05, one) == 1);
+        REQUIRE_FALSE(one.empty());
+        CHECK(autopilot_states(decode({one.front()})).size() == 1);
+        out.insert(out.end(), one.begin(), one.end());
+    }
     const auto messages = decode(out);
     const auto states = autopilot_states(messages);
     REQUIRE(states.size() == 4);
@@ -247,6 +270,54 @@ TEST_CASE("the vehicle feed: AUTOPILOT_STATE_FOR_GIMBAL_DEVICE at every tick, on
     CHECK(std::isnan(lost[0].q[0]));
 }
 
+TEST_CASE("limits no gimbal has are unknown, and not relayed to ground stations") {
+    // Contract section 14 (v4): a device reported +-5.7e39 degrees and inverted pitch limits,
+    // and GIMBAL_MANAGER_INFORMATION passed them on.
+    MavlinkDeviceProtocol p(MavlinkDeviceOptions{});
+    mavlink::GimbalDeviceInformation info;
+    info.roll_min = -1e38f;  // rad: -5.7e39 degrees
+    info.roll_max = 1e38f;
+    info.pitch_min = 0.5f;  // inverted
+    info.pitch_max = -0.5f;
+    info.yaw_min = static_cast<float>(-400 * deg);  // beyond a whole turn either way
+    info.yaw_max = static_cast<float>(100 * deg);
+    receive(p, device_frame(info), 1.0);
+    receive(p, device_frame(status(0, -30, 20, 32)), 1.0);
+    const auto state = p.snapshot(1.0);
+    const auto& limits = state["device"]["limits"];
+    INFO(limits.dump());
+    for (const char* key : {"roll_min", "roll_max", "pitch_min", "pitch_max", "yaw_min"})
+        CHECK(limits[key].is_null());
+    CHECK(limits["yaw_max"].get<double>() == Approx(100).margin(1e-3));  // sane on its own
+    const auto l = p.capabilities().limits();
+    CHECK_FALSE(l.tilt_min_deg);
+    CHECK_FALSE(l.pan_min_deg);
+    // What the gimbal manager relays: the defaults for unknown limits, never the absurd ones.
+    const gimbal_protocol::ExposedGimbal g{"g", "mavlink", 1, 154};
+    const session::GimbalView view{&p.capabilities(), p.telemetry(), true, false, {}};
+    const auto m = gimbal_protocol::manager_information(g, view, 0);
+    CHECK(m.pitch_min == Approx(-std::numbers::pi / 2));
+    CHECK(m.pitch_max == Approx(std::numbers::pi / 2));
+    CHECK(m.yaw_min == Approx(-std::numbers::pi));
+    CHECK(m.yaw_max == Approx(std::numbers::pi));
+    const auto d = gimbal_protocol::device_information(g, view, 0);
+    CHECK(std::isnan(d.pitch_min));
+    CHECK(std::isnan(d.pitch_max));
+
+    // Inverted limits another gimbal reports (an Orion's LIMITS: pitch 30..-90, yaw beyond a
+    // whole turn) are dropped by the manager as well.
+    state::OrionData orion;
+    orion::Limits inverted;
+    inverted.min_pos = {-30.0, 30 * deg};
+    inverted.max_pos = {30.0, -90 * deg};
+    orion.packets.limits = state::Received<orion::Limits>{inverted, nullptr, 0};
+    const protocols::OrionCapabilities orion_caps(orion);
+    const auto m2 =
+        gimbal_protocol::manager_information(g, {&orion_caps, nullptr, true, false, {}}, 0);
+    CHECK(m2.pitch_min == Approx(-std::numbers::pi / 2));
+    CHECK(m2.yaw_max == Approx(std::numbers::pi));
+}
+
 TEST_CASE("the simulated device: information on request, slew rate and angle limits") {
     protocols::MavlinkDeviceSimOptions o;
     o.slew_rate_dps = 50;
@@ -259,6 +330,7 @@ TEST_CASE("the simulated device: information on request, slew rate and angle lim
     receive(p, out, 0.1);
     const auto d = p.snapshot(0.1)["device"];
     CHECK(d["vendor"] == "gimbald");
+    CHECK(d["firmware"] == "2.4.1");
     CHECK(d["limits"]["pitch_min"].get<double>() == Approx(-60).margin(1e-3));
     CHECK(p.state().earth_frame_supported());
 
@@ -330,7 +402,7 @@ TEST_CASE("stare: the line of sight stays on a geopoint while the aircraft circl
         receive(p, bytes, t);
         if (t > 2.0 && i % 10 == 0) {
             const auto state = p.snapshot(t);
-            const auto los = p.capabilities().line_of_sight(state);
+            const auto los = p.capabilities().line_of_sight();
             REQUIRE(los);
             const auto& tel = state["telemetry"];
             const geo::Lla from{tel["lat"].get<double>(), tel["lon"].get<double>(),

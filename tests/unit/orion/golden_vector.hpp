@@ -6,7 +6,7 @@
 #include <string_view>
 #include <vector>
 
-#include "orion/enums.hpp"
+#include "protocols/orion/codec/enums.hpp"
 
 namespace gimbal::orion::golden_vectors {
 

@@ -2,8 +2,8 @@
 #include <cmath>
 #include <vector>
 
-#include "orion/json.hpp"
-#include "orion/packets.hpp"
+#include "protocols/orion/codec/json.hpp"
+#include "protocols/orion/codec/packets.hpp"
 
 using namespace gimbal::orion;
 using Bytes = std::vector<std::uint8_t>;

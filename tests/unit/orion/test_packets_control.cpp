@@ -1,4 +1,4 @@
-// Golden tests for the ICD section "Packets for gimbal control" (lib/orion/packets_control.hpp).
+// Golden tests for the ICD section "Packets for gimbal control" (codec/packets_control.hpp).
 // Every golden vector is written by hand from the ICD tables, one comment per field with its
 // byte offset; raw wire integers are spelled out so expected physical values are raw / scale.
 #include <catch2/catch.hpp>
@@ -7,10 +7,10 @@
 #include <string>
 #include <vector>
 
-#include "orion/framer.hpp"
-#include "orion/framing.hpp"
-#include "orion/json.hpp"
-#include "orion/packets.hpp"
+#include "protocols/orion/codec/framer.hpp"
+#include "protocols/orion/codec/framing.hpp"
+#include "protocols/orion/codec/json.hpp"
+#include "protocols/orion/codec/packets.hpp"
 
 using namespace gimbal::orion;
 using Bytes = std::vector<std::uint8_t>;

@@ -8,10 +8,10 @@
 #include <utility>
 #include <vector>
 
-#include "orion/framer.hpp"
-#include "orion/framing.hpp"
-#include "orion/json.hpp"
-#include "orion/packets.hpp"
+#include "protocols/orion/codec/framer.hpp"
+#include "protocols/orion/codec/framing.hpp"
+#include "protocols/orion/codec/json.hpp"
+#include "protocols/orion/codec/packets.hpp"
 
 using namespace gimbal::orion;
 using Bytes = std::vector<std::uint8_t>;

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "orion/codec.hpp"
-#include "orion/wire.hpp"
+#include "protocols/orion/codec/codec.hpp"
+#include "protocols/orion/codec/wire.hpp"
 
 using namespace gimbal::orion;
 using Bytes = std::vector<std::uint8_t>;

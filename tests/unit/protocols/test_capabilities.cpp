@@ -1,8 +1,7 @@
 // Typed capabilities (session/capabilities.hpp) of every protocol, checked against what the
-// MAVLink gimbal manager (lib/gimbal_protocol) does per protocol today, over a grid of
-// commands and STATEs: the same requests, the same refusals (unsupported / not yet), the same
-// line of sight, view, limits, identity and camera. When the mapping moves onto the
-// capabilities it cannot change behaviour.
+// MAVLink gimbal manager (lib/gimbal_protocol) does with them, over a grid of commands and
+// typed states (with and without what the gimbal reports): the same requests, the same
+// refusals (unsupported / not yet), the same line of sight, view, limits, identity and camera.
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <numbers>
@@ -20,37 +19,27 @@ namespace {
 constexpr double rad_to_deg = 180.0 / std::numbers::pi;
 constexpr double deg_to_rad = std::numbers::pi / 180.0;
 
-const caps::Capabilities& capabilities_of(const std::string& protocol) {
-    return *protocols::find(protocol)->capabilities;
-}
-
-// The single-gimbal manager the old mapping runs, and its state.
+// The single-gimbal manager the mapping runs, and its state.
 struct One {
     std::string name, protocol;
-    json state;
+    AnyGimbal state;
+    const caps::Capabilities& capabilities() const { return state->capabilities(); }
 };
 
 std::vector<One> gimbals(bool with_data) {
-    json orion = orion_state();
-    json viewpro = viewpro_state();
-    if (!with_data) {
-        orion.erase("telemetry");
-        orion.erase("cameras");
-        orion.erase("limits");
-        viewpro.erase("output");
-    }
-    return {{"main", "orion", orion}, {"nose", "viewpro", viewpro}};
+    if (!with_data) return {{"main", "orion", empty_orion()}, {"nose", "viewpro", empty_viewpro()}};
+    return {{"main", "orion", orion_state()}, {"nose", "viewpro", viewpro_state()}};
 }
 
 Mapped old_mapping(const One& g, const gimbal::mavlink::Payload& payload, const VehicleView& v) {
     GimbalManager m(expose({{g.name, g.protocol}}));
-    return m.message(payload, gcs, v, [&](const std::string&) { return g.state; });
+    return m.message(payload, gcs, v, [&](const std::string&) { return g.state->view(); });
 }
 
 Mapped old_command(const One& g, const CommandView& c, const VehicleView& v) {
     GimbalManager m(expose({{g.name, g.protocol}}));
     return m.command(
-        c, gcs, v, [&](const std::string&) { return g.state; }, 0);
+        c, gcs, v, [&](const std::string&) { return g.state->view(); }, 0);
 }
 
 // The old mapping's one request without "gimbal", or its refusal as a capability would say.
@@ -100,7 +89,7 @@ TEST_CASE("point_angles and rate: the gimbal manager's pitch/yaw mapping, per pr
                                     if (std::isnan(r)) return std::nullopt;
                                     return r * rad_to_deg;
                                 };
-                                const auto& c = capabilities_of(g.protocol);
+                                const auto& c = g.capabilities();
                                 if (!std::isnan(pitch) || !std::isnan(yaw)) {
                                     caps::AnglesTarget t;
                                     t.pitch_deg = deg(py.pitch);
@@ -108,27 +97,32 @@ TEST_CASE("point_angles and rate: the gimbal manager's pitch/yaw mapping, per pr
                                     t.yaw_frame =
                                         flags ? caps::YawFrame::earth : caps::YawFrame::vehicle;
                                     t.vehicle_heading_deg = heading;
-                                    same(old, c.point_angles(g.state, t));
+                                    same(old, c.point_angles(t));
                                 } else if (!std::isnan(rate)) {
-                                    same(old, c.rate(g.state, {py.pitch_rate * rad_to_deg,
-                                                               py.yaw_rate * rad_to_deg}));
+                                    same(old, c.rate({py.pitch_rate * rad_to_deg,
+                                                      py.yaw_rate * rad_to_deg}));
                                 }
                             }
 }
 
-TEST_CASE("absolute_angles: complete angles and rates read nothing from STATE") {
-    // The MAVLink mapping passes an empty STATE when a gimbal claims this: the answer must be
-    // the one the real STATE gives.
-    const std::vector<std::pair<std::string, json>> states = {
-        {"orion", orion_state()}, {"viewpro", viewpro_state()}, {"mavlink", device_state()}};
+TEST_CASE("absolute_angles: complete angles and rates read nothing of the gimbal's state") {
+    // A gimbal that claims this answers the same with nothing reported yet.
+    struct Pair {
+        std::string protocol;
+        AnyGimbal state, empty;
+    };
+    const std::vector<Pair> states = {{"orion", orion_state(), empty_orion()},
+                                      {"viewpro", viewpro_state(), empty_viewpro()},
+                                      {"mavlink", device_state(), empty_device()}};
     int claimed = 0;
-    for (const auto& [protocol, state] : states) {
-        const auto& c = capabilities_of(protocol);
+    for (const auto& [protocol, state, empty] : states) {
+        const auto& c = state->capabilities();
+        const auto& nothing = empty->capabilities();
         INFO(protocol);
+        CHECK(c.features().absolute_angles == protocols::find(protocol)->features.absolute_angles);
         if (!c.features().absolute_angles) {
-            // A gimbal stepped from where it looks now cannot do without its STATE.
-            CHECK_FALSE(
-                c.point_angles(json::object(), {-10.0, 20.0, caps::YawFrame::vehicle, 100.0}).ok());
+            // A gimbal stepped from where it looks now cannot do without its state.
+            CHECK_FALSE(nothing.point_angles({-10.0, 20.0, caps::YawFrame::vehicle, 100.0}).ok());
             continue;
         }
         ++claimed;
@@ -136,15 +130,14 @@ TEST_CASE("absolute_angles: complete angles and rates read nothing from STATE") 
             for (const double pitch : {-90.0, -10.5, 30.0})
                 for (const double yaw : {-170.0, 0.0, 95.25}) {
                     const caps::AnglesTarget t{pitch, yaw, frame, 100.0};
-                    const auto with = c.point_angles(state, t);
-                    const auto without = c.point_angles(json::object(), t);
+                    const auto with = c.point_angles(t);
+                    const auto without = nothing.point_angles(t);
                     REQUIRE(with.ok() == without.ok());
                     if (with.ok()) CHECK(with.value() == without.value());
                 }
         const caps::RateTarget r{5.0, -3.0};
-        CHECK(c.rate(state, r).ok() == c.rate(json::object(), r).ok());
-        if (c.rate(state, r).ok())
-            CHECK(c.rate(state, r).value() == c.rate(json::object(), r).value());
+        CHECK(c.rate(r).ok() == nothing.rate(r).ok());
+        if (c.rate(r).ok()) CHECK(c.rate(r).value() == nothing.rate(r).value());
     }
     CHECK(claimed == 2);  // the Orion and the MAVLink device take absolute angles
 }
@@ -152,17 +145,18 @@ TEST_CASE("absolute_angles: complete angles and rates read nothing from STATE") 
 TEST_CASE("geopoint and stop: DO_SET_ROI_LOCATION and DO_SET_ROI_NONE, per protocol") {
     for (const auto& g : gimbals(true)) {
         INFO(g.protocol);
-        const auto& c = capabilities_of(g.protocol);
+        const auto& c = g.capabilities();
         const Mapped roi =
             old_command(g,
                         int_cmd(mav::mav_cmd::do_set_roi_location, {1, 0, 0, 0}, 473977420,
                                 85455940, 488.5f, mav::mav_frame::global_int),
                         vehicle());
-        same(roi, c.geopoint(g.state, {47.397742, 8.545594, 488.5}));
+        same(roi, c.geopoint({47.397742, 8.545594, 488.5}));
         const Mapped none = old_command(
             g, long_cmd(mav::mav_cmd::do_set_roi_none, {1, 0, 0, 0, 0, 0, 0}), vehicle());
-        same(none, c.stop(g.state));
+        same(none, c.stop());
         CHECK(c.features().geopoint == !roi.requests.empty());
+        CHECK(protocols::find(g.protocol)->features.geopoint == c.features().geopoint);
     }
 }
 
@@ -183,7 +177,7 @@ TEST_CASE("zoom: SET_CAMERA_ZOOM range and continuous, per protocol") {
                                              ? caps::ZoomKind::range_percent
                                              : caps::ZoomKind::continuous,
                                          value};
-                same(old, capabilities_of(g.protocol).zoom(g.state, t));
+                same(old, g.capabilities().zoom(t));
             }
 }
 
@@ -191,11 +185,12 @@ TEST_CASE("line of sight, view, identity, limits and camera: the manager's statu
     for (const bool with_data : {true, false})
         for (const auto& g : gimbals(with_data)) {
             INFO(g.protocol << " data " << with_data);
-            const auto& c = capabilities_of(g.protocol);
+            const auto& c = g.capabilities();
             const ExposedGimbal exposed{g.name, g.protocol, 1};
+            const gimbal::session::GimbalView view = g.state->view();
 
-            const auto old_los = line_of_sight(g.state, g.protocol);
-            const auto los = c.line_of_sight(g.state);
+            const auto old_los = line_of_sight(view);
+            const auto los = c.line_of_sight();
             REQUIRE(old_los.has_value() == los.has_value());
             if (los) {
                 CHECK(los->w == Approx(old_los->w));
@@ -204,8 +199,8 @@ TEST_CASE("line of sight, view, identity, limits and camera: the manager's statu
                 CHECK(los->z == Approx(old_los->z));
             }
 
-            const auto fov = fov_status(exposed, g.state, 0);
-            const auto v = c.view(g.state);
+            const auto fov = fov_status(exposed, view, 0);
+            const auto v = c.view();
             const auto e7 = [](std::optional<double> d) {
                 return d ? static_cast<std::int32_t>(std::lround(*d * 1e7))
                          : mav::CameraFovStatus::unknown;
@@ -224,14 +219,14 @@ TEST_CASE("line of sight, view, identity, limits and camera: the manager's statu
             if (v.hfov_deg) CHECK(fov.hfov == Approx(*v.hfov_deg));
             if (v.vfov_deg) CHECK(fov.vfov == Approx(*v.vfov_deg));
 
-            const auto info = device_information(exposed, g.state, 0);
-            const auto id = c.identity(g.state);
+            const auto info = device_information(exposed, view, 0);
+            const auto id = c.identity();
             const auto text = [](const auto& bytes) {
                 return std::string(reinterpret_cast<const char*>(bytes.data()));
             };
             CHECK(text(info.vendor_name) == id.vendor);
             CHECK(text(info.model_name) == id.model);
-            const auto l = c.limits(g.state);
+            const auto l = c.limits();
             const auto rad = [](std::optional<double> d) {
                 return d ? static_cast<float>(*d * deg_to_rad) : mav::nan_f;
             };
@@ -252,8 +247,8 @@ TEST_CASE("line of sight, view, identity, limits and camera: the manager's statu
             if (f.geopoint) flags |= cap::can_point_location_global;
             CHECK(info.cap_flags2 == flags);
 
-            const auto cam = camera_information(exposed, g.state, 0);
-            const auto camera = c.camera(g.state);
+            const auto cam = camera_information(exposed, view, 0);
+            const auto camera = c.camera();
             CHECK((cam.flags == mav::camera_cap_has_basic_zoom) == camera.basic_zoom);
             CHECK(std::isnan(cam.focal_length) == !camera.focal_length_mm.has_value());
             if (camera.focal_length_mm) CHECK(cam.focal_length == Approx(*camera.focal_length_mm));
@@ -266,14 +261,23 @@ TEST_CASE("line of sight, view, identity, limits and camera: the manager's statu
 }
 
 TEST_CASE("capability names: what STATE `capabilities.features` lists") {
-    CHECK(capabilities_of("orion").names() ==
-          std::vector<std::string>{"point_angles", "rate", "geopoint", "zoom"});
-    CHECK(capabilities_of("viewpro").names() == std::vector<std::string>{"point_angles"});
+    const auto names = [](const std::string& protocol) {
+        return caps::feature_names(protocols::find(protocol)->features);
+    };
+    CHECK(names("orion") == std::vector<std::string>{"point_angles", "rate", "geopoint", "zoom"});
+    CHECK(names("viewpro") == std::vector<std::string>{"point_angles"});
+    CHECK(orion_state()->capabilities().names() == names("orion"));
+    CHECK(viewpro_state()->capabilities().names() == names("viewpro"));
+    CHECK(device_state()->capabilities().names() == names("mavlink"));
 }
 
 TEST_CASE("firmware from the version packets") {
-    json s = orion_state();
-    CHECK_FALSE(capabilities_of("orion").identity(s).firmware);
-    s["versions"] = {{"crown", {{"version", "4.2.1"}, {"part_number", "x"}}}};
-    CHECK(capabilities_of("orion").identity(s).firmware == "4.2.1");
+    const auto s = orion_state();
+    CHECK_FALSE(s->capabilities().identity().firmware);
+    gimbal::orion::CrownVersion crown;
+    crown.version = "4.2.1";
+    crown.part_number = "x";
+    s->data.packets.crown_version =
+        gimbal::state::Received<gimbal::orion::CrownVersion>{crown, nullptr, 0};
+    CHECK(s->capabilities().identity().firmware == "4.2.1");
 }

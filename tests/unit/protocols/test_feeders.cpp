@@ -4,10 +4,10 @@
 
 #include "../vehicle/vehicle_fixtures.hpp"
 #include "mavlink/framer.hpp"
-#include "orion/framer.hpp"
-#include "orion/packets.hpp"
+#include "protocols/orion/codec/framer.hpp"
+#include "protocols/orion/codec/packets.hpp"
 #include "protocols/registry.hpp"
-#include "viewpro/input_framer.hpp"
+#include "protocols/viewpro/codec/input_framer.hpp"
 
 using namespace gimbal;
 using nlohmann::json;

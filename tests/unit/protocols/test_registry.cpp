@@ -27,6 +27,7 @@ struct Run {
     std::uint64_t telemetry = 0;
     session::FrameCounters counters;
     json state;
+    std::unique_ptr<session::Protocol> session;  // its state, as the capabilities read it
 };
 
 // An aircraft level over the Columbia river gorge, heading east, as its autopilot reports it.
@@ -74,6 +75,7 @@ Run run(const Entry& e, double seconds) {
     r.counters = session->counters();
     r.state = session->snapshot(seconds);
     r.state["protocol"] = std::string(session->name());
+    r.session = std::move(session);
     return r;
 }
 
@@ -94,7 +96,7 @@ TEST_CASE("every protocol has one complete entry", "[registry]") {
         CHECK(protocols::parse_protocol(e.name) == id);
         CHECK(protocols::find(e.name) == &e);
         CHECK(protocols::find_by_dissector(e.dissector) == &e);
-        CHECK(e.capabilities != nullptr);
+        CHECK(e.features.point_angles);  // every gimbal points at angles
         CHECK(e.make_session != nullptr);
         CHECK(e.make_feeder != nullptr);
         CHECK(e.make_splitter != nullptr);
@@ -112,14 +114,33 @@ TEST_CASE("every protocol has one complete entry", "[registry]") {
     CHECK_FALSE(protocols::parse_protocol("gopro"));
     CHECK(protocols::find("gopro") == nullptr);
     CHECK(protocols::find_by_dissector("data") == nullptr);
-    CHECK(state::is_state_key("capabilities"));  // the key the daemon adds from the entry
+    CHECK(protocols::is_state_key("capabilities"));  // the key the daemon adds from the entry
+}
+
+TEST_CASE("STATE keys: the shared ones and each protocol's own, declared by its entry",
+          "[registry]") {
+    for (const auto* e : protocols::entries()) {
+        INFO(e->name);
+        for (const auto key : e->state_keys) {
+            INFO(key);
+            CHECK_FALSE(state::is_shared_state_key(key));  // a protocol's own, not a shared one
+            CHECK(protocols::is_state_key(key));
+            auto read = state::read_state_keys(json{key}, protocols::is_state_key);
+            CHECK(read);
+        }
+    }
+    CHECK(protocols::is_state_key("telemetry"));
+    CHECK_FALSE(protocols::is_state_key("telemtry"));
+    // Without the registry only the shared keys are known (lib/state sits beneath it).
+    CHECK_FALSE(state::read_state_keys(json{"ins"}));
+    CHECK(state::read_state_keys(json{"ins"}, protocols::is_state_key));
 }
 
 TEST_CASE("a protocol plans exactly the catalogue commands its entry lists", "[registry]") {
     for (const auto* e : protocols::entries()) {
         auto session = e->make_session(protocols::SessionSettings{}, gimbal_config(*e));
         CHECK(session->name() == e->name);
-        CHECK(&session->capabilities() == e->capabilities);
+        CHECK(session->capabilities().names() == session::feature_names(e->features));
         for (const auto& planned : e->commands) {
             INFO(e->name << " lists " << planned.name);
             const auto* spec = command::find_command(planned.name);
@@ -151,6 +172,16 @@ TEST_CASE("each entry's session, simulator, splitter and track decoder work toge
         CHECK(r.counters.bad_checksums == 0);
         CHECK(r.counters.dropped_bytes == 0);
         CHECK(r.state["protocol"] == e->name);
+        // Every key the session writes is one a subscriber may name, and every key the
+        // entry declares is written: the declaration is the session's.
+        for (const auto& [key, value] : r.state.items()) {
+            INFO(key);
+            CHECK(protocols::is_state_key(key));
+        }
+        for (const auto key : e->state_keys) {
+            INFO(key);
+            CHECK(r.state.contains(std::string(key)));
+        }
 
         // The recorder's splitter: the pieces are the stream, and the frames the session's.
         auto splitter = e->make_splitter();
@@ -170,7 +201,8 @@ TEST_CASE("each entry's session, simulator, splitter and track decoder work toge
         CHECK(frames == r.counters.rx_packets);
 
         // The export hook: one track point per telemetry frame, each with the aircraft when
-        // the gimbal's link carries its position (a MAVLink device's does not).
+        // the gimbal's link carries its position (a MAVLink device's and a SIYI camera's do
+        // not).
         auto decoder = e->make_track_decoder();
         std::vector<protocols::TrackPoint> points;
         decoder->push(r.stream, 1'790'000'000'000'000, points);
@@ -178,14 +210,16 @@ TEST_CASE("each entry's session, simulator, splitter and track decoder work toge
         CHECK(decoder->decode_errors() == 0);
         CHECK(points.size() == r.telemetry);
         REQUIRE_FALSE(points.empty());
-        CHECK(points.back().aircraft.has_value() == (e->id != protocols::ProtocolId::mavlink));
+        CHECK(points.back().aircraft.has_value() ==
+              (e->id != protocols::ProtocolId::mavlink && e->id != protocols::ProtocolId::siyi));
 
-        // The capabilities read that STATE.
-        CHECK(e->capabilities->line_of_sight(r.state).has_value());
-        const auto view = e->capabilities->view(r.state);
+        // The capabilities read that state.
+        const auto& caps = r.session->capabilities();
+        CHECK(caps.line_of_sight().has_value());
+        const auto view = caps.view();
         CHECK(view.lat_deg.has_value());
         CHECK(view.lon_deg.has_value());
-        CHECK_FALSE(e->capabilities->identity(r.state).vendor.empty());
+        CHECK_FALSE(caps.identity().vendor.empty());
     }
 }
 
@@ -228,6 +262,22 @@ TEST_CASE("discovery: only the protocol that has it answers", "[registry]") {
         CHECK_FALSE(e->simulator.is_discovery_request(reply));  // a reply is not a request
         CHECK_FALSE(e->simulator.is_discovery_request(std::vector<std::uint8_t>{1, 2, 3}));
     }
+}
+
+TEST_CASE("discovery: gimbald's request is what the simulated gimbal answers", "[registry]") {
+    int with_discovery = 0;
+    for (const auto* e : protocols::entries()) {
+        INFO(e->name);
+        // gimbald finds a protocol's gimbals exactly when its simulator can be found.
+        CHECK(static_cast<bool>(e->discovery) == (e->simulator.is_discovery_request != nullptr));
+        CHECK((e->discovery.request == nullptr) == (e->discovery.is_reply == nullptr));
+        if (!e->discovery) continue;
+        ++with_discovery;
+        CHECK(e->simulator.is_discovery_request(e->discovery.request()));
+        CHECK(e->discovery.is_reply(e->simulator.discovery_reply()));
+        CHECK_FALSE(e->discovery.is_reply(std::vector<std::uint8_t>{'h', 'i'}));
+    }
+    CHECK(with_discovery == 1);  // the Orion's
 }
 
 TEST_CASE("feeders: kinds from the gimbal's feed configuration", "[registry]") {

@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "orion/framing.hpp"
+#include "protocols/orion/codec/framing.hpp"
 #include "record/record_files.hpp"
 #include "record/recorder.hpp"
 #include "record/recording_link.hpp"

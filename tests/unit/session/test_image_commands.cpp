@@ -1,10 +1,11 @@
-// The image commands (session/image_commands.hpp) on a gimbal's STATE through its typed
+// The image commands (session/image_commands.hpp) on a gimbal's typed state through its
 // capabilities: image positions read and checked, locate and project as inverses, the
 // pointing request through the geopoint capability, and every refusal named.
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "protocols/registry.hpp"
+#include "protocols/orion/orion_capabilities.hpp"
+#include "protocols/viewpro/viewpro_capabilities.hpp"
 #include "session/image_commands.hpp"
 
 using namespace gimbal;
@@ -13,31 +14,43 @@ using nlohmann::json;
 
 namespace {
 
-const session::Capabilities& caps(std::string_view protocol) {
-    return *protocols::find(protocol)->capabilities;
+// An Orion's typed state and its capabilities bound to it.
+struct Orion {
+    state::OrionData data;
+    protocols::OrionCapabilities caps{data};
+    state::Telemetry& telemetry() { return data.telemetry->shared; }
+};
+
+// An Orion 1500 m over 45.7 N 121.5 W, looking 30 degrees down to the north-east, a 1920 x
+// 1080 image, its target at 400 m.
+std::unique_ptr<Orion> orion_state() {
+    auto o = std::make_unique<Orion>();
+    state::OrionTelemetry t;
+    t.packet.quat = {0.92388, 0.0, 0.0, 0.38268};
+    t.packet.pixel_width = 1920;
+    t.packet.pixel_height = 1080;
+    t.shared.lat = 45.7;
+    t.shared.lon = -121.5;
+    t.shared.alt = 1500.0;
+    t.shared.geoid_undulation = -21.0;
+    t.shared.pan = 10.0;
+    t.shared.tilt = -30.0;
+    t.shared.hfov = 40.0;
+    t.shared.vfov = 22.5;
+    t.shared.target = state::GeoPoint{45.71, -121.49, 400.0};
+    o->data.telemetry = t;
+    return o;
 }
 
-// An Orion's STATE: 1500 m over 45.7 N 121.5 W, looking 30 degrees down to the north-east,
-// a 1920 x 1080 image, its target at 400 m.
-json orion_state() {
-    return {{"protocol", "orion"},
-            {"telemetry",
-             {{"lat", 45.7},
-              {"lon", -121.5},
-              {"alt", 1500.0},
-              {"geoid_undulation", -21.0},
-              {"quat", {0.92388, 0.0, 0.0, 0.38268}},
-              {"pan", 10.0},
-              {"tilt", -30.0},
-              {"hfov", 40.0},
-              {"vfov", 22.5},
-              {"pixel_width", 1920},
-              {"pixel_height", 1080},
-              {"target", {{"lat", 45.71}, {"lon", -121.49}, {"alt", 400.0}}}}}};
+// A Viewpro (it never reports a field of view) and its capabilities.
+const session::Capabilities& viewpro_caps() {
+    static const std::optional<viewpro::Output> nothing;
+    static const protocols::ViewproCapabilities caps(nothing);
+    return caps;
 }
 
 command::Result<session::ImagePosition> read(const json& request) {
-    command::Params p(request);
+    command::JsonParams p(request, request.value("cmd", "locate"));
     return session::read_image_position(p);
 }
 
@@ -70,7 +83,7 @@ TEST_CASE("image commands: image positions", "[image_commands]") {
     refused({{"px", -1}, {"py", 0}}, ErrorCode::out_of_range, "px");
     refused({{"x", "0.5"}, {"y", 0}}, ErrorCode::bad_request, "x");
 
-    const auto view = caps("orion").image(orion_state());
+    const auto view = orion_state()->caps.image();
     REQUIRE(view);
     auto p = session::image_point({true, 960, 540}, *view);
     REQUIRE(p);
@@ -93,7 +106,7 @@ TEST_CASE("image commands: image positions", "[image_commands]") {
 }
 
 TEST_CASE("image commands: locate and project are inverses", "[image_commands]") {
-    const auto view = caps("orion").image(orion_state());
+    const auto view = orion_state()->caps.image();
     REQUIRE(view);
     CHECK(view->flat_alt_m == 400.0);
     for (const double x : {-1.0, -0.3, 0.0, 0.7, 1.0})
@@ -124,41 +137,44 @@ TEST_CASE("image commands: locate and project are inverses", "[image_commands]")
     CHECK_FALSE(off["visible"].get<bool>());
 
     // No ground: above the horizon, or no flat world.
-    json up = orion_state();
-    up["telemetry"]["tilt"] = 20.0;
-    auto e = session::locate_point(*caps("orion").image(up), {0, 0}, nullptr);
+    auto up = orion_state();
+    up->telemetry().tilt = 20.0;
+    auto e = session::locate_point(*up->caps.image(), {0, 0}, nullptr);
     REQUIRE_FALSE(e);
     CHECK(e.error().code == ErrorCode::unavailable);
     CHECK_THAT(e.error().message, Catch::Contains("horizon"));
-    json untargeted = orion_state();
-    untargeted["telemetry"]["target"] = nullptr;
-    e = session::locate_point(*caps("orion").image(untargeted), {0, 0}, nullptr);
+    auto untargeted = orion_state();
+    untargeted->telemetry().target.reset();
+    e = session::locate_point(*untargeted->caps.image(), {0, 0}, nullptr);
     REQUIRE_FALSE(e);
     CHECK_THAT(e.error().message, Catch::Contains("no terrain is configured"));
 }
 
 TEST_CASE("image commands: what each protocol's image says", "[image_commands]") {
-    auto none = caps("orion").image(json{{"protocol", "orion"}, {"telemetry", nullptr}});
+    auto nothing = orion_state();
+    nothing->data.telemetry.reset();
+    auto none = nothing->caps.image();
     REQUIRE_FALSE(none);
     CHECK(none.error().code == ErrorCode::unavailable);
-    json blind = orion_state();
-    blind["telemetry"]["hfov"] = 0.0;
-    none = caps("orion").image(blind);
+    auto blind = orion_state();
+    blind->telemetry().hfov = 0.0;
+    none = blind->caps.image();
     REQUIRE_FALSE(none);
     CHECK(none.error().code == ErrorCode::unavailable);
     // Viewpro output frames carry no field of view: never.
-    const auto viewpro = caps("viewpro").image(json{{"protocol", "viewpro"}});
+    const auto viewpro = viewpro_caps().image();
     REQUIRE_FALSE(viewpro);
     CHECK(viewpro.error().code == ErrorCode::unsupported);
 }
 
 TEST_CASE("image commands: point goes through the geopoint capability", "[image_commands]") {
-    const json state = orion_state();
-    const auto view = caps("orion").image(state);
+    const auto orion = orion_state();
+    const auto& caps = orion->caps;
+    const auto view = caps.image();
     REQUIRE(view);
     const auto g = session::locate_point(*view, {0.5, -0.3}, nullptr);
     REQUIRE(g);
-    auto r = session::point_request(caps("orion"), state, *view, *g, false);
+    auto r = session::point_request(caps, *view, *g, false);
     REQUIRE(r);
     CHECK((*r)["cmd"] == "geopoint");
     CHECK((*r)["lat"].get<double>() == Approx(g->point.lat_deg));
@@ -167,18 +183,18 @@ TEST_CASE("image commands: point goes through the geopoint capability", "[image_
     CHECK((*r)["alt"].get<double>() + -21.0 == Approx(400).margin(1e-3));
     CHECK((*r)["alt_ref"] == "msl");
     CHECK_FALSE(r->contains("stare"));
-    r = session::point_request(caps("orion"), state, *view, *g, true);
+    r = session::point_request(caps, *view, *g, true);
     REQUIRE(r);
     CHECK((*r)["stare"] == true);
 
     // A gimbal without the geopoint capability: unsupported.
-    const auto vp = session::point_request(caps("viewpro"), json::object(), *view, *g, false);
+    const auto vp = session::point_request(viewpro_caps(), *view, *g, false);
     REQUIRE_FALSE(vp);
     CHECK(vp.error().code == ErrorCode::unsupported);
     // No undulation to give an MSL altitude with: not yet.
     session::ImageView no_geoid = *view;
     no_geoid.geoid_undulation_m.reset();
-    const auto later = session::point_request(caps("orion"), state, no_geoid, *g, false);
+    const auto later = session::point_request(caps, no_geoid, *g, false);
     REQUIRE_FALSE(later);
     CHECK(later.error().code == ErrorCode::unavailable);
 }

@@ -6,10 +6,10 @@
 #include <memory>
 #include <vector>
 
-#include "orion/codec.hpp"
-#include "orion/framer.hpp"
-#include "orion/framing.hpp"
-#include "sim/orion_sim.hpp"
+#include "protocols/orion/codec/codec.hpp"
+#include "protocols/orion/codec/framer.hpp"
+#include "protocols/orion/codec/framing.hpp"
+#include "protocols/orion/sim/orion_sim.hpp"
 
 namespace sim_test {
 

@@ -1,6 +1,6 @@
 #include <catch2/catch.hpp>
 
-#include "sim/camera.hpp"
+#include "protocols/orion/sim/camera.hpp"
 #include "sim/frames.hpp"
 
 using namespace gimbal::sim;

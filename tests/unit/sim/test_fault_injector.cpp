@@ -1,7 +1,8 @@
 #include <catch2/catch.hpp>
 
-#include "orion/framer.hpp"
-#include "orion/framing.hpp"
+#include "protocols/orion/codec/framer.hpp"
+#include "protocols/orion/codec/framing.hpp"
+#include "protocols/orion/sim/orion_fault_frames.hpp"
 #include "sim/fault_injector.hpp"
 
 using namespace gimbal;
@@ -19,7 +20,7 @@ Bytes frames(int n) {
 }  // namespace
 
 TEST_CASE("no faults: bytes pass unchanged", "[sim][faults]") {
-    sim::FaultInjector f(sim::FaultOptions{});
+    sim::FaultInjector f(sim::FaultOptions{}, sim::orion_frames());
     const Bytes in = frames(50);
     Bytes out;
     f.apply(in, out);
@@ -29,14 +30,14 @@ TEST_CASE("no faults: bytes pass unchanged", "[sim][faults]") {
 }
 
 TEST_CASE("corrupt_fraction breaks that share of checksums", "[sim][faults]") {
-    sim::FaultInjector all({1.0, 0, 7});
+    sim::FaultInjector all({1.0, 0, 7}, sim::orion_frames());
     Bytes out;
     all.apply(frames(100), out);
     orion::Framer framer;
     CHECK(framer.push(out).empty());
     CHECK(framer.stats().bad_checksums == 100);
 
-    sim::FaultInjector some({0.3, 0, 7});
+    sim::FaultInjector some({0.3, 0, 7}, sim::orion_frames());
     out.clear();
     some.apply(frames(1000), out);
     orion::Framer framer2;
@@ -47,7 +48,7 @@ TEST_CASE("corrupt_fraction breaks that share of checksums", "[sim][faults]") {
 }
 
 TEST_CASE("junk between frames costs no valid frame", "[sim][faults]") {
-    sim::FaultInjector f({0, 3, 11});
+    sim::FaultInjector f({0, 3, 11}, sim::orion_frames());
     const Bytes in = frames(300);
     Bytes out;
     f.apply(in, out);
@@ -59,7 +60,7 @@ TEST_CASE("junk between frames costs no valid frame", "[sim][faults]") {
 }
 
 TEST_CASE("bytes that are not frames pass through", "[sim][faults]") {
-    sim::FaultInjector f({1.0, 1, 3});
+    sim::FaultInjector f({1.0, 1, 3}, sim::orion_frames());
     const Bytes in{0x01, 0xD0, 0x0D, 0x05};  // a cut-off header
     Bytes out;
     f.apply(in, out);

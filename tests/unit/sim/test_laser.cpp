@@ -1,6 +1,6 @@
 #include <catch2/catch.hpp>
 
-#include "sim/laser.hpp"
+#include "protocols/orion/sim/laser.hpp"
 
 using namespace gimbal::sim;
 using gimbal::orion::LaserType;

@@ -2,7 +2,7 @@
 #include <algorithm>
 #include <catch2/catch.hpp>
 
-#include "orion/packets.hpp"
+#include "protocols/orion/codec/packets.hpp"
 #include "sim/frames.hpp"
 #include "sim/pointing.hpp"
 #include "sim/terrain.hpp"

@@ -2,7 +2,7 @@
 #include <catch2/catch.hpp>
 #include <map>
 
-#include "orion/packets.hpp"
+#include "protocols/orion/codec/packets.hpp"
 #include "sim/frames.hpp"
 #include "sim/terrain.hpp"
 #include "sim_harness.hpp"

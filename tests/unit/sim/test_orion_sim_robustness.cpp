@@ -2,7 +2,7 @@
 #include <catch2/catch.hpp>
 #include <random>
 
-#include "orion/packets.hpp"
+#include "protocols/orion/codec/packets.hpp"
 #include "sim_harness.hpp"
 
 using namespace gimbal;

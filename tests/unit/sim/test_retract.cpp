@@ -1,6 +1,6 @@
 #include <catch2/catch.hpp>
 
-#include "sim/retract.hpp"
+#include "protocols/orion/sim/retract.hpp"
 
 using namespace gimbal::sim;
 using gimbal::orion::RetractCmd;

@@ -1,14 +1,14 @@
-// The simulated Orion's camera pose for its video (sim/sim_camera.hpp): the pose gimbald
-// derives from the gimbal's own telemetry, and a geopoint on a landmark puts the landmark at
-// the picture's centre.
+// The simulated Orion's camera pose for its video (protocols/orion/sim/sim_camera.hpp): the pose
+// gimbald derives from the gimbal's own telemetry, and a geopoint on a landmark puts the landmark
+// at the picture's centre.
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "orion/packets.hpp"
+#include "protocols/orion/codec/packets.hpp"
+#include "protocols/orion/sim/sim_camera.hpp"
+#include "protocols/viewpro/sim/viewpro_sim.hpp"
 #include "scene_test_support.hpp"
 #include "sim/scene_renderer.hpp"
-#include "sim/sim_camera.hpp"
-#include "sim/viewpro_sim.hpp"
 #include "sim_harness.hpp"
 
 using namespace scene_test;

@@ -2,10 +2,10 @@
 // ApFlyingLock (not flying), ApCommLock (CommGood 0) and AltitudeLock (AGL below the minimum).
 #include <catch2/catch.hpp>
 
-#include "orion/packets.hpp"
-#include "sim/laser.hpp"
+#include "protocols/orion/codec/packets.hpp"
+#include "protocols/orion/orion_feed_packets.hpp"
+#include "protocols/orion/sim/laser.hpp"
 #include "sim_harness.hpp"
-#include "vehicle/feeds.hpp"
 
 using namespace gimbal;
 using sim_test::decoded;

@@ -5,8 +5,8 @@
 #include <memory>
 
 #include "geo/wgs84.hpp"
-#include "sim/viewpro_sim.hpp"
-#include "viewpro/viewpro.hpp"
+#include "protocols/viewpro/codec/viewpro.hpp"
+#include "protocols/viewpro/sim/viewpro_sim.hpp"
 
 using namespace gimbal;
 using Catch::Matchers::WithinAbs;

@@ -2,9 +2,10 @@
 // the output framer must count and skip without losing the frames around them.
 #include <catch2/catch.hpp>
 
+#include "protocols/viewpro/codec/output.hpp"
+#include "protocols/viewpro/codec/output_framer.hpp"
+#include "protocols/viewpro/sim/viewpro_fault_frames.hpp"
 #include "sim/fault_injector.hpp"
-#include "viewpro/output.hpp"
-#include "viewpro/output_framer.hpp"
 
 using namespace gimbal;
 using Bytes = std::vector<std::uint8_t>;

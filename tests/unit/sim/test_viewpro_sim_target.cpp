@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "geo/wgs84.hpp"
-#include "sim/viewpro_sim_target.hpp"
+#include "protocols/viewpro/sim/viewpro_sim_target.hpp"
 
 using namespace gimbal;
 using Catch::Matchers::WithinAbs;

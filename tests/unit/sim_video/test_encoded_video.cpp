@@ -52,16 +52,16 @@ struct Encoded {
 Encoded encode_sequence() {
     Encoded e;
     auto opened = H264Encoder::open({});
-    REQUIRE(opened.encoder);
+    REQUIRE(opened);
     sim::SceneRenderer renderer;
     for (int i = 0; i < frames; ++i) {
         sim::I420Frame picture;
         renderer.render(camera_for(i), picture);
         REQUIRE(sim::draw_frame_code(picture, frame_time(i)));
-        REQUIRE(opened.encoder->encode(picture, i * 6000, e.units));
+        REQUIRE((*opened)->encode(picture, i * 6000, e.units));
         e.pictures.push_back(std::move(picture));
     }
-    REQUIRE(opened.encoder->flush(e.units));
+    REQUIRE((*opened)->flush(e.units));
     REQUIRE(e.units.size() == frames);
     return e;
 }

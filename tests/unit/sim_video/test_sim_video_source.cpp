@@ -2,6 +2,7 @@
 #include <catch2/catch.hpp>
 
 #include "../sim/scene_test_support.hpp"
+#include "protocols/orion/sim/sim_camera.hpp"
 #include "sim/frame_code.hpp"
 #include "sim_video/annex_b.hpp"
 #include "sim_video/sim_video_source.hpp"
@@ -16,8 +17,8 @@ TEST_CASE("sim video source: a frame from a camera pose and from the Orion's vie
     options.scene.height = 180;
     options.h264.width = 999;  // follows the scene
     auto opened = SimVideoSource::open(options);
-    REQUIRE(opened.source);
-    SimVideoSource& source = *opened.source;
+    REQUIRE(opened);
+    SimVideoSource& source = **opened;
     CHECK(source.encoder().options().width == 320);
 
     const geo::CameraPose camera =
@@ -36,13 +37,13 @@ TEST_CASE("sim video source: a frame from a camera pose and from the Orion's vie
     ir.hfov_rad = 0.3;
     ir.vfov_rad = 0.24;
     ir.infrared = true;
-    REQUIRE(source.frame(ir, 1735689600067ull, 6000, out));
+    REQUIRE(source.frame(sim::camera_view(ir), 1735689600067ull, 6000, out));
     CHECK(out.size() == 2);
     CHECK(std::all_of(source.picture().u.begin(), source.picture().u.end(),
                       [](auto c) { return c == 128; }));
     CHECK(sim::decode_frame_code(source.picture()) == 1735689600067ull);
     ir.infrared = false;
-    REQUIRE(source.frame(ir, 1735689600133ull, 12000, out));
+    REQUIRE(source.frame(sim::camera_view(ir), 1735689600133ull, 12000, out));
     CHECK_FALSE(std::all_of(source.picture().u.begin(), source.picture().u.end(),
                             [](auto c) { return c == 128; }));
 
@@ -54,10 +55,10 @@ TEST_CASE("sim video source: a frame from a camera pose and from the Orion's vie
 TEST_CASE("sim video source: bad options", "[sim_video][source]") {
     SimVideoOptions options;
     options.scene.width = 15;
-    CHECK_FALSE(SimVideoSource::open(options).source);
+    CHECK_FALSE(SimVideoSource::open(options));
     options = {};
     options.h264.bitrate_bps = 1;
     const auto opened = SimVideoSource::open(options);
-    CHECK_FALSE(opened.source);
-    CHECK(opened.error == "bitrate must be 50 kbit/s..50 Mbit/s");
+    REQUIRE_FALSE(opened);
+    CHECK(opened.error().message == "bitrate must be 50 kbit/s..50 Mbit/s");
 }

@@ -42,3 +42,30 @@ TEST_CASE("state and event messages have the datagram shape of section 4.1") {
     CHECK(gimbal::state::event_message("nose", e) ==
           json{{"type", "event"}, {"gimbal", "nose"}, {"event", "link"}, {"connected", false}});
 }
+
+TEST_CASE("too_large_event names the size, the limit and the largest keys") {
+    const json state = {{"protocol", "orion"},
+                        {"video", {{"klv", std::string(5000, 'a')}}},
+                        {"telemetry", {{"lat", std::string(300, 'b')}}},
+                        {"link", {{"connected", true}}},
+                        {"stale", false}};
+    const json event = gimbal::state::too_large_event("main", 70000, 65507, state);
+    CHECK(event["type"] == "event");
+    CHECK(event["event"] == "too_large");
+    CHECK(event["gimbal"] == "main");
+    CHECK(event["bytes"] == 70000);
+    CHECK(event["limit"] == 65507);
+    // The three largest members with their size as JSON text, so the client knows what to
+    // leave out with `keys`.
+    REQUIRE(event["largest"].size() == 3);
+    CHECK(event["largest"]["video"] == json(state["video"]).dump().size());
+    CHECK(event["largest"]["telemetry"] == json(state["telemetry"]).dump().size());
+    CHECK(event["largest"].contains("link"));
+    const std::string message = event["message"];
+    CHECK(message.find("70000 bytes") != std::string::npos);
+    CHECK(message.find("'keys'") != std::string::npos);
+    // Whatever it names, the notice itself is small.
+    CHECK(event.dump().size() < 512);
+    // Not an object (an event's own fields would be an object; a scalar has no members).
+    CHECK(gimbal::state::too_large_event("main", 70000, 65507, json(3))["largest"].empty());
+}

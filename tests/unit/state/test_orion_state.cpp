@@ -4,9 +4,9 @@
 #include <cmath>
 
 #include "geo/sampled_surface.hpp"
-#include "orion/framer.hpp"
-#include "orion/packets.hpp"
-#include "state/orion_state.hpp"
+#include "protocols/orion/codec/framer.hpp"
+#include "protocols/orion/codec/packets.hpp"
+#include "protocols/orion/orion_state.hpp"
 
 using namespace gimbal;
 using nlohmann::json;

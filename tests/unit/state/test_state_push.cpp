@@ -127,3 +127,79 @@ TEST_CASE("key selections get their own messages, and merging them rebuilds the 
         CHECK(held_lean["telemetry"]["pan"] == static_cast<double>(i));
     }
 }
+
+namespace {
+
+// A STATE whose 1 Hz reports (gps, diagnostics, software: about 400 bytes each) change
+// together with the telemetry once a second, as the simulated Orion's do.
+json busy_state(int tick) {
+    const std::string second = std::to_string(tick / 10);
+    return {
+        {"protocol", "orion"},
+        {"link", {{"connected", true}, {"rx_bytes", 1000 * tick}}},
+        {"stale", false},
+        {"telemetry", {{"pan", tick}, {"age_s", 0.01}, {"pad", std::string(500, 't') + second}}},
+        {"gps", {{"sats", tick / 10}, {"note", std::string(400, 'g') + second}}},
+        {"diagnostics", {{"temp", tick / 10}, {"note", std::string(380, 'd') + second}}},
+        {"software", {{"load", tick / 10}, {"note", std::string(420, 's') + second}}}};
+}
+
+}  // namespace
+
+TEST_CASE("a patch over one payload goes as patches that fit, merging to the same STATE") {
+    using gimbal::state::merge_patch_apply;
+    using gimbal::state::patch_budget_bytes;
+    using gimbal::state::same_ignoring_age;
+    DeltaCursor cursor, twin;
+    const auto options = delta(100.0);
+    json held;
+    std::size_t patches = 0, split = 0;
+    for (int tick = 5; tick < 45; ++tick) {
+        const json state = busy_state(tick);
+        PushBatch batch("main", state);
+        const auto& m = batch.next(options, cursor, 0.1 * tick);
+        const auto& parts = batch.split(m, patch_budget_bytes);
+        // A second subscriber with the same history shares the message and its parts.
+        CHECK(&batch.split(batch.next(options, twin, 0.1 * tick), patch_budget_bytes) == &parts);
+        if (m.json()["full"] == true) {
+            REQUIRE(parts.size() == 1);  // a full STATE is never cut
+            held = parts.front().json()["state"];
+            continue;
+        }
+        ++patches;
+        if (parts.size() > 1) ++split;
+        for (const auto& part : parts) {
+            // Each fits one payload, though the whole change of a tick (the telemetry and
+            // the three reports, about 1,800 bytes) would not.
+            CHECK(part.json()["full"] == false);
+            CHECK(part.text()->size() <= patch_budget_bytes);
+            CHECK(*part.text() == part.json().dump());
+            merge_patch_apply(held, part.json()["state"]);
+        }
+        // Merged in order, the parts give what the one patch gives: the STATE.
+        CHECK(same_ignoring_age(held, state));
+    }
+    CHECK(patches == 39);
+    CHECK(split >= 4);  // each second's burst
+}
+
+TEST_CASE("split_patch: whole members, first-fit decreasing, one part when it fits") {
+    const json patch = {{"a", std::string(100, 'a')},
+                        {"b", std::string(300, 'b')},
+                        {"c", std::string(50, 'c')},
+                        {"d", std::string(200, 'd')}};
+    // With their keys and commas: a 106, b 306, c 56, d 206 bytes; {} 2.
+    const auto parts = gimbal::state::split_patch(patch, 380);
+    REQUIRE(parts.size() == 2);
+    CHECK(parts[0] == json{{"b", patch["b"]}, {"c", patch["c"]}});
+    CHECK(parts[1] == json{{"d", patch["d"]}, {"a", patch["a"]}});
+    for (const auto& part : parts) CHECK(part.dump().size() <= 380);
+    CHECK(gimbal::state::split_patch(patch, 1000) == std::vector<json>{patch});
+    // A member larger than the budget goes alone; nothing is lost.
+    const auto small = gimbal::state::split_patch(patch, 120);
+    CHECK(small.size() == 4);
+    json merged = json::object();
+    for (const auto& part : small) gimbal::state::merge_patch_apply(merged, part);
+    CHECK(merged == patch);
+    CHECK(gimbal::state::split_patch(json::object(), 10) == std::vector<json>{json::object()});
+}

@@ -53,8 +53,8 @@ inline std::unique_ptr<terrain::ElevationModel> open_model(
     o.geoid = geoid;
     o.cache_mb = cache_mb;
     auto opened = terrain::ElevationModel::open(o);
-    if (!opened.model) throw std::runtime_error(opened.error);
-    return std::move(opened.model);
+    if (!opened) throw std::runtime_error(opened.error().message);
+    return std::move(opened).value();
 }
 
 struct Exact {

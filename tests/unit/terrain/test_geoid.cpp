@@ -11,8 +11,8 @@ TEST_CASE("geoid: EGM96 undulations match NGA's within 1 m", "[terrain]") {
     const auto path = terrain::Geoid::find_egm96();
     REQUIRE(path);
     const auto opened = terrain::Geoid::open(*path);
-    REQUIRE(opened.geoid);
-    const auto& g = *opened.geoid;
+    REQUIRE(opened);
+    const auto& g = *opened;
     struct Point {
         double lat, lon, n;
     };

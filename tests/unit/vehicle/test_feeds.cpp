@@ -4,10 +4,12 @@
 #include <cmath>
 
 #include "mavlink/mavlink.hpp"
-#include "orion/codec.hpp"
+#include "protocols/orion/codec/codec.hpp"
+#include "protocols/orion/orion_feed_packets.hpp"
+#include "protocols/viewpro/codec/input.hpp"
+#include "protocols/viewpro/viewpro_feed_packets.hpp"
 #include "vehicle/feeds.hpp"
 #include "vehicle_fixtures.hpp"
-#include "viewpro/input.hpp"
 
 using namespace gimbal;
 using vehicle::VehicleOptions;

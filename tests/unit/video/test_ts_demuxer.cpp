@@ -460,7 +460,7 @@ TEST_CASE("Demux: streams it does not follow and broken PSI", "[video][demux]") 
     CHECK(d.stats().psi_errors == 1);
 }
 
-TEST_CASE("Demux: a PES that never ends is dropped at 16 MiB", "[video][demux]") {
+TEST_CASE("Demux: a PES that never ends is dropped at its bound", "[video][demux]") {
     t::Collector c;
     v::TsDemuxer d(c.handlers());
     Bytes s = t::psi_packet(0, t::pat(1, pmt_pid));
@@ -470,15 +470,80 @@ TEST_CASE("Demux: a PES that never ends is dropped at 16 MiB", "[video][demux]")
     const Bytes start = t::pes(0xE0, Bytes(184 - 14, 0x11), 1000, std::nullopt, false);
     d.push(t::packet(video_pid, start, t::PacketOptions().start().counter(cc)));
     const Bytes filler(184, 0x22);
-    for (int i = 0; i < (16 << 20) / 184 + 10; ++i) {
+    for (std::size_t i = 0; i < v::max_access_unit_bytes / 184 + 10; ++i) {
         cc = (cc + 1) & 15;
         d.push(t::packet(video_pid, filler, t::PacketOptions().counter(cc)));
     }
-    CHECK(d.stats().pes_errors == 1);
+    CHECK(d.stats().oversized_units == 1);
+    CHECK(d.stats().pes_errors == 0);
     CHECK(c.units.empty());
     // The next unit is read normally.
     cc = (cc + 1) & 15;
     for (Bytes& p : t::pes_packets(video_pid, t::pes(0xE0, t::h264_au(true), 5000), cc)) d.push(p);
     REQUIRE(c.units.size() == 1);
     CHECK(c.units[0].pts == 5000u);
+}
+
+TEST_CASE("Demux: middle fragments of a metadata AU without end are dropped at 64 KiB",
+          "[video][demux]") {
+    // ST 1402 synchronous KLV: a first fragment, then "middle" cells forever (issue 25: 402 MiB
+    // of them kept 461 MB). The AU being joined stays under max_metadata_au_bytes; the next
+    // whole set is read normally.
+    StreamBuilder sb;
+    sb.sync_klv = true;
+    build(sb, frames(1));
+    t::Collector c;
+    v::TsDemuxer d(c.handlers());
+    d.push(sb.bytes());
+    const std::size_t before = c.klv.size();
+    const auto cell = [](int fragment, std::size_t size, std::uint8_t fill) {
+        Bytes b = {0x00, 0x01, static_cast<std::uint8_t>((fragment << 6) | 0x1F),
+                   static_cast<std::uint8_t>(size >> 8), static_cast<std::uint8_t>(size & 0xFF)};
+        b.insert(b.end(), size, fill);
+        return b;
+    };
+    const auto send_pes = [&](const Bytes& cells) {
+        Bytes s;
+        for (Bytes& pk : t::pes_packets(klv_pid, t::pes(0xFC, cells, 7'000'000), sb.cc_klv))
+            t::put(s, pk);
+        d.push(s);
+    };
+    send_pes(cell(2, 60'000, 0xA1));                                // first
+    for (int i = 0; i < 200; ++i) send_pes(cell(0, 60'000, 0xA2));  // 12 MB of middles
+    CHECK(d.stats().metadata_dropped >= 199);
+    CHECK(c.klv.size() == before);
+    // A whole set after it is delivered.
+    const Bytes set = t::klv_packet(0x42);
+    Bytes whole = cell(3, 0, 0);
+    whole[3] = 0;
+    whole[4] = static_cast<std::uint8_t>(set.size());
+    t::put(whole, set);
+    send_pes(whole);
+    REQUIRE(c.klv.size() == before + 1);
+    CHECK(c.klv.back().data == set);
+    // An AU of exactly 64 KiB in two fragments still comes through.
+    const std::size_t half = v::max_metadata_au_bytes / 2;
+    send_pes(cell(2, half, 0xB1));
+    send_pes(cell(1, half, 0xB2));
+    REQUIRE(c.klv.size() == before + 2);
+    CHECK(c.klv.back().data.size() == v::max_metadata_au_bytes);
+}
+
+TEST_CASE("Demux: a KLV PES without end is dropped at its bound", "[video][demux]") {
+    StreamBuilder sb;
+    build(sb, frames(1));
+    t::Collector c;
+    v::TsDemuxer d(c.handlers());
+    d.push(sb.bytes());
+    const auto errors = d.stats().oversized_klv;
+    // An unbounded KLV PES (length 0) that never ends.
+    int cc = sb.cc_klv;
+    d.push(t::packet(klv_pid, t::pes(0xBD, Bytes(170, 0x11), 1000, std::nullopt, false),
+                     t::PacketOptions().start().counter(cc)));
+    const Bytes filler(184, 0x22);
+    for (std::size_t i = 0; i < v::max_klv_pes_bytes / 184 + 10; ++i) {
+        cc = (cc + 1) & 15;
+        d.push(t::packet(klv_pid, filler, t::PacketOptions().counter(cc)));
+    }
+    CHECK(d.stats().oversized_klv == errors + 1);
 }

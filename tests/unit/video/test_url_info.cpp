@@ -14,9 +14,9 @@ using t::Bytes;
 TEST_CASE("Video URLs: the forms and options, and what is refused", "[video][url]") {
     auto ok = [](std::string_view s) {
         const auto r = v::parse_video_url(s);
-        INFO(s << ": " << r.error);
-        REQUIRE(r.url);
-        return *r.url;
+        INFO(s << ": " << (r ? "" : r.error().message));
+        REQUIRE(r);
+        return *r;
     };
     const auto in = ok("udp://0.0.0.0:15004");
     CHECK(in.scheme == v::UrlScheme::udp);
@@ -52,9 +52,33 @@ TEST_CASE("Video URLs: the forms and options, and what is refused", "[video][url
           "udp://1.2.3.4:5?timeout_s=-1", "udp://1.2.3.4:5?iface="}) {
         const auto r = v::parse_video_url(bad);
         INFO(bad);
-        CHECK_FALSE(r.url);
-        CHECK_FALSE(r.error.empty());
+        REQUIRE_FALSE(r);
+        CHECK(r.error().code == gimbal::ErrorCode::bad_request);
+        CHECK_FALSE(r.error().message.empty());
     }
+}
+
+TEST_CASE("RTSP URLs: the host:port a redirect goes to, credentials taken out or hidden",
+          "[video][url]") {
+    CHECK(v::rtsp_authority("rtsp://admin:secret@10.0.0.9/live") == "10.0.0.9:554");
+    CHECK(v::rtsp_authority("RTSP://Camera.Local:8554/x?y=1") == "camera.local:8554");
+    CHECK(v::rtsp_authority("rtsp://[fe80::1]:10554/x") == "[fe80::1]:10554");
+    CHECK(v::rtsp_authority("rtsp://[fe80::1]/x") == "[fe80::1]:554");
+    CHECK(v::rtsp_authority("rtsp://u:p@h") == "h:554");
+    // Another port of the same host is another authority.
+    CHECK(v::rtsp_authority("rtsp://10.0.0.9:555/live") != v::rtsp_authority("rtsp://10.0.0.9/"));
+    for (const char* bad : {"http://10.0.0.9/x", "rtsp:///x", "rtsp://h:0/x", "rtsp://h:x/",
+                            "/relative/path", "rtsp://[fe80::1/x", "rtsp://u:p@/x"}) {
+        INFO(bad);
+        CHECK_FALSE(v::rtsp_authority(bad));
+    }
+    CHECK(v::without_userinfo("rtsp://admin:secret@10.0.0.9/live?a=b") ==
+          "rtsp://10.0.0.9/live?a=b");
+    CHECK(v::without_userinfo("rtsp://10.0.0.9/a@b") == "rtsp://10.0.0.9/a@b");  // path, not user
+    CHECK(v::redact_userinfo("rtsp://admin:secret@10.0.0.9/live") ==
+          "rtsp://admin:***@10.0.0.9/live");
+    CHECK(v::redact_userinfo("rtsp://admin@10.0.0.9/live") == "rtsp://admin@10.0.0.9/live");
+    CHECK(v::redact_userinfo("udp://0.0.0.0:15004") == "udp://0.0.0.0:15004");
 }
 
 TEST_CASE("KLV framing: whole packets, BER long form, cut tails", "[video][klv]") {

@@ -2,9 +2,9 @@
 // example, decoding back, and the scaling rule (round half away from zero, saturate).
 #include <catch2/catch.hpp>
 
+#include "protocols/viewpro/codec/checksum.hpp"
+#include "protocols/viewpro/codec/input.hpp"
 #include "vectors.hpp"
-#include "viewpro/checksum.hpp"
-#include "viewpro/input.hpp"
 
 using namespace gimbal::viewpro;
 using namespace viewpro_test;

@@ -3,10 +3,10 @@
 #include <catch2/catch.hpp>
 
 #include "framer_harness.hpp"
+#include "protocols/viewpro/codec/input.hpp"
+#include "protocols/viewpro/codec/input_framer.hpp"
+#include "protocols/viewpro/codec/mode.hpp"
 #include "vectors.hpp"
-#include "viewpro/input.hpp"
-#include "viewpro/input_framer.hpp"
-#include "viewpro/mode.hpp"
 
 using namespace gimbal::viewpro;
 using namespace viewpro_test;

@@ -1,10 +1,10 @@
 // JSON views in the units and names of the interface contract (section 5 `output`).
 #include <catch2/catch.hpp>
 
+#include "protocols/viewpro/codec/input.hpp"
+#include "protocols/viewpro/codec/json.hpp"
+#include "protocols/viewpro/codec/output.hpp"
 #include "vectors.hpp"
-#include "viewpro/input.hpp"
-#include "viewpro/json.hpp"
-#include "viewpro/output.hpp"
 
 using namespace gimbal::viewpro;
 using namespace viewpro_test;

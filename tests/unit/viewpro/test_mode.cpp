@@ -1,8 +1,8 @@
 // Mode and shift commands (ICD sections 1 and 5): the ICD's examples byte for byte.
 #include <catch2/catch.hpp>
 
+#include "protocols/viewpro/codec/mode.hpp"
 #include "vectors.hpp"
-#include "viewpro/mode.hpp"
 
 using namespace gimbal::viewpro;
 using viewpro_test::Bytes;

@@ -2,9 +2,9 @@
 // encoding back, and malformed frames.
 #include <catch2/catch.hpp>
 
+#include "protocols/viewpro/codec/checksum.hpp"
+#include "protocols/viewpro/codec/output.hpp"
 #include "vectors.hpp"
-#include "viewpro/checksum.hpp"
-#include "viewpro/output.hpp"
 
 using namespace gimbal::viewpro;
 using namespace viewpro_test;

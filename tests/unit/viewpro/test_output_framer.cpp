@@ -4,10 +4,10 @@
 #include <random>
 
 #include "framer_harness.hpp"
+#include "protocols/viewpro/codec/checksum.hpp"
+#include "protocols/viewpro/codec/output.hpp"
+#include "protocols/viewpro/codec/output_framer.hpp"
 #include "vectors.hpp"
-#include "viewpro/checksum.hpp"
-#include "viewpro/output.hpp"
-#include "viewpro/output_framer.hpp"
 
 using namespace gimbal::viewpro;
 using namespace viewpro_test;

@@ -1,7 +1,7 @@
 // DateTime: ISO-8601 text and Unix seconds.
 #include <catch2/catch.hpp>
 
-#include "viewpro/time.hpp"
+#include "protocols/viewpro/codec/time.hpp"
 
 using namespace gimbal::viewpro;
 
