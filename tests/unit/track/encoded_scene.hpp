@@ -36,14 +36,15 @@ inline std::vector<gimbal::sim_video::AccessUnit> encode_scene(const SyntheticSc
     options.fps = fps;
     options.bitrate_bps = bitrate_bps;
     auto opened = gimbal::sim_video::H264Encoder::open(options);
-    if (!opened.encoder) throw std::runtime_error(opened.error);
+    if (!opened) throw std::runtime_error(opened.error().message);
+    auto& encoder = *opened.value();
     std::vector<gimbal::sim_video::AccessUnit> units;
     for (int i = 0; i < count; ++i) {
         const auto frame = to_i420(scene.render(static_cast<double>(i) / fps));
-        if (!opened.encoder->encode(frame, static_cast<std::int64_t>(i) * 90000 / fps, units))
-            throw std::runtime_error(opened.encoder->error());
+        if (!encoder.encode(frame, static_cast<std::int64_t>(i) * 90000 / fps, units))
+            throw std::runtime_error(encoder.error());
     }
-    opened.encoder->flush(units);
+    encoder.flush(units);
     return units;
 }
 
