@@ -180,6 +180,15 @@ void read_video_fields(gimbal::config::Fields& f, VideoConfig& config) {
             config.source = it->get<std::string>();
         }
     }
+
+    if (const json* it = lookup("tracking"); it != nullptr && !it->is_null()) {
+        if (auto nested = f.object("tracking")) {
+            TrackingConfig tracking;
+            fields(*nested, tracking);
+            nested->finish();
+            config.tracking = tracking;
+        }
+    }
 }
 
 }  // namespace gimbald::video

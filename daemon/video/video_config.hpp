@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "config/fields.hpp"
+#include "video/tracking_config.hpp"
 #include "video/url.hpp"
 
 namespace gimbald::video {
@@ -34,6 +35,8 @@ struct VideoConfig {
     // udp:// inputs: the sender the stream must come from, "host[:port]" (source_pin.hpp);
     // none: the first sender, pinned until it is silent for 5 s.
     std::optional<std::string> source;
+    // Visual tracking (contract section 20, tracking_config.hpp); none: `track` is unavailable.
+    std::optional<TrackingConfig> tracking;
     bool operator==(const VideoConfig&) const = default;
 };
 
@@ -65,6 +68,10 @@ void fields(V& v, VideoConfig& c) {
         v.set_json("outputs", c.outputs);
         v.optional_string("mission_id", c.mission_id);
         v.optional_string("source", c.source);
+        if (c.tracking)
+            v.section("tracking", [&](auto& t) { fields(t, *c.tracking); });
+        else
+            v.set_json("tracking", nullptr);
     }
 }
 

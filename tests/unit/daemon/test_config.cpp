@@ -145,6 +145,7 @@ TEST_CASE("the example configuration is valid and holds every default", "[config
     json minimal = valid_config();
     minimal["gimbals"].erase(2);
     minimal["gimbals"][0]["video"] = {{"input", "udp://0.0.0.0:15004"}};  // its required key
+    minimal["gimbals"][0]["video"]["tracking"] = json::object();          // every key has a default
     minimal["vehicle"] = json::object();
     minimal["mqtt"] = {{"station", "ground-1"}};  // the station default is the host name
     minimal["http"] = json::object();
@@ -608,6 +609,57 @@ TEST_CASE("gimbals[].video: read with its defaults, every problem named", "[conf
         "gimbals[0].video.outptus: unknown key (did you mean \"outputs\"?)",
         "gimbals[1].video.input: an input is udp:// (MPEG-TS) or rtsp://, not klv-udp://",
         "gimbals[2].video.input: required: udp://HOST:PORT or rtsp://HOST/PATH",
+    };
+    std::sort(expected.begin(), expected.end());
+    CHECK(problems == expected);
+}
+
+TEST_CASE("gimbals[].video.tracking: the contract's defaults, every refusal named",
+          "[config][video][track]") {
+    const auto off = parse_config(R"({"gimbals": [{"name": "a", "protocol": "orion",
+        "link": {"type": "sim"}, "video": {"input": "udp://0.0.0.0:15004"}}]})");
+    REQUIRE(off.ok());
+    CHECK_FALSE(off.config.gimbals[0].video->tracking.has_value());
+
+    const auto read = parse_config(R"({"gimbals": [{"name": "a", "protocol": "orion",
+        "link": {"type": "sim"}, "video": {"input": "udp://0.0.0.0:15004", "tracking": {}}}]})");
+    INFO(joined(problem_texts(read)));
+    REQUIRE(read.ok());
+    REQUIRE(read.config.gimbals[0].video->tracking.has_value());
+    const auto& tracking = *read.config.gimbals[0].video->tracking;
+    CHECK(tracking.tracker == gimbald::video::TrackerKind::csrt);
+    CHECK(tracking.width == 640);
+    CHECK(tracking.lost_after_s == 1.0);
+    CHECK(tracking.reacquire_s == 10);
+    CHECK(tracking.steer);
+    // Written back whole, read back the same.
+    const json written = gimbal::config::write(*read.config.gimbals[0].video);
+    CHECK(written["tracking"] == json::parse(R"({"tracker": "csrt", "width": 640,
+        "lost_after_s": 1.0, "reacquire_s": 10, "steer": true})"));
+
+    auto problems = problems_after([](json& c) {
+        c["gimbals"][0]["video"] = {{"input", "udp://0.0.0.0:15004"},
+                                    {"tracking",
+                                     {{"tracker", "mosse"},
+                                      {"width", 32},
+                                      {"lost_after_s", 0},
+                                      {"reacquire_s", -1},
+                                      {"steer", "yes"},
+                                      {"stear", true}}}};
+        c["gimbals"][1]["video"] = {{"input", "udp://0.0.0.0:15005"}, {"tracking", "kcf"}};
+        c["gimbals"][2]["video"] = {{"input", "udp://0.0.0.0:15006"},
+                                    {"tracking", {{"width", 640.5}}}};
+    });
+    std::sort(problems.begin(), problems.end());
+    std::vector<std::string> expected = {
+        "gimbals[0].video.tracking.lost_after_s: must be between 0.1 and 60",
+        "gimbals[0].video.tracking.reacquire_s: must be between 0 and 3600",
+        "gimbals[0].video.tracking.stear: unknown key (did you mean \"steer\"?)",
+        "gimbals[0].video.tracking.steer: must be true or false",
+        "gimbals[0].video.tracking.tracker: must be one of \"csrt\", \"kcf\"",
+        "gimbals[0].video.tracking.width: must be between 64 and 3840",
+        "gimbals[1].video.tracking: must be an object",
+        "gimbals[2].video.tracking.width: must be an integer between 64 and 3840",
     };
     std::sort(expected.begin(), expected.end());
     CHECK(problems == expected);
