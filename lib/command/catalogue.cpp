@@ -82,6 +82,32 @@ constexpr std::array point_params{
       .note = "stare at the point, where the gimbal's geopoint can"},
 };
 
+// ---- section 20: visual tracking (gimbald answers it with gimbal-track) -------------------
+
+constexpr std::array track_params{
+    locate_params[0],
+    locate_params[1],
+    locate_params[2],
+    locate_params[3],
+    P{.name = "x0", .min = -1, .max = 1, .note = "a box: left edge"},
+    P{.name = "y0", .min = -1, .max = 1, .note = "a box: top edge"},
+    P{.name = "x1", .min = -1, .max = 1, .note = "a box: right edge (> `x0`)"},
+    P{.name = "y1", .min = -1, .max = 1, .note = "a box: bottom edge (> `y0`)"},
+    P{.name = "px0", .min = 0, .max = max_pixels, .note = "a box in pixels: left edge"},
+    P{.name = "py0", .min = 0, .max = max_pixels, .note = "a box in pixels: top edge"},
+    P{.name = "px1", .min = 0, .max = max_pixels, .note = "a box in pixels: right edge"},
+    P{.name = "py1", .min = 0, .max = max_pixels, .note = "a box in pixels: bottom edge"},
+    P{.name = "size",
+      .min = 0.01,
+      .max = 0.5,
+      .default_text = "0.08",
+      .note = "a point's box: its side as a fraction of the image width"},
+    P{.name = "steer",
+      .type = T::boolean,
+      .default_text = "the configuration's `tracking.steer`",
+      .note = "keep the gimbal on the object"},
+};
+
 // ---- protocol commands --------------------------------------------------------------------
 
 constexpr std::array<std::string_view, 3> alt_refs{"wgs84", "msl", "terrain"};
@@ -362,6 +388,20 @@ constexpr std::array commands{
       .reply = "`\"klv_hex\"` (the whole set, 16-byte key through checksum), `\"klv\"` "
                "(decoded, with `age_s`), `\"klv_source\"` (`stream` or `generated`); "
                "`unavailable` when there is none",
+      .example = "{}"},
+    C{.name = "track",
+      .scope = Scope::every_gimbal,
+      .summary = "Follow an object in the video: its box, its place on the ground, steering.",
+      .params = track_params,
+      .rule = "a point `x`,`y` (or `px`,`py`) with `size`, or a box `x0`,`y0`,`x1`,`y1` (or "
+              "`px0`,`py0`,`px1`,`py1`)",
+      .reply = "`\"track\"`: the track as STATE `track` shows it; `unavailable` without video, "
+               "`video.tracking`, a running gimbal-track or image geometry",
+      .example = R"({"x": 0.1, "y": -0.2})"},
+    C{.name = "track_stop",
+      .scope = Scope::every_gimbal,
+      .summary = "End the visual track (event `track_end`, reason `stopped`).",
+      .reply = "`\"stopped\"`: the id of the track ended, or null when none was running",
       .example = "{}"},
     C{.name = "geopoint",
       .summary = "Point at a geographic location.",

@@ -12,11 +12,11 @@ namespace {
 // The top-level STATE keys every gimbal may have, whatever its protocol: the session's
 // (contract section 5: protocol, link, stale), the shared typed part every protocol fills
 // (telemetry, lasers, stare), and the daemon's own (vehicle, command, mavlink, mqtt, record,
-// capabilities, video). A protocol's own keys (Orion's ins, Viewpro's output, ...) are its
+// capabilities, video, track). A protocol's own keys (Orion's ins, Viewpro's output, ...) are its
 // registry entry's (protocols::Entry::state_keys).
 constexpr std::string_view shared_keys[] = {
     "protocol", "link",    "stale", "telemetry", "lasers",       "stare", "vehicle",
-    "command",  "mavlink", "mqtt",  "record",    "capabilities", "video"};
+    "command",  "mavlink", "mqtt",  "record",    "capabilities", "video", "track"};
 
 bool always_kept(std::string_view key) {
     return key == "protocol" || key == "link" || key == "stale";

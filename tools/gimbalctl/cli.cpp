@@ -135,6 +135,7 @@ ParseResult parse_command_line(int argc, char** argv) {
     CommandTable table(app);
     add_common_commands(table);
     add_ground_commands(table);
+    add_track_commands(table);
     add_gimbal_commands(table);
     add_watch_command(table, watch_count);
     add_send_command(table);

@@ -58,6 +58,7 @@ class CommandTable {
 // Registration of the sub-commands, one function per section of the interface contract.
 void add_common_commands(CommandTable& table);  // 4.1: ping, version, list, state; 17: klv
 void add_ground_commands(CommandTable& table);  // 15, 16: elevation, locate, point, project
+void add_track_commands(CommandTable& table);   // 20: track, track-stop
 void add_gimbal_commands(CommandTable& table);  // the protocols' commands
 void add_send_command(CommandTable& table);     // raw JSON
 void add_keygen_command(CommandTable& table);   // keygen FILE
