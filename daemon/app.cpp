@@ -22,6 +22,8 @@
 #include "record/recording_link.hpp"
 #include "secret_file.hpp"
 #include "signing_state.hpp"
+#include "track/steering_commands.hpp"
+#include "track/tracking_setup.hpp"
 #include "video/url.hpp"
 
 namespace gimbald {
@@ -160,6 +162,25 @@ App::App(const cfg::Config& config, std::unique_ptr<gimbal::terrain::ElevationMo
     if (config_.http) start_http();
     tap_recorder();
     start_video();
+    start_tracking();
+}
+
+// Contract section 20: `track`, `track_stop` and STATE `track` on every gimbal; a client's
+// own steering command ends a running track (overridden).
+void App::start_tracking() {
+    for (std::size_t i = 0; i < sessions_.size(); ++i) {
+        auto& session = *sessions_[i];
+        trackers_.push_back(track::attach_tracking(
+            io_, session, videos_[i].get(), config_.gimbals[i].video, terrain_.get(),
+            [this, name = session.name()](const gimbal::state::Event& e) {
+                events_.publish(name, e);
+            }));
+    }
+    request_path_->add_executed_listener([this](const std::string& name, std::string_view cmd) {
+        if (!track::is_steering_command(cmd)) return;
+        for (std::size_t i = 0; i < sessions_.size(); ++i)
+            if (trackers_[i] && sessions_[i]->name() == name) trackers_[i]->overridden(cmd);
+    });
 }
 
 // Contract section 17: each gimbal's video, STATE `video` (null without one) and `klv`.
@@ -440,6 +461,8 @@ void App::shutdown() {
     vehicle_->stop();
     // Sessions first: their cease-fire goes out before the links close.
     for (auto& s : sessions_) s->stop();
+    for (auto& t : trackers_)
+        if (t) t->stop();  // ends a track, closes gimbal-track's socket
     for (auto& v : videos_)
         if (v) v->stop();                   // joins an RTSP input's thread
     for (auto& s : sim_videos_) s->stop();  // joins its worker
@@ -490,6 +513,8 @@ int App::run() {
     for (auto& v : videos_)
         if (v) v->start();
     for (auto& s : sim_videos_) s->start();
+    for (auto& t : trackers_)
+        if (t) t->start();
     server_->start();
     vehicle_->start();
     if (mavlink_) mavlink_->start();

@@ -24,6 +24,7 @@
 #include "request_path.hpp"
 #include "terrain/elevation_model.hpp"
 #include "terrain_loader.hpp"
+#include "track/track_controller.hpp"
 #include "vehicle_feed.hpp"
 #include "video/gimbal_video.hpp"
 #include "video/sim_video_sender.hpp"
@@ -58,6 +59,7 @@ class App {
     void poll_logs();  // once a second: the log roll-up's summaries of stopped bursts
     void start_http();
     void start_video();
+    void start_tracking();
     void update_status();
     void open_geoid_if_needed(const nlohmann::json& gimbal_objects);
 
@@ -80,6 +82,9 @@ class App {
     std::vector<std::unique_ptr<video::GimbalVideo>> videos_;
     // A simulated gimbal with `video` sends its camera's picture to that video's input.
     std::vector<std::unique_ptr<video::SimVideoSender>> sim_videos_;
+    // Contract section 20: per gimbal with video.tracking, its gimbal-track and tracks;
+    // after videos_ and sessions_, which they use.
+    std::vector<std::unique_ptr<track::TrackController>> trackers_;
     EventHub events_;
     std::unique_ptr<RequestPath> request_path_;
     std::unique_ptr<CommandServer> server_;

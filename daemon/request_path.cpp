@@ -306,6 +306,8 @@ RequestPath::Executed RequestPath::execute_request(const json& request, const Re
 void RequestPath::run(Outcome& o, const RequestSource& from) {
     try {
         o.results = dispatch(o, from);
+        if (!o.error && o.gimbal)
+            for (const auto& listener : executed_listeners_) listener(*o.gimbal, o.env.cmd());
     } catch (const std::exception& e) {
         // A bug must not take the daemon (or the next client) down.
         log::error("internal_error", e.what(), {{"cmd", o.env.cmd()}});

@@ -102,6 +102,12 @@ class RequestPath {
 
     void add_observer(Observer observer) { observers_.push_back(std::move(observer)); }
     void add_tap(Tap tap) { taps_.push_back(std::move(tap)); }
+    // Told of every gimbal command executed successfully, whatever the transport (the visual
+    // tracker ends its track when a client steers the gimbal itself).
+    using ExecutedListener = std::function<void(const std::string& gimbal, std::string_view cmd)>;
+    void add_executed_listener(ExecutedListener listener) {
+        executed_listeners_.push_back(std::move(listener));
+    }
     // The UDP socket's subscriber table; subscribe/unsubscribe from other transports are
     // `unsupported` (they stream on their own: MQTT topics, WebSocket).
     void set_subscriptions(Subscriptions* table, SubscriptionsChanged changed);
@@ -139,6 +145,7 @@ class RequestPath {
     std::vector<GimbalSession*> sessions_;
     std::vector<Observer> observers_;
     std::vector<Tap> taps_;
+    std::vector<ExecutedListener> executed_listeners_;
     Subscriptions* subscriptions_ = nullptr;
     SubscriptionsChanged subscriptions_changed_;
     gimbal::auth::Verifier verifier_;

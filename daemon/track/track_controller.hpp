@@ -1,0 +1,113 @@
+// One gimbal's visual tracking (contract section 20) on the io_context: its gimbal-track
+// process (track_process.hpp), the `track` and `track_stop` commands, STATE `track` and the
+// events track_start, track_lost, track_reacquired and track_end. While a track runs, the
+// gimbal's access units go to gimbal-track (dropped, up to the next key frame, when it cannot
+// take them now); each box that comes back drives the track's state machine and, while the
+// object is seen, its centre is located on the ground with the gimbal's image geometry (the
+// code `locate` uses, terrain when configured) and fed to the ground filter. A track ends
+// when stopped, overridden by a client's steering command, lost too long (timeout), or when
+// the video or gimbal-track goes away (no_video).
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/steady_timer.hpp>
+
+#include "command/result.hpp"
+#include "gimbal_session.hpp"
+#include "link/lifetime.hpp"
+#include "session/track_request.hpp"
+#include "state/event.hpp"
+#include "state/track_state.hpp"
+#include "terrain/elevation_model.hpp"
+#include "track/ground/ground_filter.hpp"
+#include "track/ground/track_state.hpp"
+#include "track/track_process.hpp"
+#include "track/track_steering.hpp"
+#include "video/gimbal_video.hpp"
+#include "video/tracking_config.hpp"
+
+namespace gimbald::track {
+
+struct TrackControllerOptions {
+    std::string gimbal;
+    video::TrackingConfig config;
+    std::string program;  // gimbal-track (track_program.hpp)
+    // No message from gimbal-track this long while video goes to it: it is hung, and killed.
+    double hung_after_s = 10;
+    std::size_t piece_bytes = 64 * 1024;  // an access unit's pieces on the socket
+};
+
+class TrackController {
+  public:
+    using EventSink = std::function<void(const gimbal::state::Event&)>;
+
+    // `session`, `video` and `terrain` (nullptr: none) must outlive this object.
+    TrackController(boost::asio::io_context& io, TrackControllerOptions options,
+                    GimbalSession& session, video::GimbalVideo& video,
+                    gimbal::terrain::ElevationModel* terrain, EventSink on_event);
+    ~TrackController();
+
+    void start();
+    void stop();
+
+    gimbal::command::Result<nlohmann::json> track(const nlohmann::json& request);
+    gimbal::command::Result<nlohmann::json> track_stop(const nlohmann::json& request);
+    // A client steered the gimbal itself (`cmd`): a running track ends, overridden.
+    void overridden(std::string_view cmd);
+
+    // STATE `track`; nullopt when none runs.
+    std::optional<gimbal::state::TrackState> state() const;
+    const TrackProcess& process() const { return process_; }
+
+  private:
+    struct Track {
+        std::uint32_t id = 0;
+        gimbal::session::TrackBox box;
+        double confidence = 1;
+        bool steer = true;
+        double started_s = 0;
+        std::string started_utc;
+        gimbal::track::TrackStateMachine machine;
+        gimbal::track::GroundFilter filter;
+    };
+
+    double now_s() const;
+    void on_ready(bool ready);
+    void on_message(const gimbal::track::wire::Message& message);
+    void on_box(const gimbal::track::wire::Box& box);
+    void on_access_unit(const gimbal::video::AccessUnit& au);
+    void locate(double now, double x, double y);
+    void report(const gimbal::track::TrackChange& change);
+    void end(gimbal::track::EndReason reason, bool tell_process);
+    void arm_tick();
+    void tick();
+    void emit(std::string kind, nlohmann::json fields);
+
+    boost::asio::io_context& io_;
+    TrackControllerOptions options_;
+    GimbalSession& session_;
+    video::GimbalVideo& video_;
+    gimbal::terrain::ElevationModel* terrain_;
+    EventSink on_event_;
+    TrackProcess process_;
+    TrackSteering steering_;
+    boost::asio::steady_timer tick_timer_;
+    std::chrono::steady_clock::time_point epoch_ = std::chrono::steady_clock::now();
+    std::optional<Track> track_;
+    std::optional<std::uint64_t> viewer_;
+    bool need_key_ = true;     // send nothing until a key frame (after a start or a drop)
+    double last_heard_s_ = 0;  // the latest message from gimbal-track
+    std::uint64_t units_unanswered_ = 0;  // access units sent since then
+    std::uint32_t next_id_ = 1;
+    Lifetime lifetime_;
+};
+
+}  // namespace gimbald::track
