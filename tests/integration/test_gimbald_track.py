@@ -1,0 +1,162 @@
+"""Visual tracking end to end (contract section 20): a real gimbald starts a real gimbal-track
+for a gimbal with `video.tracking`, fed the simulated Orion's H.264 by gimbal-sim --video.
+
+The camera is pointed at the simulator's `farm` landmark (a 40 m disc of a colour found
+nowhere else, with a dark ring); `project` says where it appears; `track` on that point
+follows it: STATE `track` shows it tracking with a ground position near the landmark's true
+one. `track_stop` ends it (track_end, stopped). A gimbal without video answers `track` with
+`unavailable`. A gimbal-track killed with SIGKILL ends the running track (no_video) while
+gimbald keeps answering, and is started again.
+"""
+
+import math
+import os
+import signal
+
+import gimbaltest as gt
+import skipping
+
+GIMBAL_TRACK = os.environ.get("GIMBAL_TRACK")
+
+# sim::landmarks(): docs/simulator.md "Video".
+FARM = {"lat": 45.697301, "lon": -121.480740, "alt": 414.6}
+
+
+def metres_between(a, b):
+    pa = gt.lla_to_ecef(a["lat"], a["lon"], a["alt"])
+    pb = gt.lla_to_ecef(b["lat"], b["lon"], b["alt"])
+    return math.dist(pa, pb)
+
+
+def state(client, gimbal="main", keys=None):
+    reply = client.request("state", gimbal=gimbal, keys=keys or ["track", "video", "telemetry"])
+    return reply["state"] if reply and reply.get("ok") else None
+
+
+class Tracking(gt.GimbaldTestCase):
+
+    @classmethod
+    def setUpClass(cls):
+        super().setUpClass()
+        if not GIMBAL_TRACK:
+            skipping.need_for_file("GIMBAL_TRACK not set")
+        cls.video_port = gt.free_port()
+        cls.sim = cls.start_class_sim("--video", "udp://127.0.0.1:%d" % cls.video_port,
+                                      "--speed", "0", want=("tcp", "video"))
+        cls.daemon = cls.start_class_daemon({"gimbals": [
+            dict(gt.orion_tcp("main", cls.sim.port),
+                 video={"input": "udp://127.0.0.1:%d" % cls.video_port,
+                        "tracking": {"tracker": "kcf"}}),
+            {"name": "nose", "protocol": "viewpro", "link": {"type": "sim"}}]})
+
+    def setUp(self):
+        super().setUp()
+        self.c = self.client(self.daemon)
+        self.assertTrue(self.daemon.wait_log(lambda e: e.get("event") == "track_process_ready",
+                                             timeout=20), "gimbal-track never said hello")
+        s = gt.wait_for(lambda: (lambda s: s if s and s["video"] and s["video"]["connected"]
+                                 and s["telemetry"] else None)(state(self.c)), 25, 0.2)
+        self.assertTrue(s, "no video or telemetry: %s" % state(self.c))
+
+    def look_at_farm(self):
+        """Points the camera at the farm; returns its image position once it is near the
+        centre."""
+        self.assertOk(self.c.request("geopoint", gimbal="main", **FARM))
+
+        def centred():
+            reply = self.c.request("project", gimbal="main", **FARM)
+            if reply and reply.get("ok") and reply["visible"] and \
+                    abs(reply["x"]) < 0.1 and abs(reply["y"]) < 0.1:
+                return reply
+            return None
+        at = gt.wait_for(centred, 20, 0.2)
+        self.assertTrue(at, "the farm never came to the centre of the picture")
+        return at
+
+    def wait_track(self, predicate, timeout=15):
+        def check():
+            s = state(self.c, keys=["track"])
+            t = s and s["track"]
+            return t if t and predicate(t) else None
+        return gt.wait_for(check, timeout, 0.1)
+
+    def track_ends(self, track_id, reason, timeout=10):
+        return self.daemon.wait_log(lambda e: e.get("event") == "track_end" and
+                                    e.get("id") == track_id and e.get("reason") == reason,
+                                    timeout)
+
+    def test_track_follows_the_farm_and_stops(self):
+        at = self.look_at_farm()
+        reply = self.c.request("track", gimbal="main", x=at["x"], y=at["y"])
+        self.assertOk(reply)
+        t = reply["track"]
+        self.assertEqual(t["state"], "tracking")
+        for key in ("id", "box", "centre", "confidence", "ground", "velocity", "steer",
+                    "frames", "lost_frames", "started_utc", "age_s"):
+            self.assertIn(key, t)
+        self.assertTrue(t["steer"])
+        track_id = t["id"]
+
+        located = self.wait_track(lambda t: t["state"] == "tracking" and t["ground"] and
+                                  t["frames"] >= 10)
+        self.assertTrue(located, "no located track: %s" % state(self.c, keys=["track"]))
+        self.assertEqual(located["id"], track_id)
+        self.assertGreater(located["confidence"], 0.4)
+        self.assertLess(metres_between(located["ground"], FARM), 60, located)
+
+        stop = self.c.request("track_stop", gimbal="main")
+        self.assertOk(stop)
+        self.assertEqual(stop["stopped"], track_id)
+        self.assertTrue(self.track_ends(track_id, "stopped"))
+        self.assertIsNone(state(self.c, keys=["track"])["track"])
+        again = self.c.request("track_stop", gimbal="main")
+        self.assertOk(again)
+        self.assertIsNone(again["stopped"])
+
+    def test_a_clients_steering_command_overrides_the_track(self):
+        at = self.look_at_farm()
+        reply = self.c.request("track", gimbal="main", x=at["x"], y=at["y"], steer=False)
+        self.assertOk(reply)
+        self.assertFalse(reply["track"]["steer"])
+        self.assertOk(self.c.request("geopoint", gimbal="main", **FARM))
+        self.assertTrue(self.track_ends(reply["track"]["id"], "overridden"))
+
+    def test_bad_requests_change_nothing(self):
+        self.assertError(self.c.request("track", gimbal="main"), "bad_request")
+        self.assertError(self.c.request("track", gimbal="main", x=0, y=0, x0=0, y0=0, x1=1,
+                                        y1=1), "bad_request")
+        self.assertError(self.c.request("track", gimbal="main", x0=0.2, y0=0, x1=0.1, y1=0.5),
+                         "bad_request")
+        self.assertError(self.c.request("track", gimbal="main", x=2, y=0), "out_of_range")
+        self.assertError(self.c.request("track", gimbal="main", x=0, y=0, colour="red"),
+                         "bad_request")
+        self.assertIsNone(state(self.c, keys=["track"])["track"])
+
+    def test_track_without_video_is_unavailable(self):
+        self.assertError(self.c.request("track", gimbal="nose", x=0, y=0), "unavailable")
+        self.assertError(self.c.request("track", gimbal="nose", x=0, y=0, colour="red"),
+                         "bad_request")
+        self.assertIsNone(state(self.c, gimbal="nose", keys=["track"])["track"])
+
+    def test_killed_gimbal_track_ends_the_track_and_restarts(self):
+        at = self.look_at_farm()
+        reply = self.c.request("track", gimbal="main", x=at["x"], y=at["y"])
+        self.assertOk(reply)
+        track_id = reply["track"]["id"]
+        starts = self.daemon.events("track_process_start")
+        pid = starts[-1]["pid"]
+        os.kill(pid, signal.SIGKILL)
+        self.assertTrue(self.track_ends(track_id, "no_video"), "the track did not end")
+        self.assertOk(self.c.request("ping"))
+        restarted = self.daemon.wait_log(lambda e: e.get("event") == "track_process_start" and
+                                         e.get("pid") != pid, timeout=10)
+        self.assertTrue(restarted, "gimbal-track was not started again")
+        exits = self.daemon.events("track_process_exit")
+        self.assertTrue(any(e.get("pid") == pid and e.get("signal") == signal.SIGKILL
+                            for e in exits), exits)
+        self.assertTrue(self.daemon.wait_log(
+            lambda e: e.get("event") == "track_process_ready" and e.get("pid") != pid, 10))
+
+
+if __name__ == "__main__":
+    gt.main()
