@@ -12,6 +12,7 @@ gimbald keeps answering, and is started again.
 import math
 import os
 import signal
+import time
 
 import gimbaltest as gt
 import skipping
@@ -87,6 +88,7 @@ class Tracking(gt.GimbaldTestCase):
 
     def test_track_follows_the_farm_and_stops(self):
         at = self.look_at_farm()
+        rx_start = len(self.sim.rx())
         reply = self.c.request("track", gimbal="main", x=at["x"], y=at["y"])
         self.assertOk(reply)
         t = reply["track"]
@@ -103,6 +105,14 @@ class Tracking(gt.GimbaldTestCase):
         self.assertEqual(located["id"], track_id)
         self.assertGreater(located["confidence"], 0.4)
         self.assertLess(metres_between(located["ground"], FARM), 60, located)
+
+        # Steering: the Orion is sent geopoints on the object, about ten a second.
+        time.sleep(1.0)
+        steered = [e for e in self.sim.rx()[rx_start:] if e.get("name") == "geopoint_cmd"]
+        self.assertGreaterEqual(len(steered), 5, "too few steering geopoints")
+        last = steered[-1]["packet"]
+        self.assertLess(gt.ground_distance_m(last["lat"], last["lon"], FARM["lat"],
+                                             FARM["lon"]), 60, last)
 
         stop = self.c.request("track_stop", gimbal="main")
         self.assertOk(stop)
