@@ -311,7 +311,11 @@ void TrackController::arm_tick() {
 void TrackController::tick() {
     if (!track_) return;
     const double now = now_s();
-    report(track_->machine.tick(now));
+    // Until the first box, the first key frame may still be on its way (one a second or
+    // two): that is not a loss.
+    const bool waiting_first =
+        track_->machine.frames() == 0 && now - track_->started_s < options_.first_frame_grace_s;
+    if (!waiting_first) report(track_->machine.tick(now));
     if (!track_) return;
     // Video goes in, nothing comes back: gimbal-track is hung. Killing it ends the track
     // (no_video) and restarts it.

@@ -42,6 +42,9 @@ struct TrackControllerOptions {
     std::string program;  // gimbal-track (track_program.hpp)
     // No message from gimbal-track this long while video goes to it: it is hung, and killed.
     double hung_after_s = 10;
+    // No box yet this long after the start: the track may be lost (the first key frame and its
+    // decoding take up to a key frame interval).
+    double first_frame_grace_s = 3;
     std::size_t piece_bytes = 64 * 1024;  // an access unit's pieces on the socket
 };
 
