@@ -163,6 +163,22 @@ class SiyiTest(gt.GimbaldTestCase):
         self.check_camera(sim, client)
         self.assertEqual(self.state(client)["link"]["type"], "udp")
 
+    def test_udp_camera_comes_up_late(self):
+        # No vehicle feed, and nothing listening when gimbald sends its first requests: the
+        # session's poll asks again until the camera answers and streams.
+        port = gt.free_port(socket.SOCK_DGRAM)
+        daemon = self.start_daemon({"gimbals": [{
+            "name": "cam", "protocol": "siyi", "siyi": {"geoid_undulation_m": 0},
+            "link": {"type": "udp", "host": "127.0.0.1", "port": port, "local_port": None}}]})
+        client = self.client(daemon)
+        time.sleep(1.5)
+        self.assertTrue(self.state(client)["stale"])
+        self.start_sim("--protocol", "siyi", "--model", "zr10", "--udp", str(port), tcp=False,
+                       want=("udp",))
+        s = self.wait_state(client, lambda s: not s["stale"] and s["siyi"]["model"] is not None,
+                            "the late camera's attitude stream and model")
+        self.assertEqual(s["siyi"]["model"], "ZR10")
+
     def test_pty(self):
         device = os.path.join(self.workdir, "ttySIYI")
         sim = self.start_sim("--protocol", "siyi", "--model", "zr10", tcp=False, pty_link=device)
