@@ -145,6 +145,10 @@ void GimbalSession::schedule_tick() {
         if (ec || stopped_) return;
         std::vector<Event> events;
         protocol_->tick(now_s(), events);
+        std::vector<gimbal::session::Bytes> out;
+        protocol_->poll(now_s(), out);
+        if (link_->connected())
+            for (auto& bytes : out) link_->send(std::move(bytes));
         report_waiting_ceases();
         bad_checksums_.poll();
         decode_errors_.poll();

@@ -23,6 +23,7 @@
 #include "command/result.hpp"
 #include "geo/attitude.hpp"
 #include "geo/footprint.hpp"
+#include "state/telemetry.hpp"
 
 namespace gimbal::session {
 
@@ -166,5 +167,16 @@ double wrap180(double deg);
 // An Error for a request this protocol cannot make.
 Request unsupported(std::string message);
 Request unavailable(std::string message);
+
+// The catalogue requests of a gimbal gimbald aims itself (a MAVLink device, a SIYI camera),
+// whose `position` and `rate` take pan and tilt from the aircraft's nose and whose `geopoint`
+// takes an altitude above mean sea level. `current` is where it points now, for an angle left
+// out (nullptr before its first report); `who` names it in a message ("device", "camera").
+Request nose_angles_request(const AnglesTarget& t, const state::Telemetry* current,
+                            std::string_view who);
+Request nose_rate_request(const RateTarget& t);
+Request msl_geopoint_request(const GeoTarget& t);
+// Stop moving: rates 0 0.
+Request stop_rates_request();
 
 }  // namespace gimbal::session

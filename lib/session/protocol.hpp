@@ -56,6 +56,10 @@ class Protocol {
     virtual void receive(std::span<const std::uint8_t> bytes, double now_s,
                          std::vector<state::Event>& events, std::vector<Bytes>& replies) = 0;
     virtual void tick(double now_s, std::vector<state::Event>& events) = 0;
+    // At the same 100 ms ticks, whether or not the gimbal speaks or a vehicle feed runs: what
+    // the protocol sends by itself (a camera that only answers when asked, and is asked again
+    // while it is silent: SIYI). Sent only while the link is up. Default: nothing.
+    virtual void poll(double /*now_s*/, std::vector<Bytes>& /*out*/) {}
     // The vehicle feed's 50 ms tick (protocols/vehicle_feeder.hpp) with the vehicle's state
     // (on its own clock, vehicle_now_s), for a protocol that aims its gimbal from it itself (a
     // MAVLink gimbal device): appends what to send. now_s is the session's clock. Returns how

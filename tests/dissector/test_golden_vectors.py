@@ -19,6 +19,7 @@ import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import pcapng_writer  # noqa: E402
+import tshark_tools  # noqa: E402
 
 # Fields of the dissector that are not packet content (header, checksum, counts).
 HEADER_FIELDS = {"orion.sync", "orion.id", "orion.packet", "orion.length", "orion.request",
@@ -38,12 +39,6 @@ def fletcher251(data):
         b = (b + a) % 251
     return bytes([a, b])
 
-
-def pairs_keep_duplicates(pairs):
-    out = {}
-    for k, v in pairs:
-        out.setdefault(k, []).append(v)
-    return out
 
 
 def flatten_tshark(node, out, expert):
@@ -126,16 +121,9 @@ def check_tcp_stream(tshark, lua, tmp, frames):
 
 def main():
     codec_json, lua = sys.argv[1], sys.argv[2]
-    tshark = shutil.which("tshark")
+    tshark, status = tshark_tools.find_tshark()
     if not tshark:
-        # On CI (CI=true) a missing tool fails the test; elsewhere it is skipped (77), and
-        # scripts/test.sh lists it (tests/integration/skipping.py).
-        if os.environ.get("CI") == "true":
-            print("FAILED: tshark not installed (scripts/install-deps.sh; CI=true: a test "
-                  "whose tools cannot be had fails instead of skipping)")
-            return 1
-        print("skipped: tshark not installed (scripts/install-deps.sh)")
-        return 77
+        return status
 
     vectors = subprocess.run([codec_json, "vectors"], check=True, capture_output=True,
                              text=True).stdout.split("\n")
@@ -186,7 +174,7 @@ def main():
     if "Lua" in proc.stderr or "lua" in proc.stderr:
         print("tshark reported a Lua problem:\n" + proc.stderr)
         return 1
-    packets = json.loads(proc.stdout, object_pairs_hook=pairs_keep_duplicates)
+    packets = json.loads(proc.stdout, object_pairs_hook=tshark_tools.pairs_keep_duplicates)
     failures = []
     checked = 0
     for i, pkt in enumerate(packets):

@@ -7,7 +7,9 @@ Checked: STATE `siyi` (hardware id and the model it names, firmware, attitude, z
 and the shared `telemetry` (pan/tilt in gimbald's frame, the model's field of view, the
 camera's position from the vehicle); `position` reaching the camera as 0x0E with SIYI's
 left-positive yaw (the simulator's rx log); `camera_zoom` as 0x0F; the vehicle feed's 0x22
-at 20 Hz; and a `geopoint` aimed by gimbald from the aircraft's position.
+at 20 Hz; and a `geopoint` aimed by gimbald from the aircraft's position. The simulated
+camera's video (gimbal-sim --video): the picture it renders from the position gimbald sends it
+(0x3E), its KLV agreeing with gimbald's telemetry.
 """
 
 import math
@@ -28,7 +30,8 @@ AIRCRAFT = (45.7, -121.5, 500.0)  # level, heading north, MSL
 class Aircraft:
     """HEARTBEAT (1 Hz), ATTITUDE and GLOBAL_POSITION_INT (20 Hz) to gimbald's vehicle port."""
 
-    def __init__(self, port):
+    def __init__(self, port, position=AIRCRAFT):
+        self.position = position
         self.sock = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
         self.port = port
         self.seq = 0
@@ -43,7 +46,7 @@ class Aircraft:
 
     def run(self):
         n = 0
-        lat, lon, alt = AIRCRAFT
+        lat, lon, alt = self.position
         while self.running:
             ms = int((time.monotonic() - self.start) * 1000) & 0xFFFFFFFF
             if n % 20 == 0:
@@ -73,16 +76,18 @@ class SiyiTest(gt.GimbaldTestCase):
         self.assertTrue(found, "STATE never showed " + what)
         return found
 
-    def start(self, link, sim, siyi=None):
+    def start(self, link, sim, siyi=None, video=None, position=AIRCRAFT):
         vport = gt.free_port()
         gimbal = {"name": "cam", "protocol": "siyi", "link": link}
         gimbal["siyi"] = siyi or {"geoid_undulation_m": 0}
+        if video:
+            gimbal["video"] = video
         daemon = self.start_daemon({
             "gimbals": [gimbal],
             "vehicle": {"source": {"type": "udp", "bind": "127.0.0.1", "port": vport}},
         })
         client = self.client(daemon)
-        aircraft = Aircraft(vport)
+        aircraft = Aircraft(vport, position)
         self.addCleanup(aircraft.close)
         return daemon, client
 
@@ -162,6 +167,86 @@ class SiyiTest(gt.GimbaldTestCase):
                                 "local_port": None}, sim)
         self.check_camera(sim, client)
         self.assertEqual(self.state(client)["link"]["type"], "udp")
+
+    def test_udp_camera_comes_up_late(self):
+        # No vehicle feed, and nothing listening when gimbald sends its first requests: the
+        # session's poll asks again until the camera answers and streams.
+        port = gt.free_port(socket.SOCK_DGRAM)
+        daemon = self.start_daemon({"gimbals": [{
+            "name": "cam", "protocol": "siyi", "siyi": {"geoid_undulation_m": 0},
+            "link": {"type": "udp", "host": "127.0.0.1", "port": port, "local_port": None}}]})
+        client = self.client(daemon)
+        time.sleep(1.5)
+        self.assertTrue(self.state(client)["stale"])
+        self.start_sim("--protocol", "siyi", "--model", "zr10", "--udp", str(port), tcp=False,
+                       want=("udp",))
+        s = self.wait_state(client, lambda s: not s["stale"] and s["siyi"]["model"] is not None,
+                            "the late camera's attitude stream and model")
+        self.assertEqual(s["siyi"]["model"], "ZR10")
+
+    def test_udp_video(self):
+        # The simulated camera renders what it sees from where gimbald says the aircraft is
+        # (1450 m MSL, above the simulator's terrain; not the simulator's default place); its
+        # stream's KLV and gimbald's telemetry describe the same camera.
+        video_port = gt.free_port(socket.SOCK_DGRAM)
+        sim = self.start_sim("--protocol", "siyi", "--model", "zr10", "--udp", "0",
+                             "--video", "udp://127.0.0.1:%d" % video_port, tcp=False,
+                             want=("udp", "video"))
+        port = int(sim.endpoints["udp"].rsplit(":", 1)[1])
+        position = (45.705, -121.495, 1450.0)
+        _, client = self.start({"type": "udp", "host": "127.0.0.1", "port": port,
+                                "local_port": None}, sim,
+                               video={"input": "udp://127.0.0.1:%d" % video_port},
+                               position=position)
+        s = self.wait_state(client, lambda s: s["video"]["connected"] and
+                            s["video"]["klv_source"] == "stream", "the camera's video and KLV",
+                            timeout=25.0)
+        self.assertEqual(s["video"]["codec"], "h264")
+        # Aim somewhere: the sim's yaw and pitch reach the picture as the KLV's angles.
+        self.assertOk(client.request("position", gimbal="cam", pan=-60, tilt=-35))
+        self.wait_state(client, lambda s: abs(s["telemetry"]["pan"] + 60) < 0.5 and
+                        abs(s["telemetry"]["tilt"] + 35) < 0.5, "pan -60 tilt -35")
+
+        def agreed():
+            st = self.state(client)
+            k = st["video"]["klv"]
+            if abs(k.get("sensor_relative_azimuth_angle", 0) - 300) > 1:
+                return None
+            return st
+        s = gt.wait_for(agreed, 10.0, interval=0.2)
+        self.assertTrue(s, "the KLV never showed the camera at pan -60: %s" %
+                        self.state(client)["video"]["klv"])
+        k = s["video"]["klv"]
+        t = s["telemetry"]
+        self.assertAlmostEqual(k["sensor_latitude"], position[0], places=5)
+        self.assertAlmostEqual(k["sensor_longitude"], position[1], places=5)
+        self.assertAlmostEqual(k["sensor_true_altitude"], position[2], delta=1.0)
+        self.assertAlmostEqual(k["sensor_relative_elevation_angle"], -35, delta=0.5)
+        self.assertAlmostEqual(k["sensor_horizontal_field_of_view"], t["hfov"], delta=0.1)
+        self.assertAlmostEqual(k["platform_heading_angle"] % 360, 0, delta=0.1)
+        vs = gt.wait_for(lambda: self.state(client)["video"]["klv_vs_telemetry"], 5.0)
+        self.assertTrue(vs)
+        self.assertLess(vs["sensor_m"], 5.0, vs)
+        # The stream's frame centre is on the rendered terrain, gimbald's on flat ground.
+        self.assertIsInstance(vs["frame_center_m"], (int, float))
+
+    def test_sim_link_video(self):
+        # gimbald --sim siyi's in-process camera (a `sim` link) with a video section sends its
+        # rendered picture to the video's input, as gimbal-sim --video does.
+        video_port = gt.free_port(socket.SOCK_DGRAM)
+        position = (45.705, -121.495, 1450.0)
+        daemon, client = self.start({"type": "sim"}, None,
+                                    video={"input": "udp://127.0.0.1:%d" % video_port},
+                                    position=position)
+        s = self.wait_state(client, lambda s: s["video"]["connected"] and
+                            s["video"]["klv_source"] == "stream" and
+                            abs(s["video"]["klv"]["sensor_latitude"] - position[0]) < 1e-5,
+                            "the simulated camera's video from the aircraft's place",
+                            timeout=25.0)
+        self.assertEqual(s["video"]["codec"], "h264")
+        self.assertEqual(s["siyi"]["model"], "ZT30")
+        self.assertTrue(daemon.events("sim_video"), "no sim_video log line")
+        self.assertFalse(daemon.events("sim_video_off"))
 
     def test_pty(self):
         device = os.path.join(self.workdir, "ttySIYI")

@@ -110,7 +110,7 @@ double unix_time_now_s() {
 std::string footer() {
     std::string rx;
     for (const auto* p : protocols::entries()) rx += std::string(p->simulator.rx_log_manual);
-    return std::string(footer_start) + rx + video_manual + footer_end;
+    return std::string(footer_start) + rx + video_manual() + footer_end;
 }
 
 // The value of a protocol's flag as parsed (stored per flag name; several protocols may

@@ -7,19 +7,26 @@
 
 namespace gimbal_sim {
 
-const char* const video_manual = R"(
+std::string video_manual() {
+    std::string with_camera;
+    for (const auto* p : gimbal::protocols::entries())
+        if (p->simulator.camera != nullptr)
+            with_camera += (with_camera.empty() ? "" : ", ") + std::string(p->name);
+    return R"(
 VIDEO
        --video udp://HOST:PORT[?ttl=N] sends the simulated camera's picture
-       (for a protocol whose model has a camera: orion) as H.264 in MPEG-TS with
-       MISB ST 0601 KLV, as a real Orion does with STREAM_TYPE_H264: the
-       simulator's terrain rendered from the camera's pose, the frame's time
-       drawn in the top-left corner, one KLV set per frame (sensor, platform,
-       frame centre and corners on the terrain). Rendering and encoding run on
-       their own thread. On standard output: "video: udp://HOST:PORT"; at the
-       end, on standard error, the frames sent and the CPU they took. Watch it
-       with ffplay udp://HOST:PORT (see docs/video.md), or give gimbald
-       "video": {"input": "udp://0.0.0.0:PORT"}.
+       (protocols whose model has a camera: )" +
+           with_camera + R"()
+       as H.264 in MPEG-TS with MISB ST 0601 KLV, as a real Orion does with
+       STREAM_TYPE_H264: the simulator's terrain rendered from the camera's
+       pose, the frame's time drawn in the top-left corner, one KLV set per
+       frame (sensor, platform, frame centre and corners on the terrain).
+       Rendering and encoding run on their own thread. On standard output:
+       "video: udp://HOST:PORT"; at the end, on standard error, the frames sent
+       and the CPU they took. Watch it with ffplay udp://HOST:PORT (see
+       docs/video.md), or give gimbald "video": {"input": "udp://0.0.0.0:PORT"}.
 )";
+}
 
 void add_video_options(CLI::App& app, VideoToolOptions& o) {
     const std::string group = "Video (docs/video.md)";

@@ -26,6 +26,7 @@ std::optional<gimbald::video::SimVideoSenderOptions> video_sender_options(
     const VideoToolOptions& options, const gimbal::protocols::Entry& entry, std::string& error);
 
 // The manual's VIDEO section.
-extern const char* const video_manual;
+// The VIDEO section of the manual; names the protocols whose simulator has a camera.
+std::string video_manual();
 
 }  // namespace gimbal_sim

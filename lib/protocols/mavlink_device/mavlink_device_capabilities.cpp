@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "geo/wgs84.hpp"
+#include "session/aimed_telemetry.hpp"
 #include "state/precision.hpp"
 
 namespace gimbal::protocols {
@@ -28,49 +29,19 @@ session::Features mavlink_device_features() {
 }
 
 session::Request MavlinkDeviceCapabilities::point_angles(const session::AnglesTarget& t) const {
-    // The device's angles read in place: copying a disengaged optional<double> makes GCC 12
-    // at -O2 warn (-Wmaybe-uninitialized) about its unset value.
-    const auto* tel = data_.telemetry ? &*data_.telemetry : nullptr;
-    const bool have_pan = tel && tel->pan, have_tilt = tel && tel->tilt;
-    double pan = 0;
-    if (t.yaw_deg && t.yaw_frame == session::YawFrame::earth) {
-        if (!t.vehicle_heading_deg)
-            return session::unavailable("yaw from north needs the aircraft's heading");
-        pan = session::wrap180(*t.yaw_deg - *t.vehicle_heading_deg);
-    } else if (t.yaw_deg) {
-        pan = *t.yaw_deg;
-    } else if (have_pan) {
-        pan = *tel->pan;
-    } else {
-        return session::unavailable("no attitude from the device yet for the angle left out");
-    }
-    // Not value_or(*tel->tilt): that would read an empty optional when a pitch is given.
-    double tilt = 0;
-    if (t.pitch_deg)
-        tilt = *t.pitch_deg;
-    else if (have_tilt)
-        tilt = *tel->tilt;
-    else
-        return session::unavailable("no attitude from the device yet for the angle left out");
-    return json{{"cmd", "position"}, {"pan", pan}, {"tilt", tilt}};
+    return session::nose_angles_request(t, data_.telemetry ? &*data_.telemetry : nullptr, "device");
 }
 
 session::Request MavlinkDeviceCapabilities::rate(const session::RateTarget& t) const {
-    return json{{"cmd", "rate"},
-                {"pan", std::isnan(t.yaw_dps) ? 0.0 : t.yaw_dps},
-                {"tilt", std::isnan(t.pitch_dps) ? 0.0 : t.pitch_dps}};
+    return session::nose_rate_request(t);
 }
 
 session::Request MavlinkDeviceCapabilities::geopoint(const session::GeoTarget& t) const {
-    return json{{"cmd", "geopoint"},
-                {"lat", t.lat_deg},
-                {"lon", t.lon_deg},
-                {"alt", t.alt_msl_m},
-                {"alt_ref", "msl"}};
+    return session::msl_geopoint_request(t);
 }
 
 session::Request MavlinkDeviceCapabilities::stop() const {
-    return json{{"cmd", "rate"}, {"pan", 0.0}, {"tilt", 0.0}};
+    return session::stop_rates_request();
 }
 
 session::Request MavlinkDeviceCapabilities::zoom(const session::ZoomTarget&) const {
@@ -94,41 +65,17 @@ std::optional<geo::Quat> MavlinkDeviceCapabilities::line_of_sight() const {
 }
 
 session::View MavlinkDeviceCapabilities::view() const {
-    session::View v;
-    if (!data_.telemetry) return v;
-    const state::Telemetry& t = *data_.telemetry;
-    v.lat_deg = t.lat;
-    v.lon_deg = t.lon;
-    v.alt_msl_m = t.alt_msl;
-    v.alt_m = t.alt;
-    if (t.target) {
-        v.target_lat_deg = t.target->lat;
-        v.target_lon_deg = t.target->lon;
-        if (t.geoid_undulation)
-            v.target_alt_msl_m = geo::msl_from_ellipsoid(t.target->alt, *t.geoid_undulation);
-    }
-    v.hfov_deg = t.hfov;
-    v.vfov_deg = t.vfov;
+    session::View v = session::view_from(data_.telemetry ? &*data_.telemetry : nullptr);
     return v;
 }
 
 command::Result<session::ImageView> MavlinkDeviceCapabilities::image() const {
-    const auto* t = data_.telemetry ? &*data_.telemetry : nullptr;
-    const auto los = line_of_sight();
-    if (!t || !t->lat || !t->lon || !t->alt || !t->hfov || !t->vfov || !los)
-        return command::Error{command::code::unavailable,
-                              "no device attitude with a vehicle position yet"};
-    session::ImageView v;
-    v.camera = geo::CameraPose{{*t->lat, *t->lon, *t->alt}, *los, *t->hfov, *t->vfov};
-    if (t->target) v.flat_alt_m = t->target->alt;
-    v.geoid_undulation_m = t->geoid_undulation;
-    return v;
+    return session::image_from(data_.telemetry ? &*data_.telemetry : nullptr, line_of_sight(),
+                               "device");
 }
 
 std::optional<geo::Quat> MavlinkDeviceCapabilities::platform_attitude() const {
-    const auto* t = data_.telemetry ? &*data_.telemetry : nullptr;
-    if (!t || !t->roll || !t->pitch || !t->yaw) return std::nullopt;
-    return geo::euler_to_quat(geo::EulerDeg{*t->roll, *t->pitch, *t->yaw});
+    return session::aircraft_attitude_from(data_.telemetry ? &*data_.telemetry : nullptr);
 }
 
 session::Identity MavlinkDeviceCapabilities::identity() const {

@@ -5,6 +5,7 @@
 #include <numbers>
 #include <string>
 
+#include "command/geopoint_request.hpp"
 #include "command/params.hpp"
 #include "command/path_request.hpp"
 #include "session/capabilities.hpp"
@@ -57,32 +58,15 @@ command::Result<Hold> rate(JsonParams& p, const DeviceCommandContext& ctx) {
 }
 
 command::Result<Hold> geopoint(JsonParams& p, const DeviceCommandContext& ctx) {
-    const auto lat = p.number("lat", true);
-    const auto lon = p.number("lon", true);
-    const auto alt = p.number("alt", true);
-    const auto ref = p.choice("alt_ref", false).value_or("wgs84");
-    const auto vel = p.numbers("vel_ned", false);
-    const auto joystick_range = p.integer_or("joystick_range_m", 0);
-    // stare: gimbald watches the device's line of sight (mavlink_device_stare.hpp). closure
-    // (the Orion's "drive at maximum performance"): a device always slews at its own
-    // maximum rate towards the set-point, so the flag changes nothing.
-    const bool stare = p.boolean_or("stare", false);
-    (void)p.boolean_or("closure", false);
-    p.reject_unknown();
-    if (!p.ok()) return p.error();
-    if (joystick_range != 0)
-        return command::Error{code::bad_request,
-                              "joystick_range_m must be 0 for a MAVLink gimbal device: there is "
-                              "no joystick on the device's link"};
-    if (ref == "terrain")
-        return command::Error{code::unavailable,
-                              "alt_ref 'terrain' needs gimbald's terrain section"};
+    // stare: gimbald watches the device's line of sight (mavlink_device_stare.hpp).
+    auto read = command::read_aimed_geopoint(p, ctx.geoid_undulation_m, "a MAVLink gimbal device");
+    if (!read) return read.error();
     if (!ctx.has_vehicle_fix) return no_fix("geopoint");
     HoldGeopoint g;
-    g.point = {*lat, *lon, ref == "msl" ? *alt + ctx.geoid_undulation_m : *alt};
-    if (vel) g.vel_ned = {(*vel)[0], (*vel)[1], (*vel)[2]};
+    g.point = read->point;
+    g.vel_ned = read->vel_ned;
     g.since_s = ctx.now_s;
-    g.stare = stare;
+    g.stare = read->stare;
     return Hold{g};
 }
 

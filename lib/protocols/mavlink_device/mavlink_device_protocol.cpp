@@ -126,7 +126,7 @@ void MavlinkDeviceProtocol::check_stare(double now_s, std::vector<state::Event>&
 
 std::size_t MavlinkDeviceProtocol::steer(const vehicle::VehicleState& vehicle, double vehicle_now_s,
                                          double now_s, std::vector<session::Bytes>& out) {
-    const auto fix = vehicle_fix(vehicle, vehicle_now_s);
+    const auto fix = vehicle::aircraft_fix(vehicle, vehicle_now_s);
     state_.set_vehicle(fix);
     const std::size_t before = out.size();
     feed_vehicle(fix, vehicle_now_s, out);
@@ -136,8 +136,8 @@ std::size_t MavlinkDeviceProtocol::steer(const vehicle::VehicleState& vehicle, d
     return fed;
 }
 
-void MavlinkDeviceProtocol::feed_vehicle(const std::optional<VehicleFix>& fix, double vehicle_now_s,
-                                         std::vector<session::Bytes>& out) {
+void MavlinkDeviceProtocol::feed_vehicle(const std::optional<vehicle::AircraftFix>& fix,
+                                         double vehicle_now_s, std::vector<session::Bytes>& out) {
     // At every tick (20 Hz, within the 10-50 Hz devices need for their horizon and yaw
     // estimates); when the fix goes, one message without it so the device stops using the
     // last one.

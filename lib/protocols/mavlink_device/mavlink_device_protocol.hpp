@@ -64,7 +64,7 @@ class MavlinkDeviceProtocol final : public session::Protocol {
     }
     // AUTOPILOT_STATE_FOR_GIMBAL_DEVICE while the vehicle's fix is fresh, and once with
     // nothing valid when it goes.
-    void feed_vehicle(const std::optional<VehicleFix>& fix, double vehicle_now_s,
+    void feed_vehicle(const std::optional<vehicle::AircraftFix>& fix, double vehicle_now_s,
                       std::vector<session::Bytes>& out);
 
     MavlinkDeviceOptions options_;

@@ -8,6 +8,7 @@
 #include "geo/ground.hpp"
 #include "geo/wgs84.hpp"
 #include "protocols/mavlink_device/mavlink_device_flags.hpp"
+#include "session/aimed_telemetry.hpp"
 #include "session/capabilities.hpp"
 #include "state/precision.hpp"
 
@@ -116,7 +117,7 @@ void MavlinkDeviceState::on_information(const mavlink::GimbalDeviceInformation& 
     data_.information = m;
 }
 
-void MavlinkDeviceState::set_vehicle(const std::optional<VehicleFix>& fix) {
+void MavlinkDeviceState::set_vehicle(const std::optional<vehicle::AircraftFix>& fix) {
     vehicle_ = fix;
     if (options_.geoid_undulation_m)
         geoid_undulation_m_ = *options_.geoid_undulation_m;
@@ -161,23 +162,10 @@ state::Telemetry MavlinkDeviceState::derive_telemetry() const {
     t.vfov = angle_deg(options_.vfov_deg);
     const auto los = line_of_sight();
     if (!vehicle_ || !los) return t;
-    const VehicleFix& v = *vehicle_;
-    const geo::Lla camera_at = *camera();
-    t.lat = latlon_deg(camera_at.lat_deg);
-    t.lon = latlon_deg(camera_at.lon_deg);
-    t.alt = metres(camera_at.alt_m);
-    t.alt_msl = metres(v.alt_msl_m);
-    t.geoid_undulation = metres(geoid_undulation_m_);
-    t.roll = angle_deg(v.roll_deg);
-    t.pitch = angle_deg(v.pitch_deg);
-    t.yaw = angle_deg(v.yaw_deg);
-    const geo::CameraPose camera{camera_at, *los, options_.hfov_deg, options_.vfov_deg};
-    const geo::Ground ground{options_.terrain, options_.ground_alt_m};
     // The device reports no target of its own: where its line of sight meets the ground.
-    if (const auto centre = geo::locate_ground(camera, {0, 0}, ground))
-        t.target = state::GeoPoint{latlon_deg(centre->point.lat_deg),
-                                   latlon_deg(centre->point.lon_deg), metres(centre->point.alt_m)};
-    t.view = state::ground_view(camera, ground);
+    const geo::CameraPose pose{*camera(), *los, options_.hfov_deg, options_.vfov_deg};
+    session::fill_from_aircraft(t, *vehicle_, geoid_undulation_m_, pose,
+                                geo::Ground{options_.terrain, options_.ground_alt_m});
     return t;
 }
 

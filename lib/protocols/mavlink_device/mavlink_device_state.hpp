@@ -57,8 +57,8 @@ class MavlinkDeviceState {
     // The vehicle's latest fix (nullopt: lost); telemetry follows at the next attitude. The
     // geoid undulation follows the fix: the configured override, else the geoid model at
     // the aircraft's position, else 0 (kept while the fix is lost).
-    void set_vehicle(const std::optional<VehicleFix>& fix);
-    const std::optional<VehicleFix>& vehicle() const { return vehicle_; }
+    void set_vehicle(const std::optional<vehicle::AircraftFix>& fix);
+    const std::optional<vehicle::AircraftFix>& vehicle() const { return vehicle_; }
     double geoid_undulation() const { return geoid_undulation_m_; }
     // The camera's position above the ellipsoid, from the fix.
     std::optional<geo::Lla> camera() const;
@@ -103,7 +103,7 @@ class MavlinkDeviceState {
     void write_device(state::JsonWriter& d, double now_s) const;
 
     MavlinkDeviceOptions options_;
-    std::optional<VehicleFix> vehicle_;
+    std::optional<vehicle::AircraftFix> vehicle_;
     double geoid_undulation_m_ = 0;
     nlohmann::json stare_ = nullptr;
     MavlinkDeviceData data_;

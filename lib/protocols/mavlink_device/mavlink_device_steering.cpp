@@ -64,7 +64,7 @@ mavlink::GimbalDeviceSetAttitude vehicle_frame_attitude(double pan_deg, double t
 }
 
 std::optional<mavlink::GimbalDeviceSetAttitude> MavlinkDeviceSteering::command(
-    const std::optional<VehicleFix>& fix, const std::optional<geo::Lla>& camera,
+    const std::optional<vehicle::AircraftFix>& fix, const std::optional<geo::Lla>& camera,
     const std::optional<Aim>& aim, double now_s) {
     if (const auto* a = std::get_if<HoldAngles>(&hold_))
         return vehicle_frame_attitude(a->pan_deg, a->tilt_deg);
@@ -117,7 +117,7 @@ std::optional<mavlink::GimbalDeviceSetAttitude> MavlinkDeviceSteering::command(
 }
 
 std::optional<mavlink::GimbalDeviceSetAttitude> MavlinkDeviceSteering::heading(
-    const HoldHeading& h, const std::optional<VehicleFix>& fix) const {
+    const HoldHeading& h, const std::optional<vehicle::AircraftFix>& fix) const {
     if (north_yaw_ != NorthYaw::from_heading)
         return attitude(0, h.tilt_deg, h.yaw_deg, north_flags(north_yaw_));
     // The device takes only yaw from the nose: the heading's, now, and the aircraft's turn
@@ -129,9 +129,8 @@ std::optional<mavlink::GimbalDeviceSetAttitude> MavlinkDeviceSteering::heading(
     return m;
 }
 
-mavlink::GimbalDeviceSetAttitude MavlinkDeviceSteering::rates(const HoldRates& r,
-                                                              const std::optional<VehicleFix>& fix,
-                                                              double now_s) const {
+mavlink::GimbalDeviceSetAttitude MavlinkDeviceSteering::rates(
+    const HoldRates& r, const std::optional<vehicle::AircraftFix>& fix, double now_s) const {
     mavlink::GimbalDeviceSetAttitude m;
     m.q = {mavlink::nan_f, mavlink::nan_f, mavlink::nan_f, mavlink::nan_f};
     const bool running = !r.until_s || now_s < *r.until_s;

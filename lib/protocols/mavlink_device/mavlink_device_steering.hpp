@@ -88,17 +88,17 @@ class MavlinkDeviceSteering {
 
     // The set-attitude for now_s, or nullopt when nothing is held or the held target needs a
     // vehicle fix there is none of. `camera` is the camera's position above the ellipsoid.
-    std::optional<mavlink::GimbalDeviceSetAttitude> command(const std::optional<VehicleFix>& fix,
-                                                            const std::optional<geo::Lla>& camera,
-                                                            const std::optional<Aim>& aim,
-                                                            double now_s);
+    std::optional<mavlink::GimbalDeviceSetAttitude> command(
+        const std::optional<vehicle::AircraftFix>& fix, const std::optional<geo::Lla>& camera,
+        const std::optional<Aim>& aim, double now_s);
     // The stare a held path's step-stare began at the latest command(), once (stare_start).
     std::optional<sim::StareBegin> take_stare_begin() { return std::exchange(stare_began_, {}); }
 
   private:
     std::optional<mavlink::GimbalDeviceSetAttitude> heading(
-        const HoldHeading& h, const std::optional<VehicleFix>& fix) const;
-    mavlink::GimbalDeviceSetAttitude rates(const HoldRates& r, const std::optional<VehicleFix>& fix,
+        const HoldHeading& h, const std::optional<vehicle::AircraftFix>& fix) const;
+    mavlink::GimbalDeviceSetAttitude rates(const HoldRates& r,
+                                           const std::optional<vehicle::AircraftFix>& fix,
                                            double now_s) const;
 
     Hold hold_;

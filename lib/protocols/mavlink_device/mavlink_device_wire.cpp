@@ -30,30 +30,9 @@ bool SignatureCheck::accept(const mavlink::Message& m, double unix_s) {
     return ok;
 }
 
-std::optional<VehicleFix> vehicle_fix(const vehicle::VehicleState& vehicle, double now_s) {
-    const auto& pos = vehicle.position();
-    const auto& att = vehicle.attitude();
-    if (!pos || !att || !vehicle.fresh(now_s)) return std::nullopt;
-    if (now_s - pos->at_s > vehicle.timeout_s() || now_s - att->at_s > vehicle.timeout_s())
-        return std::nullopt;
-    VehicleFix f;
-    f.lat_deg = pos->message.lat * 1e-7;
-    f.lon_deg = pos->message.lon * 1e-7;
-    f.alt_msl_m = pos->message.alt * 1e-3;
-    f.vn_mps = pos->message.vx * 0.01;
-    f.ve_mps = pos->message.vy * 0.01;
-    f.vd_mps = pos->message.vz * 0.01;
-    f.roll_deg = att->message.roll * rad_to_deg;
-    f.pitch_deg = att->message.pitch * rad_to_deg;
-    f.yaw_deg = att->message.yaw * rad_to_deg;
-    f.yaw_rate_dps = att->message.yawspeed * rad_to_deg;
-    return f;
-}
-
-mavlink::AutopilotStateForGimbalDevice autopilot_state(const std::optional<VehicleFix>& fix,
-                                                       std::uint64_t time_boot_us,
-                                                       std::uint8_t target_system,
-                                                       std::uint8_t target_component) {
+mavlink::AutopilotStateForGimbalDevice autopilot_state(
+    const std::optional<vehicle::AircraftFix>& fix, std::uint64_t time_boot_us,
+    std::uint8_t target_system, std::uint8_t target_component) {
     mavlink::AutopilotStateForGimbalDevice m;
     m.time_boot_us = time_boot_us;
     m.target_system = target_system;

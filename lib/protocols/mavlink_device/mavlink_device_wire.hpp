@@ -11,6 +11,7 @@
 #include "mavlink/framing.hpp"
 #include "mavlink/messages.hpp"
 #include "mavlink/signing.hpp"
+#include "vehicle/aircraft_fix.hpp"
 #include "vehicle/vehicle_state.hpp"
 
 namespace gimbal::protocols {
@@ -54,23 +55,10 @@ class SignatureCheck {
     std::uint64_t rejected_ = 0;
 };
 
-// The aircraft as the steering and STATE telemetry need it: position (MSL), attitude and
-// velocity from its autopilot (GLOBAL_POSITION_INT, ATTITUDE), in degrees, metres, m/s.
-struct VehicleFix {
-    double lat_deg = 0, lon_deg = 0, alt_msl_m = 0;
-    double roll_deg = 0, pitch_deg = 0, yaw_deg = 0;
-    double vn_mps = 0, ve_mps = 0, vd_mps = 0;
-    double yaw_rate_dps = 0;
-};
-
-// The fix when the vehicle state has a fresh position and attitude, else nullopt.
-std::optional<VehicleFix> vehicle_fix(const vehicle::VehicleState& vehicle, double now_s);
-
 // AUTOPILOT_STATE_FOR_GIMBAL_DEVICE for the device from the fix (nullopt: nothing valid,
 // the message says so with NaNs and no estimator bits).
-mavlink::AutopilotStateForGimbalDevice autopilot_state(const std::optional<VehicleFix>& fix,
-                                                       std::uint64_t time_boot_us,
-                                                       std::uint8_t target_system,
-                                                       std::uint8_t target_component);
+mavlink::AutopilotStateForGimbalDevice autopilot_state(
+    const std::optional<vehicle::AircraftFix>& fix, std::uint64_t time_boot_us,
+    std::uint8_t target_system, std::uint8_t target_component);
 
 }  // namespace gimbal::protocols

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "geo/wgs84.hpp"
+#include "session/aimed_telemetry.hpp"
 #include "state/precision.hpp"
 
 namespace gimbal::protocols {
@@ -20,46 +21,19 @@ session::Features siyi_features() {
 }
 
 session::Request SiyiCapabilities::point_angles(const session::AnglesTarget& t) const {
-    const auto* tel = data_.telemetry ? &*data_.telemetry : nullptr;
-    const bool have_pan = tel && tel->pan, have_tilt = tel && tel->tilt;
-    double pan = 0;
-    if (t.yaw_deg && t.yaw_frame == session::YawFrame::earth) {
-        if (!t.vehicle_heading_deg)
-            return session::unavailable("yaw from north needs the aircraft's heading");
-        pan = session::wrap180(*t.yaw_deg - *t.vehicle_heading_deg);
-    } else if (t.yaw_deg) {
-        pan = *t.yaw_deg;
-    } else if (have_pan) {
-        pan = *tel->pan;
-    } else {
-        return session::unavailable("no attitude from the camera yet for the angle left out");
-    }
-    double tilt = 0;
-    if (t.pitch_deg)
-        tilt = *t.pitch_deg;
-    else if (have_tilt)
-        tilt = *tel->tilt;
-    else
-        return session::unavailable("no attitude from the camera yet for the angle left out");
-    return json{{"cmd", "position"}, {"pan", pan}, {"tilt", tilt}};
+    return session::nose_angles_request(t, data_.telemetry ? &*data_.telemetry : nullptr, "camera");
 }
 
 session::Request SiyiCapabilities::rate(const session::RateTarget& t) const {
-    return json{{"cmd", "rate"},
-                {"pan", std::isnan(t.yaw_dps) ? 0.0 : t.yaw_dps},
-                {"tilt", std::isnan(t.pitch_dps) ? 0.0 : t.pitch_dps}};
+    return session::nose_rate_request(t);
 }
 
 session::Request SiyiCapabilities::geopoint(const session::GeoTarget& t) const {
-    return json{{"cmd", "geopoint"},
-                {"lat", t.lat_deg},
-                {"lon", t.lon_deg},
-                {"alt", t.alt_msl_m},
-                {"alt_ref", "msl"}};
+    return session::msl_geopoint_request(t);
 }
 
 session::Request SiyiCapabilities::stop() const {
-    return json{{"cmd", "rate"}, {"pan", 0.0}, {"tilt", 0.0}};
+    return session::stop_rates_request();
 }
 
 // Percent of the zoom range as the ratio 0x0F takes (one decimal). Continuous zoom (0x05)
@@ -83,42 +57,18 @@ std::optional<geo::Quat> SiyiCapabilities::line_of_sight() const {
 }
 
 session::View SiyiCapabilities::view() const {
-    session::View v;
-    if (!data_.telemetry) return v;
-    const state::Telemetry& t = *data_.telemetry;
-    v.lat_deg = t.lat;
-    v.lon_deg = t.lon;
-    v.alt_msl_m = t.alt_msl;
-    v.alt_m = t.alt;
-    if (t.target) {
-        v.target_lat_deg = t.target->lat;
-        v.target_lon_deg = t.target->lon;
-        if (t.geoid_undulation)
-            v.target_alt_msl_m = geo::msl_from_ellipsoid(t.target->alt, *t.geoid_undulation);
-    }
-    v.hfov_deg = t.hfov;
-    v.vfov_deg = t.vfov;
+    session::View v = session::view_from(data_.telemetry ? &*data_.telemetry : nullptr);
     v.measured_range_m = data_.laser_range_m;
     return v;
 }
 
 command::Result<session::ImageView> SiyiCapabilities::image() const {
-    const auto* t = data_.telemetry ? &*data_.telemetry : nullptr;
-    const auto los = line_of_sight();
-    if (!t || !t->lat || !t->lon || !t->alt || !t->hfov || !t->vfov || !los)
-        return command::Error{command::code::unavailable,
-                              "no camera attitude with a vehicle position yet"};
-    session::ImageView v;
-    v.camera = geo::CameraPose{{*t->lat, *t->lon, *t->alt}, *los, *t->hfov, *t->vfov};
-    if (t->target) v.flat_alt_m = t->target->alt;
-    v.geoid_undulation_m = t->geoid_undulation;
-    return v;
+    return session::image_from(data_.telemetry ? &*data_.telemetry : nullptr, line_of_sight(),
+                               "camera");
 }
 
 std::optional<geo::Quat> SiyiCapabilities::platform_attitude() const {
-    const auto* t = data_.telemetry ? &*data_.telemetry : nullptr;
-    if (!t || !t->roll || !t->pitch || !t->yaw) return std::nullopt;
-    return geo::euler_to_quat(geo::EulerDeg{*t->roll, *t->pitch, *t->yaw});
+    return session::aircraft_attitude_from(data_.telemetry ? &*data_.telemetry : nullptr);
 }
 
 session::Identity SiyiCapabilities::identity() const {

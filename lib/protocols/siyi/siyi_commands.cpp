@@ -5,6 +5,7 @@
 #include <numbers>
 #include <string>
 
+#include "command/geopoint_request.hpp"
 #include "command/params.hpp"
 #include "command/path_request.hpp"
 #include "session/capabilities.hpp"
@@ -106,31 +107,15 @@ command::Result<SiyiPlan> camera_zoom(JsonParams& p, const SiyiCommandContext& c
 }
 
 command::Result<SiyiPlan> geopoint(JsonParams& p, const SiyiCommandContext& ctx) {
-    const auto lat = p.number("lat", true);
-    const auto lon = p.number("lon", true);
-    const auto alt = p.number("alt", true);
-    const auto ref = p.choice("alt_ref", false).value_or("wgs84");
-    const auto vel = p.numbers("vel_ned", false);
-    const auto joystick_range = p.integer_or("joystick_range_m", 0);
-    const bool stare = p.boolean_or("stare", false);
-    // closure: the camera always slews at its own top rate towards the angles.
-    (void)p.boolean_or("closure", false);
-    p.reject_unknown();
-    if (!p.ok()) return p.error();
-    if (joystick_range != 0)
-        return command::Error{code::bad_request,
-                              "joystick_range_m must be 0 for a SIYI camera: there is no "
-                              "joystick on its link"};
-    if (ref == "terrain")
-        return command::Error{code::unavailable,
-                              "alt_ref 'terrain' needs gimbald's terrain section"};
+    auto read = command::read_aimed_geopoint(p, ctx.geoid_undulation_m, "a SIYI camera");
+    if (!read) return read.error();
     if (!ctx.has_vehicle_fix) return no_fix("geopoint");
     SiyiHoldGeopoint g;
-    g.point = {*lat, *lon, ref == "msl" ? *alt + ctx.geoid_undulation_m : *alt};
-    if (vel) g.vel_ned = {(*vel)[0], (*vel)[1], (*vel)[2]};
+    g.point = read->point;
+    g.vel_ned = read->vel_ned;
     g.since_s = ctx.now_s;
     // stare: gimbald watches the camera's line of sight (siyi_stare.hpp).
-    g.stare = stare;
+    g.stare = read->stare;
     SiyiPlan plan;
     plan.hold = holding(g);
     return plan;

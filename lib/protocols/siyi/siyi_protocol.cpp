@@ -48,8 +48,8 @@ void SiyiProtocol::receive(std::span<const std::uint8_t> bytes, double now_s,
         heard = true;
         if (std::holds_alternative<siyi::GimbalAttitude>(decoded.value)) check_stare(now_s, events);
     });
-    // Without a vehicle feed there are no steering ticks: the camera's own stream paces the
-    // requests and a rate's impulse then.
+    // The camera's frames pace the requests and a rate's impulse at its own rate (20 Hz);
+    // poll() does at 10 Hz when it is silent.
     if (!heard) return;
     housekeeping(now_s, replies);
     if (const auto stop = steering_.expire(now_s)) replies.push_back(frame(*stop));
@@ -95,6 +95,11 @@ void SiyiProtocol::tick(double now_s, std::vector<state::Event>& events) {
     state_.tick(now_s, events);
 }
 
+void SiyiProtocol::poll(double now_s, std::vector<session::Bytes>& out) {
+    housekeeping(now_s, out);
+    if (const auto stop = steering_.expire(now_s)) out.push_back(frame(*stop));
+}
+
 std::vector<session::Bytes> SiyiProtocol::on_connect() {
     framer_.reset();
     last_identity_s_ = last_poll_s_ = std::nullopt;
@@ -109,8 +114,8 @@ std::vector<session::Bytes> SiyiProtocol::on_connect() {
     return out;
 }
 
-void SiyiProtocol::feed_vehicle(const std::optional<SiyiFix>& fix, double vehicle_now_s,
-                                std::vector<session::Bytes>& out) {
+void SiyiProtocol::feed_vehicle(const std::optional<vehicle::AircraftFix>& fix,
+                                double vehicle_now_s, std::vector<session::Bytes>& out) {
     if (!fix) return;
     const auto ms = static_cast<std::uint32_t>(vehicle_now_s * 1000.0);
     const auto rad = [](double d) { return static_cast<float>(d * deg_to_rad); };
@@ -134,7 +139,7 @@ void SiyiProtocol::feed_vehicle(const std::optional<SiyiFix>& fix, double vehicl
 
 std::size_t SiyiProtocol::steer(const vehicle::VehicleState& vehicle, double vehicle_now_s,
                                 double now_s, std::vector<session::Bytes>& out) {
-    const auto fix = siyi_fix(vehicle, vehicle_now_s);
+    const auto fix = vehicle::aircraft_fix(vehicle, vehicle_now_s);
     state_.set_vehicle(fix);
     const std::size_t before = out.size();
     feed_vehicle(fix, vehicle_now_s, out);

@@ -26,6 +26,9 @@ class SiyiProtocol final : public session::Protocol {
     void receive(std::span<const std::uint8_t> bytes, double now_s,
                  std::vector<state::Event>& events, std::vector<session::Bytes>& replies) override;
     void tick(double now_s, std::vector<state::Event>& events) override;
+    // The camera sends nothing unasked: the identity, stream and poll requests go out from
+    // here too, so a camera that comes up after gimbald (or restarts) is asked again.
+    void poll(double now_s, std::vector<session::Bytes>& out) override;
     std::size_t steer(const vehicle::VehicleState& vehicle, double vehicle_now_s, double now_s,
                       std::vector<session::Bytes>& out) override;
     std::vector<session::Bytes> on_connect() override;
@@ -56,7 +59,7 @@ class SiyiProtocol final : public session::Protocol {
     void housekeeping(double now_s, std::vector<session::Bytes>& out);
     // A held geopoint with stare: stare_start once the camera's line of sight is on it.
     void check_stare(double now_s, std::vector<state::Event>& events);
-    void feed_vehicle(const std::optional<SiyiFix>& fix, double vehicle_now_s,
+    void feed_vehicle(const std::optional<vehicle::AircraftFix>& fix, double vehicle_now_s,
                       std::vector<session::Bytes>& out);
 
     SiyiOptions options_;

@@ -3,6 +3,7 @@
 
 #include "protocols/siyi/codec/json.hpp"
 #include "protocols/siyi/sim/siyi_sim.hpp"
+#include "protocols/siyi/sim/siyi_sim_camera.hpp"
 #include "protocols/siyi/siyi_entry.hpp"
 
 namespace gimbal::protocols {
@@ -24,7 +25,12 @@ constexpr std::string_view manual =
        its stream) and target (0x17) over flat ground --height metres below. Its
        axes slew at the model's top rate within its limits, to absolute angles
        (0x0E, 0x08) or at speeds (0x07). Unknown commands get no reply, as on a
-       camera that does not support them.
+       camera that does not support them. --video renders what its main camera
+       sees (the model's field of view at the current zoom, pitch stabilized, yaw
+       from the nose) from where the aircraft is: as gimbald last sent it (0x3E
+       position, 0x22 attitude), else at --lat, --lon and --alt (metres above
+       MSL; --geoid-undulation below the ellipsoid), level and heading north.
+       --alt above --terrain-alt sets the laser's --height.
 )";
 
 constexpr std::string_view rx_log_manual =
@@ -68,6 +74,10 @@ std::unique_ptr<sim::Device> make(const SimScenario& s) {
     o.angle_noise_deg = x.value("angle_noise_deg", o.angle_noise_deg);
     o.boot_time_s = x.value("boot_time_s", o.boot_time_s);
     o.sd_card = !x.value("no_sd_card", false);
+    if (s.lat_deg) o.lat_deg = *s.lat_deg;
+    if (s.lon_deg) o.lon_deg = *s.lon_deg;
+    if (s.alt_m) o.alt_msl_m = *s.alt_m;
+    if (s.geoid_undulation_m) o.geoid_undulation_m = *s.geoid_undulation_m;
     if (s.alt_m && s.terrain_alt_m && *s.alt_m > *s.terrain_alt_m)
         o.height_above_ground_m = *s.alt_m - *s.terrain_alt_m;
     o.height_above_ground_m = x.value("height_above_ground_m", o.height_above_ground_m);
@@ -121,6 +131,7 @@ Simulator siyi_simulator() {
     s.make_rx_decoder = [] {
         return std::unique_ptr<RxDecoder>(std::make_unique<SiyiRxDecoder>());
     };
+    s.camera = siyi_sim_camera;
     return s;
 }
 

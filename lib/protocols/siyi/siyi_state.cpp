@@ -4,6 +4,7 @@
 
 #include "geo/ground.hpp"
 #include "protocols/siyi/codec/json.hpp"
+#include "session/aimed_telemetry.hpp"
 #include "session/capabilities.hpp"
 #include "state/precision.hpp"
 
@@ -98,7 +99,7 @@ void SiyiState::on_attitude(const siyi::GimbalAttitude& m, double now_s) {
     lost_reported_ = false;
 }
 
-void SiyiState::set_vehicle(const std::optional<SiyiFix>& fix) {
+void SiyiState::set_vehicle(const std::optional<vehicle::AircraftFix>& fix) {
     vehicle_ = fix;
     if (options_.geoid_undulation_m)
         geoid_undulation_m_ = *options_.geoid_undulation_m;
@@ -133,29 +134,15 @@ state::Telemetry SiyiState::derive_telemetry() const {
     t.vfov = angle_deg(fov.vfov_deg);
     const auto los = line_of_sight();
     if (!vehicle_ || !los) return t;
-    const SiyiFix& v = *vehicle_;
-    const geo::Lla camera_at = *camera();
-    t.lat = latlon_deg(camera_at.lat_deg);
-    t.lon = latlon_deg(camera_at.lon_deg);
-    t.alt = metres(camera_at.alt_m);
-    t.alt_msl = metres(v.alt_msl_m);
-    t.geoid_undulation = metres(geoid_undulation_m_);
-    t.roll = angle_deg(v.roll_deg);
-    t.pitch = angle_deg(v.pitch_deg);
-    t.yaw = angle_deg(v.yaw_deg);
-    const geo::CameraPose pose{camera_at, *los, fov.hfov_deg, fov.vfov_deg};
+    const geo::CameraPose pose{*camera(), *los, fov.hfov_deg, fov.vfov_deg};
     const geo::Ground ground{options_.terrain, options_.ground_alt_m};
-    // The ZT30's laser says where it hits (at the ground's height under the line of sight);
-    // otherwise the line of sight on the ground.
-    const auto centre = geo::locate_ground(pose, {0, 0}, ground);
+    const auto centre =
+        session::fill_from_aircraft(t, *vehicle_, geoid_undulation_m_, pose, ground);
+    // The ZT30's laser says where it hits (at the ground's height under the line of sight).
     if (data_.laser_target)
         t.target = state::GeoPoint{latlon_deg(data_.laser_target->lat),
                                    latlon_deg(data_.laser_target->lon),
                                    metres(centre ? centre->point.alt_m : options_.ground_alt_m)};
-    else if (centre)
-        t.target = state::GeoPoint{latlon_deg(centre->point.lat_deg),
-                                   latlon_deg(centre->point.lon_deg), metres(centre->point.alt_m)};
-    t.view = state::ground_view(pose, ground);
     return t;
 }
 

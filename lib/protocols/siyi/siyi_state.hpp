@@ -15,11 +15,11 @@
 #include "geo/wgs84.hpp"
 #include "protocols/siyi/codec/messages.hpp"
 #include "protocols/siyi/codec/models.hpp"
-#include "protocols/siyi/siyi_fix.hpp"
 #include "protocols/siyi/siyi_options.hpp"
 #include "state/event.hpp"
 #include "state/telemetry.hpp"
 #include "state/writer.hpp"
+#include "vehicle/aircraft_fix.hpp"
 
 namespace gimbal::protocols {
 
@@ -123,8 +123,8 @@ class SiyiState {
     // One decoded message from the camera.
     void apply(const siyi::FromGimbal& message, double now_s);
     // The vehicle's latest fix (nullopt: lost); telemetry follows at the next attitude.
-    void set_vehicle(const std::optional<SiyiFix>& fix);
-    const std::optional<SiyiFix>& vehicle() const { return vehicle_; }
+    void set_vehicle(const std::optional<vehicle::AircraftFix>& fix);
+    const std::optional<vehicle::AircraftFix>& vehicle() const { return vehicle_; }
     double geoid_undulation() const { return geoid_undulation_m_; }
     // The camera's position above the ellipsoid, from the fix.
     std::optional<geo::Lla> camera() const;
@@ -154,7 +154,7 @@ class SiyiState {
     state::Telemetry derive_telemetry() const;
 
     SiyiOptions options_;
-    std::optional<SiyiFix> vehicle_;
+    std::optional<vehicle::AircraftFix> vehicle_;
     double geoid_undulation_m_ = 0;
     SiyiData data_;
     std::uint64_t attitudes_ = 0;

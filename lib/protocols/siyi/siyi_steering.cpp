@@ -43,7 +43,7 @@ std::optional<siyi::ToGimbal> SiyiSteering::expire(double now_s) {
     return siyi::GimbalRotation{0, 0};
 }
 
-std::optional<siyi::ToGimbal> SiyiSteering::command(const std::optional<SiyiFix>& fix,
+std::optional<siyi::ToGimbal> SiyiSteering::command(const std::optional<vehicle::AircraftFix>& fix,
                                                     const std::optional<geo::Lla>& camera,
                                                     const std::optional<geo::Quat>& line_of_sight,
                                                     double now_s) {

@@ -14,9 +14,9 @@
 #include "geo/wgs84.hpp"
 #include "protocols/siyi/codec/messages.hpp"
 #include "protocols/siyi/codec/models.hpp"
-#include "protocols/siyi/siyi_fix.hpp"
 #include "sim/frames.hpp"
 #include "sim/path_follower.hpp"
+#include "vehicle/aircraft_fix.hpp"
 
 namespace gimbal::protocols {
 
@@ -67,7 +67,7 @@ class SiyiSteering {
     // The message for now_s (expire's included), or nullopt when nothing is due (nothing held, an
     // angle hold without the vehicle's fix). `camera`: the camera's position above the ellipsoid;
     // `line_of_sight`: the camera's, relative to NED, for a path's on-target check.
-    std::optional<siyi::ToGimbal> command(const std::optional<SiyiFix>& fix,
+    std::optional<siyi::ToGimbal> command(const std::optional<vehicle::AircraftFix>& fix,
                                           const std::optional<geo::Lla>& camera,
                                           const std::optional<geo::Quat>& line_of_sight,
                                           double now_s);

@@ -17,6 +17,7 @@ const REGISTRY = { ...minimal.REGISTRY, ...common.REGISTRY };
 const GIMBALD = process.env.GIMBALD;
 const GIMBAL_SIM = process.env.GIMBAL_SIM;
 const MAV_RESULT = { ACCEPTED: 0, TEMPORARILY_REJECTED: 1, DENIED: 2, UNSUPPORTED: 3, FAILED: 4 };
+const resultName = (r) => (r === null ? 'no COMMAND_ACK' : Object.keys(MAV_RESULT).find((k) => MAV_RESULT[k] === r) || String(r));
 const CMD = { ROI_LOCATION: 195, ROI_NONE: 197, REQUEST_MESSAGE: 512, ZOOM: 531, PITCHYAW: 1000, CONFIGURE: 1001 };
 const children = [];
 let failures = 0;
@@ -107,6 +108,18 @@ class Peer {
     await this.send(msg, sign === undefined ? {} : { sign });
     const ack = await this.waitFor((x) => x.name === 'COMMAND_ACK' && x.data.command === command, 3000, since);
     return ack ? ack.data.result : null;
+  }
+  // As a GCS sends a command (the MAVLink command protocol): again when no ACK came or the
+  // answer was TEMPORARILY_REJECTED (a busy link, telemetry late on a loaded machine), at
+  // most `attempts` times. The last result.
+  async commandRetried(command, params, options = {}, attempts = 3) {
+    let result = null;
+    for (let i = 0; i < attempts; i++) {
+      result = await this.command(command, params, options);
+      if (result !== null && result !== MAV_RESULT.TEMPORARILY_REJECTED) return result;
+      await sleep(500);
+    }
+    return result;
   }
   close() { if (!this.serial) this.socket.close(); }
 }
@@ -416,8 +429,10 @@ async function serialSequence(dir) {
   await beat();
   const hb = await gcs.waitFor((x) => x.name === 'HEARTBEAT' && x.packet.header.compid === 154, 4000);
   check(hb !== null, 'serial: HEARTBEAT from the gimbal manager on the same port');
-  check(await gcs.command(CMD.CONFIGURE, [-2, -2, -1, -1, 0, 0, 1]) === MAV_RESULT.ACCEPTED, 'serial: take control: ACCEPTED');
-  check(await gcs.command(CMD.PITCHYAW, [-20, -60, NaN, NaN, 0, 0, 1]) === MAV_RESULT.ACCEPTED, 'serial: PITCHYAW angles: ACCEPTED');
+  let result = await gcs.commandRetried(CMD.CONFIGURE, [-2, -2, -1, -1, 0, 0, 1]);
+  check(result === MAV_RESULT.ACCEPTED, `serial: take control: ACCEPTED (${resultName(result)})`);
+  result = await gcs.commandRetried(CMD.PITCHYAW, [-20, -60, NaN, NaN, 0, 0, 1]);
+  check(result === MAV_RESULT.ACCEPTED, `serial: PITCHYAW angles: ACCEPTED (${resultName(result)})`);
   let state = null;
   for (let i = 0; i < 50; i++) {
     state = (await jsonRequest(d.commandPort, { cmd: 'state', gimbal: 'main' })).state;

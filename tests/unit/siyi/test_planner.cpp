@@ -22,8 +22,8 @@ SiyiCommandContext context(bool fix = false, siyi::Model model = siyi::Model::zt
     return c;
 }
 
-SiyiFix fix_north() {
-    SiyiFix f;
+vehicle::AircraftFix fix_north() {
+    vehicle::AircraftFix f;
     f.lat_deg = 45.7;
     f.lon_deg = -121.5;
     f.alt_msl_m = 500;
@@ -74,7 +74,7 @@ TEST_CASE("planner: stabilized position needs the heading and holds it", "[siyi]
     REQUIRE(p);
     SiyiSteering steering;
     steering.hold(*p->hold);
-    SiyiFix f = fix_north();
+    vehicle::AircraftFix f = fix_north();
     f.yaw_deg = 40;  // the aircraft turned right: the pan goes left
     const auto m = steering.command(f, std::nullopt, std::nullopt, 11.0);
     REQUIRE(m);
@@ -132,7 +132,7 @@ TEST_CASE("planner: geopoint is aimed by gimbald from the vehicle", "[siyi][plan
     CHECK(p->send.empty());
     SiyiSteering steering;
     steering.hold(*p->hold);
-    const SiyiFix f = fix_north();
+    const vehicle::AircraftFix f = fix_north();
     const geo::Lla camera{f.lat_deg, f.lon_deg, f.alt_msl_m};
     const auto m = steering.command(f, camera, std::nullopt, 10.0);
     REQUIRE(m);
@@ -154,7 +154,7 @@ TEST_CASE("planner: path down, and a path swept from the vehicle", "[siyi][plann
     REQUIRE(p);
     SiyiSteering steering;
     steering.hold(*p->hold);
-    const SiyiFix f = fix_north();
+    const vehicle::AircraftFix f = fix_north();
     const auto m =
         steering.command(f, geo::Lla{f.lat_deg, f.lon_deg, f.alt_msl_m}, std::nullopt, 10.1);
     REQUIRE(m);

@@ -166,6 +166,36 @@ TEST_CASE("session: the vehicle feed and a geopoint", "[siyi][session]") {
           loop.events[0].fields["system_time_ms"]);
 }
 
+TEST_CASE("session: a camera that comes up after gimbald is asked by poll, with no vehicle feed",
+          "[siyi][session]") {
+    SiyiOptions options;
+    options.geoid_undulation_m = 0;
+    SiyiProtocol proto{options};
+    (void)proto.on_connect();  // lost: the camera is not up yet, and says nothing unasked
+    SiyiSim sim{SiyiSimOptions{}};
+    std::vector<state::Event> events;
+    double t = 1.0;
+    const auto run = [&](double seconds, bool polled) {
+        for (const double end = t + seconds; t < end - 1e-9;) {
+            t += 0.1;  // the session's ticks
+            std::vector<session::Bytes> out;
+            if (polled) proto.poll(t, out);
+            for (const auto& b : out) sim.receive(b, t);
+            std::vector<std::uint8_t> up;
+            sim.advance(t, up);
+            std::vector<session::Bytes> replies;
+            proto.receive(up, t, events, replies);
+            for (const auto& b : replies) sim.receive(b, t);
+        }
+    };
+    run(1.0, false);
+    CHECK(proto.stale(t));  // nobody asked it
+    run(3.0, true);
+    CHECK_FALSE(proto.stale(t));
+    REQUIRE(proto.telemetry());
+    CHECK(proto.state().data().hardware_id);
+}
+
 TEST_CASE("session: a camera that restarts behind the link is asked for its stream again",
           "[siyi][session]") {
     SiyiOptions o;

@@ -27,8 +27,8 @@ siyi::GimbalAttitude attitude(double yaw, double pitch) {
     return a;
 }
 
-SiyiFix level_north(double alt_msl_m = 100) {
-    SiyiFix f;
+vehicle::AircraftFix level_north(double alt_msl_m = 100) {
+    vehicle::AircraftFix f;
     f.lat_deg = 45.7;
     f.lon_deg = -121.5;
     f.alt_msl_m = alt_msl_m;

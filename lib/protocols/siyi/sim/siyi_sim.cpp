@@ -193,7 +193,8 @@ bool SiyiSim::handle(const ToGimbal& message) {
                 return true;
             },
             [&](const AircraftAttitude& m) {
-                if (std::isfinite(m.yaw)) aircraft_heading_deg_ = m.yaw * rad2deg;
+                if (std::isfinite(m.roll) && std::isfinite(m.pitch) && std::isfinite(m.yaw))
+                    aircraft_attitude_ = m;
                 return true;
             },
             [&](const DataStreamRequest& m) {
@@ -310,7 +311,7 @@ std::optional<double> SiyiSim::laser_range_m() const {
 LaserTarget SiyiSim::laser_target() const {
     const auto range = laser_range_m();
     if (!range || !aircraft_position_) return {};
-    const double heading = aircraft_heading_deg_.value_or(0);
+    const double heading = aircraft_attitude_ ? aircraft_attitude_->yaw * rad2deg : 0.0;
     const double azimuth = (heading - motion_.yaw()) * deg2rad;  // SIYI yaw is left-positive
     const double horizontal = *range * std::cos(motion_.pitch() * deg2rad);
     const double lat0 = aircraft_position_->lat;
@@ -319,6 +320,27 @@ LaserTarget SiyiSim::laser_target() const {
     t.lon = aircraft_position_->lon +
             horizontal * std::sin(azimuth) / (earth_radius_m * std::cos(lat0 * deg2rad)) * rad2deg;
     return t;
+}
+
+SiyiSimAircraft SiyiSim::aircraft() const {
+    SiyiSimAircraft a;
+    if (aircraft_position_) {
+        a.lat_deg = aircraft_position_->lat;
+        a.lon_deg = aircraft_position_->lon;
+        a.alt_msl_m = aircraft_position_->alt_msl;
+        a.alt_ellipsoid_m = aircraft_position_->alt_ellipsoid;
+    } else {
+        a.lat_deg = options_.lat_deg;
+        a.lon_deg = options_.lon_deg;
+        a.alt_msl_m = options_.alt_msl_m;
+        a.alt_ellipsoid_m = options_.alt_msl_m + options_.geoid_undulation_m;
+    }
+    if (aircraft_attitude_) {
+        a.roll_deg = aircraft_attitude_->roll * rad2deg;
+        a.pitch_deg = aircraft_attitude_->pitch * rad2deg;
+        a.yaw_deg = aircraft_attitude_->yaw * rad2deg;
+    }
+    return a;
 }
 
 double SiyiSim::noise() {

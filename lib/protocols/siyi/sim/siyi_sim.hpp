@@ -37,6 +37,19 @@ struct SiyiSimOptions {
     // The laser (ZT30) measures to flat ground this far below the camera.
     double height_above_ground_m = 100;
     double laser_rate_hz = 10;  // the rangefinder's own output rate (0x25 laser stream)
+    // Where the aircraft is until it says (0x3E): only the rendered video uses it (the laser's
+    // target needs the aircraft's own position). The simulated Orion's circle centre, above
+    // the simulator's terrain (sim/terrain.hpp), whose geoid lies 21 m below the ellipsoid.
+    double lat_deg = 45.7, lon_deg = -121.5;
+    double alt_msl_m = 1500;
+    double geoid_undulation_m = -21;
+};
+
+// The aircraft as the camera last heard of it (0x3E position, 0x22 attitude).
+struct SiyiSimAircraft {
+    double lat_deg = 0, lon_deg = 0;
+    double alt_msl_m = 0, alt_ellipsoid_m = 0;
+    double roll_deg = 0, pitch_deg = 0, yaw_deg = 0;  // yaw: heading from north
 };
 
 struct SiyiSimStats {
@@ -58,6 +71,11 @@ class SiyiSim final : public sim::Device {
     double yaw_deg() const { return motion_.yaw(); }
     double pitch_deg() const { return motion_.pitch(); }
     double zoom() const { return motion_.zoom(); }
+    double time_s() const { return time_; }  // the model's time (the last advance)
+    // The aircraft's position and attitude: 0x3E and 0x22 as last received, else the options'
+    // position, level and heading north.
+    SiyiSimAircraft aircraft() const;
+    const SiyiSimOptions& options() const { return options_; }
     bool recording() const { return recording_; }
     siyi::MotionMode motion_mode() const { return motion_mode_; }
     // What the rangefinder reads now (nullopt: no laser, or nothing within 5-1200 m).
@@ -98,7 +116,7 @@ class SiyiSim final : public sim::Device {
     siyi::MotionMode motion_mode_ = siyi::MotionMode::follow;
     Stream attitude_stream_, laser_stream_, encoder_stream_;
     // What the aircraft last told the camera (0x22, 0x3E).
-    std::optional<double> aircraft_heading_deg_;
+    std::optional<siyi::AircraftAttitude> aircraft_attitude_;
     std::optional<siyi::RawGps> aircraft_position_;
     std::vector<std::uint8_t> outbox_;
     SiyiSimStats stats_;

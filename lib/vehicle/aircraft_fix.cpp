@@ -1,8 +1,8 @@
-#include "protocols/siyi/siyi_fix.hpp"
+#include "vehicle/aircraft_fix.hpp"
 
 #include <numbers>
 
-namespace gimbal::protocols {
+namespace gimbal::vehicle {
 
 namespace {
 
@@ -10,13 +10,13 @@ constexpr double rad_to_deg = 180.0 / std::numbers::pi;
 
 }  // namespace
 
-std::optional<SiyiFix> siyi_fix(const vehicle::VehicleState& vehicle, double now_s) {
+std::optional<AircraftFix> aircraft_fix(const VehicleState& vehicle, double now_s) {
     const auto& pos = vehicle.position();
     const auto& att = vehicle.attitude();
     if (!pos || !att || !vehicle.fresh(now_s)) return std::nullopt;
     if (now_s - pos->at_s > vehicle.timeout_s() || now_s - att->at_s > vehicle.timeout_s())
         return std::nullopt;
-    SiyiFix f;
+    AircraftFix f;
     f.lat_deg = pos->message.lat * 1e-7;
     f.lon_deg = pos->message.lon * 1e-7;
     f.alt_msl_m = pos->message.alt * 1e-3;
@@ -32,4 +32,4 @@ std::optional<SiyiFix> siyi_fix(const vehicle::VehicleState& vehicle, double now
     return f;
 }
 
-}  // namespace gimbal::protocols
+}  // namespace gimbal::vehicle
