@@ -329,13 +329,18 @@ nlohmann::json GimbalSession::snapshot() const {
     protocol_->write_state(w, {now, &lasers_});
     state["vehicle"] = vehicle_snapshot_ ? vehicle_snapshot_() : nlohmann::json(nullptr);
     w.object("video", video_ ? video_() : std::nullopt);
+    w.object("track", track_ ? track_() : std::nullopt);
     for (const auto& [key, fill] : state_keys_) state[key] = fill();
     return state;
 }
 
 gimbal::session::GimbalView GimbalSession::view() const {
-    return {&protocol_->capabilities(), protocol_->telemetry(), link_->connected(), stale(),
-            video_};
+    return {&protocol_->capabilities(),
+            protocol_->telemetry(),
+            link_->connected(),
+            stale(),
+            video_,
+            track_};
 }
 
 bool GimbalSession::send_feed(std::vector<std::uint8_t> bytes) {

@@ -88,6 +88,10 @@ class GimbalSession {
     void set_video(std::function<std::optional<gimbal::state::VideoState>()> video) {
         video_ = std::move(video);
     }
+    // STATE `track` (null while no visual track runs, and for a gimbal without tracking).
+    void set_track(std::function<std::optional<gimbal::state::TrackState>()> track) {
+        track_ = std::move(track);
+    }
     // A daemon-level top-level STATE key (`command`, `mavlink`, `mqtt`, `record`), filled at
     // every snapshot.
     void add_state_key(std::string key, std::function<nlohmann::json()> fill) {
@@ -140,6 +144,7 @@ class GimbalSession {
     std::uint64_t reported_decode_errors_ = 0;
     std::function<nlohmann::json()> vehicle_snapshot_;
     std::function<std::optional<gimbal::state::VideoState>()> video_;
+    std::function<std::optional<gimbal::state::TrackState>()> track_;
     std::vector<std::pair<std::string, std::function<nlohmann::json()>>> state_keys_;
     std::vector<std::function<void()>> receive_listeners_;
     std::map<std::string, LocalCommand> commands_;

@@ -4,7 +4,6 @@
 
 #include "command/catalogue.hpp"
 #include "command/params.hpp"
-#include "state/writer.hpp"
 #include "track/track_program.hpp"
 
 namespace gimbald::track {
@@ -29,7 +28,6 @@ void attach_unavailable(GimbalSession& session, std::string why) {
         if (!p.ok()) return p.error();
         return json{{"stopped", nullptr}};
     });
-    session.add_state_key("track", [] { return json(nullptr); });
 }
 
 }  // namespace
@@ -57,10 +55,7 @@ std::unique_ptr<TrackController> attach_tracking(boost::asio::io_context& io,
     auto& c = *controller;
     session.add_command("track", [&c](const json& request) { return c.track(request); });
     session.add_command("track_stop", [&c](const json& request) { return c.track_stop(request); });
-    session.add_state_key("track", [&c] {
-        const auto s = c.state();
-        return s ? gimbal::state::write(*s) : json(nullptr);
-    });
+    session.set_track([&c] { return c.state(); });
     return controller;
 }
 

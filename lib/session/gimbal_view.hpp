@@ -10,6 +10,7 @@
 
 #include "session/capabilities.hpp"
 #include "state/telemetry.hpp"
+#include "state/track_state.hpp"
 #include "state/video_state.hpp"
 
 namespace gimbal::session {
@@ -21,6 +22,9 @@ struct GimbalView {
     bool stale = true;                            // no telemetry within stale_after_s
     // Its video (STATE `video`), asked only when needed; empty, or nullopt: no video section.
     std::function<std::optional<state::VideoState>()> video;
+    // Its visual track (STATE `track`, contract section 20): empty when the gimbal has no
+    // video.tracking; nullopt while no track runs.
+    std::function<std::optional<state::TrackState>()> track;
 };
 
 }  // namespace gimbal::session

@@ -54,8 +54,8 @@ struct Gimbals {
 gimbal::session::GimbalView state_of(const std::string& name) {
     static const Gimbals gimbals;
     if (name == "main")
-        return {&gimbals.orion_caps, &gimbals.orion.telemetry->shared, true, false, {}};
-    return {&gimbals.viewpro_caps, nullptr, false, true, {}};
+        return {&gimbals.orion_caps, &gimbals.orion.telemetry->shared, true, false, {}, {}};
+    return {&gimbals.viewpro_caps, nullptr, false, true, {}, {}};
 }
 
 void check(const gp::Mapped& mapped) {

@@ -39,10 +39,13 @@ struct TestGimbal {
     bool connected = true;
     bool stale = false;
     std::optional<gimbal::state::VideoState> video;
+    bool visual_tracking = false;  // video.tracking: STATE `track` is `track`
+    std::optional<gimbal::state::TrackState> track;
 
     gimbal::session::GimbalView view() const {
-        gimbal::session::GimbalView v{&capabilities(), telemetry(), connected, stale, {}};
+        gimbal::session::GimbalView v{&capabilities(), telemetry(), connected, stale, {}, {}};
         if (video) v.video = [video = video] { return video; };
+        if (visual_tracking) v.track = [track = track] { return track; };
         return v;
     }
 };

@@ -294,7 +294,7 @@ TEST_CASE("limits no gimbal has are unknown, and not relayed to ground stations"
     CHECK_FALSE(l.pan_min_deg);
     // What the gimbal manager relays: the defaults for unknown limits, never the absurd ones.
     const gimbal_protocol::ExposedGimbal g{"g", "mavlink", 1, 154};
-    const session::GimbalView view{&p.capabilities(), p.telemetry(), true, false, {}};
+    const session::GimbalView view{&p.capabilities(), p.telemetry(), true, false, {}, {}};
     const auto m = gimbal_protocol::manager_information(g, view, 0);
     CHECK(m.pitch_min == Approx(-std::numbers::pi / 2));
     CHECK(m.pitch_max == Approx(std::numbers::pi / 2));
@@ -313,7 +313,7 @@ TEST_CASE("limits no gimbal has are unknown, and not relayed to ground stations"
     orion.packets.limits = state::Received<orion::Limits>{inverted, nullptr, 0};
     const protocols::OrionCapabilities orion_caps(orion);
     const auto m2 =
-        gimbal_protocol::manager_information(g, {&orion_caps, nullptr, true, false, {}}, 0);
+        gimbal_protocol::manager_information(g, {&orion_caps, nullptr, true, false, {}, {}}, 0);
     CHECK(m2.pitch_min == Approx(-std::numbers::pi / 2));
     CHECK(m2.yaw_max == Approx(std::numbers::pi));
 }
