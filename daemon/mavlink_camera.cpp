@@ -48,6 +48,7 @@ std::vector<gp::ExposedCamera> expose_cameras(
         if (const auto it = videos.find(g.name); it != videos.end()) {
             c.video = true;
             c.streams = camera_streams(g.name, it->second);
+            c.visual_tracking = it->second.tracking.has_value();
         }
         out.push_back(std::move(c));
     }

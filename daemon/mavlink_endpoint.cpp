@@ -26,6 +26,11 @@ namespace {
 // One tick every 100 ms: attitude 10 Hz, manager status 5 Hz, FOV 2 Hz, heartbeat 1 Hz.
 constexpr auto tick_period = std::chrono::milliseconds(100);
 
+// A status interval (ms) in ticks: at least one.
+std::uint64_t ticks_every(std::uint32_t ms) {
+    return std::max<std::uint64_t>(1, ms / 100);
+}
+
 std::vector<gp::ExposedGimbal> exposed(const std::vector<GimbalSession*>& sessions,
                                        std::uint8_t first_component) {
     std::vector<std::pair<std::string, std::string>> list;
@@ -330,6 +335,9 @@ void MavlinkEndpoint::on_camera_command(const gp::CommandView& command,
     const Ran ran = run(std::move(mapped.mapped), from, command.command, camera.component_id);
     if (ran.result != mav::MavResult::accepted) return;
     if (mapped.track == gp::TrackChange::start) hold(camera, ran.results, mapped.radius);
+    // A visual track replaces a held point (its status is STATE `track`).
+    if (mapped.track == gp::TrackChange::visual)
+        release(camera.gimbal.device_id, "a visual track (MAV_CMD_CAMERA_TRACK_*)");
     if (mapped.track == gp::TrackChange::stop)
         release(camera.gimbal.device_id, "MAV_CMD_CAMERA_STOP_TRACKING");
 }
@@ -512,6 +520,7 @@ void MavlinkEndpoint::on_tick() {
     check_held();
     for (const auto& c : cameras_.cameras()) {
         if (ticks_ % 10 == 1) send(gp::camera_heartbeat(), c.component_id);
+        if (c.visual_tracking) send_visual_status(c, state_of(c.gimbal.name));
         const auto it = held_.find(c.gimbal.device_id);
         if (ticks_ % 5 != 0 && it == held_.end()) continue;
         const gimbal::session::GimbalView state = state_of(c.gimbal.name);
@@ -519,16 +528,39 @@ void MavlinkEndpoint::on_tick() {
         if (it == held_.end()) continue;
         Held& h = it->second;
         const auto& intervals = cameras_.intervals(c.component_id);
-        const auto every = [](std::uint32_t ms) { return std::max<std::uint64_t>(1, ms / 100); };
         if (intervals.geo_ms != 0 && ticks_ >= h.next_geo_tick) {
             send(gp::tracking_geo_status(h.point, state), c.component_id);
-            h.next_geo_tick = ticks_ + every(intervals.geo_ms);
+            h.next_geo_tick = ticks_ + ticks_every(intervals.geo_ms);
         }
         if (intervals.image_ms != 0 && ticks_ >= h.next_image_tick) {
             send(gp::tracking_image_status(h.point, image_at(c.gimbal.name, h.point)),
                  c.component_id);
-            h.next_image_tick = ticks_ + every(intervals.image_ms);
+            h.next_image_tick = ticks_ + ticks_every(intervals.image_ms);
         }
+    }
+}
+
+void MavlinkEndpoint::send_visual_status(const gp::ExposedCamera& c,
+                                         const gimbal::session::GimbalView& state) {
+    VisualStatus& v = visual_[c.component_id];
+    const auto track = state.track ? state.track() : std::nullopt;
+    const auto& intervals = cameras_.intervals(c.component_id);
+    if (!track) {
+        if (!v.running) return;
+        v.running = false;  // one IDLE status, so a ground station stops drawing the box
+        send(gp::visual_tracking_geo_status(std::nullopt, state), c.component_id);
+        if (intervals.image_ms != 0)
+            send(gp::visual_tracking_image_status(std::nullopt), c.component_id);
+        return;
+    }
+    if (!v.running) v = VisualStatus{true, ticks_, ticks_};
+    if (intervals.geo_ms != 0 && ticks_ >= v.next_geo_tick) {
+        send(gp::visual_tracking_geo_status(track, state), c.component_id);
+        v.next_geo_tick = ticks_ + ticks_every(intervals.geo_ms);
+    }
+    if (intervals.image_ms != 0 && ticks_ >= v.next_image_tick) {
+        send(gp::visual_tracking_image_status(track), c.component_id);
+        v.next_image_tick = ticks_ + ticks_every(intervals.image_ms);
     }
 }
 

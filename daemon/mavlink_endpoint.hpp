@@ -123,6 +123,15 @@ class MavlinkEndpoint {
         std::uint64_t next_geo_tick = 0, next_image_tick = 0;
     };
     std::map<std::uint8_t, Held> held_;  // by gimbal device id
+    // A camera's visual track (STATE `track`, whoever started it): when its status messages
+    // are next due, and whether one ran at the last tick (its end sends IDLE once).
+    struct VisualStatus {
+        bool running = false;
+        std::uint64_t next_geo_tick = 0, next_image_tick = 0;
+    };
+    std::map<std::uint8_t, VisualStatus> visual_;  // by camera component id
+    void send_visual_status(const gimbal::gimbal_protocol::ExposedCamera& camera,
+                            const gimbal::session::GimbalView& state);
     boost::asio::steady_timer timer_;
     std::chrono::steady_clock::time_point epoch_;
     std::chrono::steady_clock::time_point next_tick_;

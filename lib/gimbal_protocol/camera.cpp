@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <string_view>
 
 #include "geo/wgs84.hpp"
@@ -126,8 +127,15 @@ CameraMapped CameraComponents::command(const CommandView& cmd, const ExposedCame
         case cc::request_video_stream_status:
             return reply(mav::VideoStreamStatus::id, p[0]);
         case cc::camera_track_point:
-            return track_point(cmd, cam);
+            return cam.visual_tracking ? visual_track(cmd, cam) : track_point(cmd, cam);
+        case cc::camera_track_rectangle:
+            if (!cam.visual_tracking)
+                return {answer(MavResult::unsupported,
+                               cam.gimbal.name + " has no visual tracking (video.tracking)")};
+            return visual_track(cmd, cam);
         case cc::camera_stop_tracking: {
+            const session::GimbalView view = state(cam.gimbal.name);
+            if (view.track && view.track()) return stop_tracking(cam);
             if (!cam.can_point)
                 return {answer(MavResult::unsupported, cam.gimbal.name + " cannot track a point")};
             // Stop staring and hold where the camera looks (as MAV_CMD_DO_SET_ROI_NONE).
@@ -233,6 +241,53 @@ CameraMapped CameraComponents::track_point(const CommandView& cmd, const Exposed
     return out;
 }
 
+// TRACK_POINT (x, y, radius) or TRACK_RECTANGLE (top left x, y, bottom right x, y), each
+// 0..1 from the image's top left, as `track` in the contract's -1..1 from the centre.
+CameraMapped CameraComponents::visual_track(const CommandView& cmd,
+                                            const ExposedCamera& cam) const {
+    const auto& p = cmd.param;
+    const bool rectangle = cmd.command == cc::camera_track_rectangle;
+    // The target camera: 0 (or unset) for us, or our own component id (param4 of TRACK_POINT,
+    // param5 of TRACK_RECTANGLE).
+    double target = p[3];
+    if (rectangle)  // param5: a COMMAND_INT's x is scaled as degrees from degE7
+        target = cmd.x_unset ? std::nan("") : cmd.is_int ? std::round(cmd.x * 1e7) : cmd.x;
+    if (!std::isnan(target) && target != 0 && target != cam.component_id)
+        return {answer(MavResult::denied, "target camera id is not this camera")};
+    const std::size_t corners = rectangle ? 4 : 2;
+    for (std::size_t i = 0; i < corners; ++i)
+        if (!std::isfinite(p[i]) || p[i] < 0 || p[i] > 1)
+            return {answer(MavResult::denied, "image coordinates are 0..1")};
+    const auto centred = [&](std::size_t i) { return 2.0 * static_cast<double>(p[i]) - 1.0; };
+    nlohmann::json request = {{"cmd", "track"}, {"gimbal", cam.gimbal.name}};
+    if (rectangle) {
+        if (p[2] <= p[0] || p[3] <= p[1])
+            return {answer(MavResult::denied,
+                           "the rectangle's bottom right must be below and "
+                           "right of its top left")};
+        request.update(
+            {{"x0", centred(0)}, {"y0", centred(1)}, {"x1", centred(2)}, {"y1", centred(3)}});
+    } else {
+        request.update({{"x", centred(0)}, {"y", centred(1)}});
+        // The radius (a share of the image width) sizes the box: twice it, within track's
+        // `size` range; none or 0: track's default.
+        if (std::isfinite(p[2]) && p[2] > 0)
+            request["size"] = std::clamp(2.0 * static_cast<double>(p[2]), 0.01, 0.5);
+    }
+    CameraMapped out;
+    out.track = TrackChange::visual;
+    out.mapped.requests.push_back({cam.gimbal.name, std::move(request)});
+    return out;
+}
+
+CameraMapped CameraComponents::stop_tracking(const ExposedCamera& cam) const {
+    CameraMapped out;
+    out.track = TrackChange::visual;
+    out.mapped.requests.push_back(
+        {cam.gimbal.name, {{"cmd", "track_stop"}, {"gimbal", cam.gimbal.name}}});
+    return out;
+}
+
 Mapped CameraComponents::set_interval(const CommandView& cmd, const ExposedCamera& cam) {
     const float id = cmd.param[0];
     const float interval_us = cmd.param[1];
@@ -260,6 +315,8 @@ mav::CameraInformation camera_component_information(const ExposedCamera& cam,
     c.flags = 0;
     if (cam.can_zoom) c.flags |= f::has_basic_zoom;
     if (cam.can_point) c.flags |= f::has_tracking_point | f::has_tracking_geo_status;
+    if (cam.visual_tracking)
+        c.flags |= f::has_tracking_point | f::has_tracking_rectangle | f::has_tracking_geo_status;
     if (cam.video) c.flags |= f::has_video_stream;
     c.gimbal_device_id = cam.gimbal.device_id;
     c.camera_device_id = 0;  // a MAVLink camera with its own component id
@@ -359,6 +416,50 @@ mav::CameraTrackingImageStatus tracking_image_status(const std::optional<HeldPoi
     if (at) {
         s.point_x = static_cast<float>((at->x + 1) / 2);
         s.point_y = static_cast<float>((at->y + 1) / 2);
+    }
+    return s;
+}
+
+mav::CameraTrackingImageStatus visual_tracking_image_status(
+    const std::optional<state::TrackState>& track) {
+    mav::CameraTrackingImageStatus s;
+    if (!track) return s;
+    s.tracking_status =
+        track->state == "tracking" ? mav::tracking::status_active : mav::tracking::status_error;
+    s.tracking_mode = mav::tracking::mode_rectangle;
+    s.target_data = mav::tracking::target_data_in_status;
+    const auto unit = [](double v) { return static_cast<float>((v + 1) / 2); };
+    s.point_x = unit(track->centre.x);
+    s.point_y = unit(track->centre.y);
+    s.rec_top_x = unit(track->box.x0);
+    s.rec_top_y = unit(track->box.y0);
+    s.rec_bottom_x = unit(track->box.x1);
+    s.rec_bottom_y = unit(track->box.y1);
+    return s;
+}
+
+mav::CameraTrackingGeoStatus visual_tracking_geo_status(
+    const std::optional<state::TrackState>& track, const session::GimbalView& state) {
+    mav::CameraTrackingGeoStatus s;
+    if (!track) return s;
+    const std::uint8_t status =
+        track->state == "tracking" ? mav::tracking::status_active : mav::tracking::status_error;
+    if (!track->ground) {  // not located yet: position unknown (0, 0 and NaN)
+        s.tracking_status = status;
+        return s;
+    }
+    HeldPoint at;
+    at.lat = track->ground->lat;
+    at.lon = track->ground->lon;
+    at.alt = track->ground->alt;
+    const auto* t = state.telemetry;
+    if (t && t->geoid_undulation) at.alt_msl = at.alt - *t->geoid_undulation;
+    s = tracking_geo_status(at, state);
+    s.tracking_status = status;
+    if (track->velocity) {
+        s.vel_n = static_cast<float>(track->velocity->north);
+        s.vel_e = static_cast<float>(track->velocity->east);
+        s.hdg = static_cast<float>(track->velocity->course * std::numbers::pi / 180.0);
     }
     return s;
 }

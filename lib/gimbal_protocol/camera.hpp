@@ -1,7 +1,9 @@
 // The MAVLink camera component of each gimbal (contract section 16): what a ground station's
 // camera manager (QGroundControl's, MAVSDK's Camera plugin) asks of a camera, answered from the
-// gimbal's typed state and its relayed video (section 17). Click-to-track
-// (MAV_CMD_CAMERA_TRACK_POINT) becomes the `point` command with stare. Pure: the state comes in
+// gimbal's typed state and its relayed video (section 17). With visual tracking (section 20:
+// video.tracking), MAV_CMD_CAMERA_TRACK_POINT and _TRACK_RECTANGLE become `track` and the
+// tracking status messages carry STATE `track`; without, TRACK_POINT becomes the `point`
+// command with stare (a held ground point). Pure: the state comes in
 // through a lookup, time as time_boot_ms; the daemon executes the requests and sends the
 // replies.
 #pragma once
@@ -14,6 +16,7 @@
 
 #include "gimbal_protocol/commands.hpp"
 #include "mavlink/messages.hpp"
+#include "state/track_state.hpp"
 
 namespace gimbal::gimbal_protocol {
 
@@ -30,6 +33,8 @@ struct ExposedCamera {
     bool video = false;      // the gimbal has a `video` section
     bool can_point = false;  // its capabilities point at a location (TRACK_POINT)
     bool can_zoom = false;   // its capabilities zoom (SET_CAMERA_ZOOM)
+    // Its video has `tracking`: TRACK_POINT and TRACK_RECTANGLE start a visual track.
+    bool visual_tracking = false;
     std::vector<CameraStream> streams;
 };
 
@@ -40,7 +45,8 @@ std::uint8_t camera_component(std::uint8_t device_id);
 mavlink::Heartbeat camera_heartbeat();
 
 // What a command does to the camera's click-to-track state, once its requests succeeded.
-enum class TrackChange : std::uint8_t { none, start, stop };
+// `visual`: a visual track started or stopped (its status is STATE `track`, nothing held).
+enum class TrackChange : std::uint8_t { none, start, stop, visual };
 
 struct CameraMapped {
     Mapped mapped;
@@ -82,6 +88,8 @@ class CameraComponents {
     Mapped request(std::uint32_t msgid, float param2, const ExposedCamera& cam,
                    const session::GimbalView& state, std::uint32_t time_boot_ms) const;
     CameraMapped track_point(const CommandView& cmd, const ExposedCamera& cam) const;
+    CameraMapped visual_track(const CommandView& cmd, const ExposedCamera& cam) const;
+    CameraMapped stop_tracking(const ExposedCamera& cam) const;
     Mapped set_interval(const CommandView& cmd, const ExposedCamera& cam);
 
     std::vector<ExposedCamera> cameras_;
@@ -117,5 +125,14 @@ struct ImageAt {
 };
 mavlink::CameraTrackingImageStatus tracking_image_status(const std::optional<HeldPoint>& held,
                                                          const std::optional<ImageAt>& at);
+
+// A visual track's status (STATE `track`; nullopt: IDLE). Image: the box and its centre,
+// ACTIVE while `tracking`, ERROR while `lost` (the object is not seen; the gimbal coasts on
+// its predicted position). Geo: the object's ground position (AMSL when the gimbal reports
+// its geoid undulation), velocity and course, and its distance from the camera.
+mavlink::CameraTrackingImageStatus visual_tracking_image_status(
+    const std::optional<state::TrackState>& track);
+mavlink::CameraTrackingGeoStatus visual_tracking_geo_status(
+    const std::optional<state::TrackState>& track, const session::GimbalView& state);
 
 }  // namespace gimbal::gimbal_protocol

@@ -162,6 +162,7 @@ namespace camera_cap {
 inline constexpr std::uint32_t has_basic_zoom = 64;
 inline constexpr std::uint32_t has_video_stream = 256;
 inline constexpr std::uint32_t has_tracking_point = 512;
+inline constexpr std::uint32_t has_tracking_rectangle = 1024;
 inline constexpr std::uint32_t has_tracking_geo_status = 2048;
 }  // namespace camera_cap
 
@@ -183,8 +184,10 @@ inline constexpr std::uint8_t storage_status_not_supported = 3;
 namespace tracking {
 inline constexpr std::uint8_t status_idle = 0;
 inline constexpr std::uint8_t status_active = 1;
+inline constexpr std::uint8_t status_error = 2;
 inline constexpr std::uint8_t mode_none = 0;
 inline constexpr std::uint8_t mode_point = 1;
+inline constexpr std::uint8_t mode_rectangle = 2;
 inline constexpr std::uint8_t target_data_in_status = 4;
 }  // namespace tracking
 

@@ -14,8 +14,8 @@ import time
 
 MAGIC_V2 = 0xFD
 # CRC_EXTRA of the messages used here (common.xml, the MAVLink guide's algorithm).
-CRC_EXTRA = {0: 50, 30: 39, 33: 104, 75: 158, 76: 152, 77: 143, 259: 92, 280: 70, 281: 48,
-             285: 137}
+CRC_EXTRA = {0: 50, 30: 39, 33: 104, 75: 158, 76: 152, 77: 143, 259: 92, 275: 126, 276: 18,
+             280: 70, 281: 48, 285: 137}
 SIGNING_EPOCH = 1420070400  # 2015-01-01
 
 MAV_CMD_DO_SET_ROI_LOCATION = 195

@@ -6,15 +6,20 @@ nowhere else, with a dark ring); `project` says where it appears; `track` on tha
 follows it: STATE `track` shows it tracking with a ground position near the landmark's true
 one. `track_stop` ends it (track_end, stopped). A gimbal without video answers `track` with
 `unavailable`. A gimbal-track killed with SIGKILL ends the running track (no_video) while
-gimbald keeps answering, and is started again.
+gimbald keeps answering, and is started again. A MAVLink ground station that acts as
+QGroundControl does (SET_MESSAGE_INTERVAL for CAMERA_TRACKING_IMAGE_STATUS, then
+CAMERA_TRACK_RECTANGLE) starts the track and sees its box and ground position in the
+tracking status messages; STOP_TRACKING ends it.
 """
 
 import math
 import os
 import signal
+import struct
 import time
 
 import gimbaltest as gt
+import mavlinktest as mt
 import skipping
 
 GIMBAL_TRACK = os.environ.get("GIMBAL_TRACK")
@@ -42,13 +47,17 @@ class Tracking(gt.GimbaldTestCase):
         if not GIMBAL_TRACK:
             skipping.need_for_file("GIMBAL_TRACK not set")
         cls.video_port = gt.free_port()
+        cls.vehicle_port = gt.free_port()
         cls.sim = cls.start_class_sim("--video", "udp://127.0.0.1:%d" % cls.video_port,
                                       "--speed", "0", want=("tcp", "video"))
         cls.daemon = cls.start_class_daemon({"gimbals": [
             dict(gt.orion_tcp("main", cls.sim.port),
                  video={"input": "udp://127.0.0.1:%d" % cls.video_port,
                         "tracking": {"tracker": "kcf"}}),
-            {"name": "nose", "protocol": "viewpro", "link": {"type": "sim"}}]})
+            {"name": "nose", "protocol": "viewpro", "link": {"type": "sim"}}],
+            "vehicle": {"source": {"type": "udp", "bind": "127.0.0.1",
+                                   "port": cls.vehicle_port}},
+            "mavlink": {"gimbal_manager": True, "system_id": 1}})
 
     def setUp(self):
         super().setUp()
@@ -130,6 +139,58 @@ class Tracking(gt.GimbaldTestCase):
         self.assertFalse(reply["track"]["steer"])
         self.assertOk(self.c.request("geopoint", gimbal="main", **FARM))
         self.assertTrue(self.track_ends(reply["track"]["id"], "overridden"))
+
+    def test_mavlink_track_rectangle_as_qgroundcontrol_does(self):
+        at = self.look_at_farm()
+        gcs = mt.Peer(self.vehicle_port)
+        self.addCleanup(gcs.close)
+        camera = 100  # the Orion's camera component
+        self.assertEqual(gcs.command(mt.MAV_CMD_REQUEST_MESSAGE, [259], target_component=camera),
+                         0)
+        info = gcs.wait(lambda m: m[3] == 259 and m[2] == camera)
+        self.assertIsNotNone(info, "no CAMERA_INFORMATION")
+        # flags: after time_boot_ms, firmware_version, focal_length and the sensor size.
+        flags = struct.unpack_from("<I", info[4] + b"\0" * 240, 20)[0]
+        for flag in (512, 1024, 2048):  # HAS_TRACKING_POINT, _RECTANGLE, _GEO_STATUS
+            self.assertTrue(flags & flag, "flags %#x lack %d" % (flags, flag))
+        # QGroundControl asks for the image status before it draws the box (10 Hz here).
+        self.assertEqual(gcs.command(511, [275, 100000], target_component=camera), 0)
+        x, y = (at["x"] + 1) / 2, (at["y"] + 1) / 2
+        half = 0.04
+        since = time.monotonic()
+        self.assertEqual(gcs.command(2005, [x - half, y - half, x + half, y + half],
+                                     target_component=camera), 0)
+        located = self.wait_track(lambda t: t["state"] == "tracking" and t["ground"] and
+                                  t["frames"] >= 10)
+        self.assertTrue(located, "no located track: %s" % state(self.c, keys=["track"]))
+
+        # CAMERA_TRACKING_IMAGE_STATUS: ACTIVE, mode RECTANGLE, the box about the farm.
+        image = gcs.wait(lambda m: m[3] == 275 and m[2] == camera and
+                         len(m[4]) >= 29 and m[4][28] == 1, 5, since)
+        self.assertIsNotNone(image, "no ACTIVE CAMERA_TRACKING_IMAGE_STATUS")
+        payload = image[4] + b"\0" * (32 - len(image[4]))
+        px, py, _, tx, ty, bx, by, status, mode, data = struct.unpack_from("<7f3B", payload)
+        self.assertEqual((status, mode, data), (1, 2, 4))
+        self.assertAlmostEqual(px, x, delta=0.05)
+        self.assertAlmostEqual(py, y, delta=0.05)
+        self.assertTrue(tx < px < bx and ty < py < by, (tx, ty, px, py, bx, by))
+        # CAMERA_TRACKING_GEO_STATUS: the object's ground position, near the farm.
+        geo = gcs.wait(lambda m: m[3] == 276 and m[2] == camera and
+                       struct.unpack_from("<i", m[4], 0)[0] != 0, 5, since)
+        self.assertIsNotNone(geo, "no located CAMERA_TRACKING_GEO_STATUS")
+        payload = geo[4] + b"\0" * (50 - len(geo[4]))
+        lat, lon = struct.unpack_from("<ii", payload)
+        status = payload[48]
+        self.assertEqual(status, 1)
+        self.assertLess(gt.ground_distance_m(lat / 1e7, lon / 1e7, FARM["lat"], FARM["lon"]), 60)
+
+        # STOP_TRACKING: track_stop, then one IDLE status.
+        since = time.monotonic()
+        self.assertEqual(gcs.command(2010, [], target_component=camera), 0)
+        self.assertTrue(self.track_ends(located["id"], "stopped"))
+        idle = gcs.wait(lambda m: m[3] == 276 and m[2] == camera and
+                        (m[4] + b"\0" * 50)[48] == 0, 3, since)
+        self.assertIsNotNone(idle, "no IDLE CAMERA_TRACKING_GEO_STATUS after the stop")
 
     def test_bad_requests_change_nothing(self):
         self.assertError(self.c.request("track", gimbal="main"), "bad_request")

@@ -306,3 +306,141 @@ TEST_CASE("CAMERA_TRACKING_GEO_STATUS and IMAGE_STATUS") {
     CHECK(std::isnan(tracking_image_status(p, std::nullopt).point_x));
     CHECK(tracking_image_status(std::nullopt, std::nullopt).tracking_status == 0);
 }
+
+namespace {
+
+// The Orion's camera with video.tracking (contract section 20).
+CameraComponents visual_cameras() {
+    auto cams = cameras();
+    cams[0].visual_tracking = true;
+    return CameraComponents(cams);
+}
+
+gimbal::state::TrackState a_track() {
+    gimbal::state::TrackState t;
+    t.id = 7;
+    t.state = "tracking";
+    t.box = {-0.2, 0.1, 0.0, 0.3};
+    t.centre = {-0.1, 0.2};
+    t.confidence = 0.8;
+    t.ground = gimbal::state::TrackGround{45.01, -121.0, 79.0};
+    t.velocity = gimbal::state::TrackVelocity{3.0, 4.0, 5.0, 53.13};
+    return t;
+}
+
+}  // namespace
+
+TEST_CASE("visual tracking: TRACK_POINT and TRACK_RECTANGLE become track, flags say so") {
+    auto c = visual_cameras();
+    const auto cam = *c.find(100);
+    namespace f = mav::camera_cap;
+    CHECK(camera_component_information(cam, orion_state(), 0).flags ==
+          (f::has_basic_zoom | f::has_video_stream | f::has_tracking_point |
+           f::has_tracking_rectangle | f::has_tracking_geo_status));
+
+    const auto point = c.command(
+        long_cmd(cc::camera_track_point, {0.7f, 0.4f, 0.05f, 0, 0, 0, 0}, 100), cam, states(), 0);
+    CHECK(point.track == TrackChange::visual);
+    REQUIRE(point.mapped.requests.size() == 1);
+    const auto& p = point.mapped.requests[0].request;
+    CHECK(p["cmd"] == "track");
+    CHECK(p["gimbal"] == "main");
+    CHECK(p["x"].get<double>() == Approx(0.4).margin(1e-6));
+    CHECK(p["y"].get<double>() == Approx(-0.2).margin(1e-6));
+    CHECK(p["size"].get<double>() == Approx(0.1).margin(1e-6));  // twice the radius
+    CHECK_FALSE(p.contains("stare"));
+    // No radius: track's own default size.
+    const auto bare = c.command(
+        long_cmd(cc::camera_track_point, {0.5f, 0.5f, NaN, 0, 0, 0, 0}, 100), cam, states(), 0);
+    REQUIRE(bare.mapped.requests.size() == 1);
+    CHECK_FALSE(bare.mapped.requests[0].request.contains("size"));
+
+    const auto rect =
+        c.command(long_cmd(cc::camera_track_rectangle, {0.25f, 0.5f, 0.75f, 1.0f, 0, 0, 0}, 100),
+                  cam, states(), 0);
+    CHECK(rect.track == TrackChange::visual);
+    REQUIRE(rect.mapped.requests.size() == 1);
+    const auto& r = rect.mapped.requests[0].request;
+    CHECK(r["cmd"] == "track");
+    CHECK(r["x0"] == -0.5);
+    CHECK(r["y0"] == 0.0);
+    CHECK(r["x1"] == 0.5);
+    CHECK(r["y1"] == 1.0);
+}
+
+TEST_CASE("visual tracking: refusals change nothing; without tracking a rectangle is unsupported") {
+    auto c = visual_cameras();
+    const auto cam = *c.find(100);
+    for (const auto& p : {std::array<float, 7>{0.5f, 0.5f, 0.4f, 0.9f, 0, 0, 0},  // inverted
+                          std::array<float, 7>{0.1f, 0.1f, 0.1f, 0.9f, 0, 0, 0},  // no width
+                          std::array<float, 7>{0.1f, 0.1f, 1.5f, 0.9f, 0, 0, 0},
+                          std::array<float, 7>{0.1f, NaN, 0.5f, 0.9f, 0, 0, 0},
+                          std::array<float, 7>{0.1f, 0.1f, 0.5f, 0.9f, 101, 0, 0}}) {
+        const auto out = c.command(long_cmd(cc::camera_track_rectangle, p, 100), cam, states(), 0);
+        CHECK(out.mapped.result == MavResult::denied);
+        CHECK(out.mapped.requests.empty());
+    }
+    CameraComponents plain(cameras());
+    const auto out =
+        plain.command(long_cmd(cc::camera_track_rectangle, {0.1f, 0.1f, 0.5f, 0.9f, 0, 0, 0}, 100),
+                      *plain.find(100), states(), 0);
+    CHECK(out.mapped.result == MavResult::unsupported);
+    CHECK(out.mapped.requests.empty());
+}
+
+TEST_CASE("visual tracking: STOP_TRACKING stops a running track, else holds as before") {
+    auto c = visual_cameras();
+    auto orion = orion_state();
+    orion->visual_tracking = true;
+    orion->track = a_track();
+    const auto stop = c.command(long_cmd(cc::camera_stop_tracking, {0, 0, 0, 0, 0, 0, 0}, 100),
+                                *c.find(100), states(orion), 0);
+    CHECK(stop.track == TrackChange::visual);
+    REQUIRE(stop.mapped.requests.size() == 1);
+    CHECK(stop.mapped.requests[0].request["cmd"] == "track_stop");
+    orion->track.reset();
+    const auto none = c.command(long_cmd(cc::camera_stop_tracking, {0, 0, 0, 0, 0, 0, 0}, 100),
+                                *c.find(100), states(orion), 0);
+    CHECK(none.track == TrackChange::stop);
+    REQUIRE(none.mapped.requests.size() == 1);
+    CHECK(none.mapped.requests[0].request["cmd"] == "rate");
+}
+
+TEST_CASE("visual tracking: the status messages carry STATE track") {
+    auto t = a_track();
+    const auto image = visual_tracking_image_status(t);
+    CHECK(image.tracking_status == mav::tracking::status_active);
+    CHECK(image.tracking_mode == mav::tracking::mode_rectangle);
+    CHECK(image.target_data == mav::tracking::target_data_in_status);
+    CHECK(image.point_x == Approx(0.45));
+    CHECK(image.point_y == Approx(0.6));
+    CHECK(image.rec_top_x == Approx(0.4));
+    CHECK(image.rec_top_y == Approx(0.55));
+    CHECK(image.rec_bottom_x == Approx(0.5));
+    CHECK(image.rec_bottom_y == Approx(0.65));
+    CHECK(std::isnan(image.radius));
+
+    const auto geo = visual_tracking_geo_status(t, orion_state());
+    CHECK(geo.tracking_status == mav::tracking::status_active);
+    CHECK(geo.lat == 450100000);
+    CHECK(geo.lon == -1210000000);
+    CHECK(geo.alt == 100.0f);  // 79 m above the ellipsoid, the geoid 21 m below it
+    CHECK(geo.vel_n == 3.0f);
+    CHECK(geo.vel_e == 4.0f);
+    CHECK(geo.hdg == Approx(53.13 * deg));
+    CHECK(geo.dist == Approx(std::hypot(1111.5, 1421.0)).epsilon(0.005));
+
+    // Lost: ERROR (not seen, coasting); not located yet: no position.
+    t.state = "lost";
+    t.ground.reset();
+    t.velocity.reset();
+    CHECK(visual_tracking_image_status(t).tracking_status == mav::tracking::status_error);
+    const auto unlocated = visual_tracking_geo_status(t, orion_state());
+    CHECK(unlocated.tracking_status == mav::tracking::status_error);
+    CHECK(unlocated.lat == 0);
+    CHECK(std::isnan(unlocated.dist));
+    // None: IDLE.
+    CHECK(visual_tracking_image_status(std::nullopt).tracking_status == mav::tracking::status_idle);
+    CHECK(visual_tracking_geo_status(std::nullopt, orion_state()).tracking_status ==
+          mav::tracking::status_idle);
+}
