@@ -36,6 +36,8 @@
 
     move(ev) {
       if (!this.start) return;
+      // Released outside the window: no mouseup came.
+      if ((ev.buttons & 1) === 0) { this.cancel(); return; }
       if (!this.dragging && Math.hypot(ev.clientX - this.start.x, ev.clientY - this.start.y) < DRAG_PX) return;
       this.dragging = true;
       const r = this.target.getBoundingClientRect();
