@@ -12,8 +12,6 @@
   const LASER_CONFIRM_S = 5;
   // Ground height assumed for a click when the gimbal reports no target (docs/console.md).
   const FALLBACK_BELOW_AIRCRAFT_M = 300;
-  // Ground points kept of a visually tracked object's trail on the plan view.
-  const OBJECT_TRAIL_POINTS = 300;
 
   const $ = (id) => document.getElementById(id);
   const app = {
@@ -23,7 +21,7 @@
     tracks: {}, // gimbal name -> [{t, lat, lon}]
     groundAlt: {}, // gimbal name -> latest known target altitude (WGS84)
     clicks: {}, // gimbal name -> last click {lat, lon}
-    objects: {}, // gimbal name -> the visual track's ground trail {id, trail: [{lat, lon}]}
+    objects: new window.GimbaldObjectTrails(), // the visually tracked objects' ground trails
     events: [],
     selected: null,
     socket: null,
@@ -100,20 +98,8 @@
       aircraft, alt, target, footprint, uav,
       track: app.tracks[name] || [],
       click: app.clicks[name] || null,
-      object: objectOf(name),
+      object: app.objects.view(name, s.track),
     };
-  }
-
-  // The visual track for the plan view: the trail of its id, where the object is now while
-  // it runs (after it ends the trail stays until the next track starts).
-  function objectOf(name) {
-    const o = app.objects[name];
-    if (!o) return null;
-    const tr = app.states[name] && app.states[name].track;
-    const running = tr && tr.id === o.id;
-    const g = running && tr.ground;
-    return { id: o.id, state: running ? tr.state : 'ended', trail: o.trail,
-      current: g && Number.isFinite(g.lat) ? { lat: g.lat, lon: g.lon } : null };
   }
 
   function render() {
@@ -346,23 +332,10 @@
   }
 
   // ---- state intake --------------------------------------------------------------------
-  // The visual track's ground trail: a new id starts a new trail.
-  function followObject(name, tr) {
-    if (!tr) return;
-    let o = app.objects[name];
-    if (!o || o.id !== tr.id) o = app.objects[name] = { id: tr.id, trail: [] };
-    const g = tr.ground;
-    // Only where the tracker saw it: while lost, `ground` is the filter's prediction.
-    if (tr.state !== 'tracking' || !g || !Number.isFinite(g.lat)) return;
-    const last = o.trail[o.trail.length - 1];
-    if (!last || last.lat !== g.lat || last.lon !== g.lon) o.trail.push({ lat: g.lat, lon: g.lon });
-    if (o.trail.length > OBJECT_TRAIL_POINTS) o.trail.shift();
-  }
-
   function takeState(name, state) {
     app.states[name] = state;
     app.received[name] = Date.now();
-    followObject(name, state.track);
+    app.objects.take(name, state.track);
     const view = viewOf(name);
     if (view && view.aircraft) {
       const track = (app.tracks[name] = app.tracks[name] || []);
@@ -725,7 +698,7 @@
     const s = app.states[name];
     if (!s || track === undefined) return;
     s.track = track;
-    followObject(name, track);
+    app.objects.take(name, track);
     if (name === app.selected) render();
   }
   async function stopTrack() {
