@@ -1,7 +1,8 @@
 // The operator console: loads /api/console and /api/state, follows /api/stream (WebSocket,
 // reconnecting), keeps a track per gimbal, fills the side panels, sends commands with
-// POST /api/command, shows the gimbal's video with its overlays and click-to-point (video.js,
-// video_overlay.js), and exposes what it drew as window.gimbaldConsole (docs/console.md).
+// POST /api/command, shows the gimbal's video with its overlays, click-to-point and
+// drag-to-track (video.js, video_overlay.js, track_box.js), and exposes what it drew as
+// window.gimbaldConsole (docs/console.md).
 'use strict';
 
 (function () {
@@ -20,6 +21,7 @@
     tracks: {}, // gimbal name -> [{t, lat, lon}]
     groundAlt: {}, // gimbal name -> latest known target altitude (WGS84)
     clicks: {}, // gimbal name -> last click {lat, lon}
+    objects: new window.GimbaldObjectTrails(), // the visually tracked objects' ground trails
     events: [],
     selected: null,
     socket: null,
@@ -36,6 +38,7 @@
     projecting: false,
     projectedAt: 0,
     lastClick: null, // the last click on the picture: {x, y, stare, reply}
+    lastTrack: null, // the last `track` sent from the picture: {request, reply}
     located: {}, // gimbal name -> the ground point the last picture click located
     layout: 'side',
     zoomSentAt: 0,
@@ -95,6 +98,7 @@
       aircraft, alt, target, footprint, uav,
       track: app.tracks[name] || [],
       click: app.clicks[name] || null,
+      object: app.objects.view(name, s.track),
     };
   }
 
@@ -133,7 +137,8 @@
       drawn: map.drawn,
       lastClick: app.lastClick,
       video: { shown: !$('video-pane').hidden, layout: video.layout, overlay: video.overlay.drawn,
-        points: video.points, lastClick: video.lastClick, located: video.located[app.selected] || null },
+        points: video.points, lastClick: video.lastClick, located: video.located[app.selected] || null,
+        lastTrack: video.lastTrack },
       toScreen: (lat, lon) => map.projection && map.projection.toScreen(lat, lon),
       toLatLon: (x, y) => map.projection && map.projection.toLatLon(x, y),
     };
@@ -157,6 +162,7 @@
     $('zoom-form').hidden = !takes(s, 'camera_zoom');
     $('shift-controls').hidden = !takes(s, 'viewpro_adjust');
     $('map-hint').textContent = !s || takes(s, 'geopoint') ? 'click the map: geopoint' : 'geopoint: not a command of this gimbal';
+    $('video-hint').textContent = videoHint(s);
     if (!s) return;
     const t = s.telemetry;
     const out = s.output;
@@ -329,6 +335,7 @@
   function takeState(name, state) {
     app.states[name] = state;
     app.received[name] = Date.now();
+    app.objects.take(name, state.track);
     const view = viewOf(name);
     if (view && view.aircraft) {
       const track = (app.tracks[name] = app.tracks[name] || []);
@@ -656,13 +663,67 @@
     publishHook();
   }
 
-  // A click on the picture: `point` at that image position (shift: stare); the plan view
-  // marks the ground point gimbald located.
-  $('video').addEventListener('click', async (ev) => {
-    if (!app.selected) return;
+  // A position on the picture in image coordinates (contract section 16: -1..1 from the
+  // centre, +y down), from the page's client pixels.
+  function imagePoint(clientX, clientY) {
     const r = $('video').getBoundingClientRect();
-    const x = Number((((ev.clientX - r.left) / r.width) * 2 - 1).toFixed(5));
-    const y = Number((((ev.clientY - r.top) / r.height) * 2 - 1).toFixed(5));
+    return { x: Number((((clientX - r.left) / r.width) * 2 - 1).toFixed(5)),
+      y: Number((((clientY - r.top) / r.height) * 2 - 1).toFixed(5)) };
+  }
+
+  // ---- visual tracking (contract section 20) ---------------------------------------------
+  // A gimbald with visual tracking has STATE `track` for every gimbal (null when none runs);
+  // whether this gimbal's video has `tracking` configured only its `track` reply tells.
+  function canTrack(s) {
+    return !!s && ('track' in s || takes(s, 'track'));
+  }
+  function videoHint(s) {
+    const track = !s || canTrack(s) ? 'drag a box or alt+click: track \u00b7 Esc: stop tracking'
+      : 'tracking: not offered by this gimbald';
+    return `click: point \u00b7 shift+click: stare \u00b7 ${track} \u00b7 wheel: zoom \u00b7 arrows: rate \u00b7 space: stop`;
+  }
+  // `track` on a box or at a point; a refusal shows in the command panel like any other.
+  async function sendTrack(request) {
+    const sent = { gimbal: app.selected, request, reply: null };
+    video.lastTrack = sent;
+    publishHook();
+    sent.reply = await sendCommand(Object.assign({ cmd: 'track' }, request));
+    if (sent.reply && sent.reply.ok) takeTrack(sent.gimbal, sent.reply.track);
+    publishHook();
+    return sent.reply;
+  }
+  // A `track` or `track_stop` reply is the track as STATE shows it now: drawn (and Esc
+  // works) without waiting for the next STATE.
+  function takeTrack(name, track) {
+    const s = app.states[name];
+    if (!s || track === undefined) return;
+    s.track = track;
+    app.objects.take(name, track);
+    if (name === app.selected) render();
+  }
+  async function stopTrack() {
+    const gimbal = app.selected;
+    const reply = await sendCommand({ cmd: 'track_stop' });
+    if (reply && reply.ok) takeTrack(gimbal, null);
+  }
+  const trackBox = new window.GimbaldTrackBox($('video'), $('track-band'), {
+    toImage: imagePoint,
+    enabled: () => !!app.selected && canTrack(app.states[app.selected]),
+    onBox: (box) => sendTrack(box),
+  });
+
+  // A click on the picture: `point` at that image position (shift: stare); the plan view
+  // marks the ground point gimbald located. Alt+click: `track` at that point.
+  $('video').addEventListener('click', async (ev) => {
+    if (trackBox.swallowClick() || !app.selected) return;
+    const { x, y } = imagePoint(ev.clientX, ev.clientY);
+    if (ev.altKey) {
+      if (canTrack(app.states[app.selected])) { sendTrack({ x, y }); return; }
+      const box = $('last-command');
+      box.className = 'reply err';
+      box.textContent = 'track: this gimbald offers no visual tracking (no STATE `track`)';
+      return;
+    }
     const click = { gimbal: app.selected, x, y, stare: ev.shiftKey, reply: null };
     video.lastClick = click;
     publishHook();
@@ -697,6 +758,15 @@
   document.addEventListener('keydown', (ev) => {
     if (ev.target.closest && ev.target.closest('input, select, textarea')) return;
     const s = app.states[app.selected];
+    // Esc: abandon a drag in progress, else stop the visual track.
+    if (ev.key === 'Escape') {
+      if (trackBox.cancel()) return;
+      if (s && s.track) {
+        ev.preventDefault();
+        stopTrack();
+      }
+      return;
+    }
     if (!takes(s, 'rate')) return;
     if (KEY_RATES[ev.key]) {
       ev.preventDefault();

@@ -1,7 +1,8 @@
 // The plan view: an SVG, north up, centred on the aircraft, in the local tangent plane of
 // geo.js. Draws the aircraft (rotated to heading), line of sight, target, footprint, track,
-// optional XYZ tiles, a scale bar; records what it drew (lat/lon and pixels) for the test hook
-// and as data-* attributes on the SVG elements.
+// a visually tracked object's ground trail and position, optional XYZ tiles, a scale bar;
+// records what it drew (lat/lon and pixels) for the test hook and as data-* attributes on
+// the SVG elements.
 'use strict';
 
 (function (global) {
@@ -30,7 +31,7 @@
       this.drawn = null;
       this.nodes = {};
       for (const id of ['tiles', 'grid', 'track', 'footprint', 'los', 'uav-output', 'target',
-        'click-mark', 'aircraft', 'scale-bar']) {
+        'object-trail', 'object-mark', 'click-mark', 'aircraft', 'scale-bar']) {
         this.nodes[id] = svg.querySelector('#' + id);
       }
       this.resize();
@@ -62,14 +63,16 @@
     }
 
     // view: {gimbal, time_ms, aircraft:{lat,lon,heading}, target:{lat,lon}|null,
-    //        footprint:[{lat,lon}x4]|null, track:[{lat,lon}], uav:{lat,lon}|null, click:{lat,lon}|null}
+    //        footprint:[{lat,lon}x4]|null, track:[{lat,lon}], uav:{lat,lon}|null, click:{lat,lon}|null,
+    //        object:{id, state, trail:[{lat,lon}], current:{lat,lon}|null}|null}
     render(view) {
       this.resize();
       const n = this.nodes;
       if (!view || !view.aircraft) {
         this.projection = null;
         this.drawn = null;
-        for (const id of ['aircraft', 'target', 'los', 'footprint', 'track', 'uav-output', 'click-mark']) {
+        for (const id of ['aircraft', 'target', 'los', 'footprint', 'track', 'uav-output', 'click-mark',
+          'object-trail', 'object-mark']) {
           n[id].setAttribute('visibility', 'hidden');
         }
         this.drawScaleBar();
@@ -95,7 +98,7 @@
       const at = (q) => Object.assign({ lat: q.lat, lon: q.lon }, p.toScreen(q.lat, q.lon));
       const drawn = { gimbal: view.gimbal, system_time_ms: view.time_ms, px_per_m: this.pxPerM,
         aircraft: Object.assign(at(a), { heading: a.heading }), target: null, footprint: null,
-        uav: null };
+        uav: null, object: null };
 
       this.drawTiles(p, a);
       this.drawRangeRings(p);
@@ -145,6 +148,8 @@
         n['uav-output'].setAttribute('visibility', 'hidden');
       }
 
+      drawn.object = this.drawObject(view.object, at);
+
       n['click-mark'].replaceChildren();
       if (view.click) {
         const c = p.toScreen(view.click.lat, view.click.lon);
@@ -165,6 +170,26 @@
 
       this.drawScaleBar();
       this.drawn = drawn;
+    }
+
+    // The visually tracked object (contract section 20): its ground trail, oldest first, and a
+    // square where it is now (dashed while the track is lost: a prediction).
+    drawObject(object, at) {
+      const n = this.nodes;
+      const trail = object ? object.trail.map(at) : [];
+      n['object-trail'].setAttribute('points', trail.map((q) => fmt(q.x) + ',' + fmt(q.y)).join(' '));
+      n['object-trail'].setAttribute('visibility', trail.length > 1 ? 'visible' : 'hidden');
+      n['object-mark'].replaceChildren();
+      const c = object && object.current ? at(object.current) : null;
+      if (c) {
+        n['object-mark'].appendChild(el('rect', { x: fmt(c.x - 6), y: fmt(c.y - 6), width: 12, height: 12 }));
+        n['object-mark'].setAttribute('class', 'object-mark ' + (object.state === 'tracking' ? 'tracking' : 'lost'));
+        this.place(n['object-mark'], c);
+        n['object-mark'].setAttribute('visibility', 'visible');
+      } else {
+        n['object-mark'].setAttribute('visibility', 'hidden');
+      }
+      return object ? { id: object.id, state: object.state, trail, current: c } : null;
     }
 
     // data-lat/lon (the source) and data-x/y (SVG user units = CSS pixels from the SVG's corner).

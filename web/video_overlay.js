@@ -1,7 +1,8 @@
 // What the console draws over the video (an SVG the size of the shown picture): a
 // crosshair, the camera's mode and field of view, a north arrow and the aircraft's heading
-// relative to where the camera looks, and ground points placed where gimbald's `project`
-// command says they appear (image x, y in -1..1). Exposed as window.GimbaldVideoOverlay.
+// relative to where the camera looks, ground points placed where gimbald's `project`
+// command says they appear (image x, y in -1..1), and STATE `track`'s box with its state, id
+// and confidence (contract section 20). Exposed as window.GimbaldVideoOverlay.
 'use strict';
 
 (function (global) {
@@ -99,7 +100,29 @@
         el('text', { x: 11, y: -8 }, g).textContent = p.label;
         drawn.points.push({ name: p.name, x, y });
       }
+      drawn.track = this.drawTrack(state && state.track, W, H);
       this.drawn = drawn;
+    }
+
+    // The visual track's box: solid while `tracking`, dashed in another colour while `lost`
+    // (then it is the tracker's prediction), labelled "tracking #3 0.82". Returns what was
+    // drawn in overlay pixels, or null.
+    drawTrack(track, W, H) {
+      const b = track && track.box;
+      if (!b || ![b.x0, b.y0, b.x1, b.y1].every(Number.isFinite)) return null;
+      const x0 = ((b.x0 + 1) / 2) * W;
+      const y0 = ((b.y0 + 1) / 2) * H;
+      const x1 = ((b.x1 + 1) / 2) * W;
+      const y1 = ((b.y1 + 1) / 2) * H;
+      const lost = track.state !== 'tracking';
+      const g = el('g', { class: 'track-box ' + (lost ? 'lost' : 'tracking') }, this.svg);
+      el('rect', { x: x0.toFixed(2), y: y0.toFixed(2), width: (x1 - x0).toFixed(2), height: (y1 - y0).toFixed(2) }, g);
+      const conf = Number.isFinite(track.confidence) ? track.confidence.toFixed(2) : '-';
+      const label = `${track.state} #${track.id} ${conf}`;
+      // Above the box, or inside its top when the box touches the picture's top edge.
+      el('text', { x: x0.toFixed(2), y: (y0 > 16 ? y0 - 5 : y0 + 14).toFixed(2) }, g).textContent = label;
+      return { id: track.id, state: track.state, confidence: track.confidence, label,
+        x0, y0, x1, y1, at: Date.now() };
     }
   }
 

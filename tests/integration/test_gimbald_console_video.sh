@@ -2,7 +2,8 @@
 # The console's video panel (contract section 18) in Debian's headless chromium, driven by
 # puppeteer-core against gimbald with an in-process simulated Orion and its video
 # (console/console_video_test.js): decoding, click-to-point on a landmark, zoom, keys,
-# layouts, reconnect; prints glass-to-glass latency figures (not checked here:
+# layouts, visual tracking (drag a box, alt+click, Esc; when gimbal-track is found: GIMBAL_TRACK
+# or beside gimbald), reconnect; prints glass-to-glass latency figures (not checked here:
 # scripts/bench-console-video.sh). Exit 77 (skipped) when Node.js or chromium cannot be had
 # (with CI=true it fails instead: skip.sh).
 # The screenshot goes to the current directory (ctest: the build tree) or
@@ -20,4 +21,4 @@ fi
 export CHROMIUM
 need_npm_package "$dir" puppeteer-core
 : "${GIMBALD:?GIMBALD not set}" "${GIMBAL_SIM:?GIMBAL_SIM not set}"
-exec timeout 200 node "$dir/console_video_test.js"
+exec timeout 240 node "$dir/console_video_test.js"

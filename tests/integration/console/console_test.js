@@ -218,7 +218,8 @@ async function main() {
   const config = {
     gimbals: [{ name: 'orion1', protocol: 'orion', link: { type: 'tcp', host: '127.0.0.1', port: simPort } }],
     command: { port: commandPort },
-    http: { bind: '127.0.0.1', port: httpPort },
+    // The checkout's console, wherever the binary was built (a copied one serves the installed).
+    http: { bind: '127.0.0.1', port: httpPort, web_root: path.join(SOURCE_DIR, 'web') },
   };
   const cfgPath = path.join(dir, 'gimbald.json');
   fs.writeFileSync(cfgPath, JSON.stringify(config));
@@ -475,7 +476,7 @@ async function laserSequence(browser, dir) {
   const cfgPath = path.join(dir, 'laser.json');
   fs.writeFileSync(cfgPath, JSON.stringify({
     command: { port: commandPort }, laser: { allow_fire: true },
-    http: { bind: '127.0.0.1', port: httpPort, tiles_url: `http://127.0.0.1:${tiles.port}/{z}/{x}/{y}.svg` },
+    http: { bind: '127.0.0.1', port: httpPort, web_root: path.join(SOURCE_DIR, 'web'), tiles_url: `http://127.0.0.1:${tiles.port}/{z}/{x}/{y}.svg` },
   }));
   const daemon = start(GIMBALD, ['--sim', 'orion,viewpro', '-c', cfgPath, '--log-level', 'warn']);
   const stateOf = async (name) => {

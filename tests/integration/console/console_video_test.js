@@ -6,8 +6,11 @@
 // the picture sends `point` there and brings the farm within 2 % of the image width of the
 // centre within 5 s (by `project`, and by the picture's centre colour), and the plan view
 // marks the located point; shift+click stares; the wheel and the buttons send camera_zoom;
-// the arrows send `rate`, space stops; the layouts at 1280x720 and 1920x1080; the page's video
-// comes back after the daemon restarts. Measures glass-to-glass latency from the simulator's
+// the arrows send `rate`, space stops; the layouts at 1280x720 and 1920x1080; visual tracking
+// (contract section 20, when a gimbal-track is found): a box dragged around the farm starts a
+// track that STATE shows tracking on the farm, the box the page draws stays on the farm, the
+// plan view draws its ground position, alt+click tracks a point, Esc stops; the page's video
+// comes back after the daemon restarts. The page is the checkout's web/ (http.web_root). Measures glass-to-glass latency from the simulator's
 // time code for VIDEO_LATENCY_S seconds (default 5) and prints p50/p95/p99 - figures, never a
 // pass/fail (scripts/bench-console-video.sh runs it longer on a release build).
 // Saves a screenshot (CONSOLE_VIDEO_SCREENSHOT, default ./console-video.png).
@@ -28,6 +31,11 @@ const CHROMIUM = process.env.CHROMIUM || '/usr/bin/chromium';
 const SCREENSHOT = process.env.CONSOLE_VIDEO_SCREENSHOT || path.join(process.cwd(), 'console-video.png');
 const LATENCY_S = Number(process.env.VIDEO_LATENCY_S || 5);
 const LATENCY_ONLY = process.env.VIDEO_LATENCY_ONLY === '1'; // the benchmark: latency alone
+// The console under test: this checkout's web/, wherever the binary was built.
+const WEB_ROOT = path.join(process.env.GIMBAL_SOURCE_DIR || path.resolve(__dirname, '../../..'), 'web');
+// gimbald finds gimbal-track through GIMBAL_TRACK, else beside itself (docs/tracking.md).
+const GIMBAL_TRACK = process.env.GIMBAL_TRACK ||
+  ['.', '../tools', '../bin'].map((d) => path.resolve(path.dirname(GIMBALD || '.'), d, 'gimbal-track')).find((f) => fs.existsSync(f));
 // docs/simulator.md: the landmarks and their colours.
 const LANDMARKS = {
   summit: { lat: 45.732390, lon: -121.541088, alt: 1004.8, rgb: [220, 30, 30] },
@@ -135,8 +143,9 @@ async function main() {
     gimbals: [{ name: 'orion1', protocol: 'orion', link: { type: 'sim' },
       video: { input: `udp://127.0.0.1:${videoPort}` } }],
     command: { port: commandPort },
-    http: { bind: '127.0.0.1', port: httpPort },
+    http: { bind: '127.0.0.1', port: httpPort, web_root: WEB_ROOT },
   };
+  if (GIMBAL_TRACK && !LATENCY_ONLY) config.gimbals[0].video.tracking = { tracker: 'kcf' };
   // gimbald's terrain is the simulator's (its DEM): a click on the picture locates the ground
   // the picture shows.
   const dem = path.join(dir, 'sim-dem.tif');
@@ -395,9 +404,122 @@ async function functional(page, browser, commandPort, httpPort, stats) {
     }
     check(areas.video > areas.side && areas.side > areas.map, `${size.width}x${size.height}: video large > side by side > plan view large (picture areas)`);
   }
+
+  if (GIMBAL_TRACK) await tracking(page, commandPort);
+  else console.log('skip visual tracking: no gimbal-track (GIMBAL_TRACK, or beside gimbald)');
 }
 
-const watchdog = setTimeout(() => { console.log('FAIL timeout'); cleanup(1); }, (150 + LATENCY_S) * 1000);
+// Metres between two {lat, lon, alt} (flat earth: tens of metres apart).
+function metresApart(a, b) {
+  const n = (a.lat - b.lat) * 111132;
+  const e = (a.lon - b.lon) * 111320 * Math.cos(a.lat * Math.PI / 180);
+  return Math.hypot(n, e, (a.alt || 0) - (b.alt || 0));
+}
+
+// Visual tracking from the console (contract section 20, issue 27): drag a box around the
+// farm; STATE `track` tracking on it; the drawn box stays on it while the camera settles;
+// the plan view shows where it is; alt+click tracks a point; Esc stops.
+async function tracking(page, commandPort) {
+  const stateTrack = async () => {
+    const r = await udpRequest(commandPort, { cmd: 'state', gimbal: 'orion1', keys: ['track'] });
+    return r && r.ok ? r.state.track : undefined;
+  };
+  const project = async () => {
+    const r = await udpRequest(commandPort, { cmd: 'project', gimbal: 'orion1', lat: FARM.lat, lon: FARM.lon, alt: FARM.alt });
+    return r && r.ok && r.visible ? r : null;
+  };
+  await udpRequest(commandPort, { cmd: 'geopoint', gimbal: 'orion1', lat: FARM.lat, lon: FARM.lon, alt: FARM.alt });
+  const at = await waitFor(async () => { const p = await project(); return p && Math.abs(p.x) < 0.1 && Math.abs(p.y) < 0.1 ? p : null; }, 20000, 200);
+  if (!check(!!at, 'tracking: the farm near the centre of the picture')) return;
+  const hint = await page.$eval('#video-hint', (e) => e.textContent);
+  check(hint.includes('drag a box') && hint.includes('Esc'), `tracking: the hint names drag, alt+click and Esc ("${hint}")`);
+
+  // Drag a box around the farm: 0.08 image widths square (a point's default), image coordinates.
+  const rect = await page.evaluate(() => { const r = document.getElementById('video').getBoundingClientRect(); return { left: r.left, top: r.top, width: r.width, height: r.height }; });
+  const px = (x, y) => [rect.left + ((x + 1) / 2) * rect.width, rect.top + ((y + 1) / 2) * rect.height];
+  const hx = 0.08;
+  const hy = 0.08 * rect.width / rect.height;
+  const clickBefore = await page.evaluate(() => JSON.stringify(window.gimbaldConsole.video.lastClick));
+  await page.mouse.move(...px(at.x - hx, at.y - hy));
+  await page.mouse.down();
+  await page.mouse.move(...px(at.x, at.y), { steps: 4 });
+  const band = await page.$eval('#track-band', (e) => !e.hidden && e.getBoundingClientRect().width > 5);
+  await page.mouse.move(...px(at.x + hx, at.y + hy), { steps: 4 });
+  await page.mouse.up();
+  const sent = await waitFor(() => page.evaluate(() => {
+    const t = window.gimbaldConsole.video.lastTrack;
+    return t && t.reply ? t : null;
+  }), 5000);
+  const q = sent && sent.request;
+  check(band && sent && sent.reply.ok && q.x0 < q.x1 && q.y0 < q.y1 && Math.abs(q.x0 - (at.x - hx)) < 0.01 &&
+    Math.abs(q.y1 - (at.y + hy)) < 0.01, `tracking: the dragged box (rubber band drawn) sent track ${JSON.stringify(q)}, reply ${sent ? JSON.stringify(sent.reply).slice(0, 160) : '-'}`);
+  const clickAfter = await page.evaluate(() => JSON.stringify(window.gimbaldConsole.video.lastClick));
+  check(clickAfter === clickBefore, 'tracking: the drag sent no point (its click swallowed)');
+  if (!sent || !sent.reply.ok) return;
+  const id = sent.reply.track.id;
+
+  const located = await waitFor(async () => {
+    const t = await stateTrack();
+    return t && t.id === id && t.state === 'tracking' && t.ground && t.frames >= 10 ? t : null;
+  }, 15000, 200);
+  const off = located ? metresApart(located.ground, FARM) : null;
+  check(located && off < 60, `tracking: STATE track ${id} tracking with ground ${off !== null ? off.toFixed(1) : '-'} m from the farm (60 m), confidence ${located && located.confidence}`);
+
+  // The box the page draws (overlay pixels) keeps the farm's projected position inside it.
+  const samples = [];
+  for (let i = 0; i < 6; i++) {
+    await sleep(500);
+    const p = await project();
+    const d = await page.evaluate(() => {
+      const o = window.gimbaldConsole.video.overlay;
+      const r = document.getElementById('video-overlay').getBoundingClientRect();
+      return o && o.track ? Object.assign({ w: r.width, h: r.height }, o.track) : null;
+    });
+    if (!p || !d) { samples.push({ ok: false, p: !!p, d: !!d }); continue; }
+    const fx = ((p.x + 1) / 2) * d.w;
+    const fy = ((p.y + 1) / 2) * d.h;
+    samples.push({ ok: d.id === id && d.state === 'tracking' && fx >= d.x0 && fx <= d.x1 && fy >= d.y0 && fy <= d.y1,
+      farm: [fx.toFixed(0), fy.toFixed(0)], box: [d.x0, d.y0, d.x1, d.y1].map((v) => v.toFixed(0)), label: d.label });
+  }
+  check(samples.every((x) => x.ok) && /^tracking #\d+ \d\.\d\d$/.test(samples[0].label || ''),
+    `tracking: the drawn box stays around the farm for 3 s (${JSON.stringify(samples[0])} ... ${JSON.stringify(samples[samples.length - 1])})`);
+  if (!samples.every((x) => x.ok)) console.log(JSON.stringify(samples));
+
+  const plan = await page.evaluate((f) => {
+    const d = window.gimbaldConsole.drawn;
+    const s = window.gimbaldConsole.toScreen(f.lat, f.lon);
+    return d && d.object && d.object.current && s ? { id: d.object.id, points: d.object.trail.length,
+      px: Math.hypot(d.object.current.x - s.x, d.object.current.y - s.y), px_per_m: d.px_per_m } : null;
+  }, FARM);
+  check(plan && plan.id === id && plan.points >= 1 && plan.px <= 60 * plan.px_per_m + 2,
+    `tracking: the plan view draws the object on the farm (${plan ? `${plan.points} trail points, ${(plan.px / plan.px_per_m).toFixed(1)} m off` : '-'})`);
+
+  // Esc: track_stop; STATE track null, nothing drawn.
+  await page.keyboard.press('Escape');
+  const stopped = await waitFor(async () => (await stateTrack()) === null, 5000, 200);
+  const shown = await page.$eval('#last-command', (e) => e.textContent);
+  const drawn = await waitFor(() => page.evaluate(() => window.gimbaldConsole.video.overlay.track === null), 3000);
+  check(stopped && shown.includes('"cmd":"track_stop"') && shown.includes(`"stopped":${id}`) && drawn,
+    `tracking: Esc sent track_stop, STATE track null, no box drawn (${shown.split('\n')[1] || ''})`);
+
+  // Alt+click on the farm: track at that point; Esc again.
+  const p = await project();
+  if (p) {
+    await page.keyboard.down('Alt');
+    await page.mouse.click(...px(p.x, p.y));
+    await page.keyboard.up('Alt');
+    const alt = await waitFor(() => page.evaluate((prev) => {
+      const t = window.gimbaldConsole.video.lastTrack;
+      return t && t.reply && t.reply.track && t.reply.track.id !== prev ? t : null;
+    }, id), 5000);
+    check(alt && alt.reply.ok && Math.abs(alt.request.x - p.x) < 0.02 && alt.request.x0 === undefined,
+      `tracking: alt+click sent track at the point ${alt ? JSON.stringify(alt.request) : '-'}`);
+    await page.keyboard.press('Escape');
+    check(!!(await waitFor(async () => (await stateTrack()) === null, 5000, 200)), 'tracking: Esc stopped the alt+click track');
+  }
+}
+
+const watchdog = setTimeout(() => { console.log('FAIL timeout'); cleanup(1); }, (190 + LATENCY_S) * 1000);
 function cleanup(code) {
   clearTimeout(watchdog);
   for (const c of children) if (c.exitCode === null) c.kill('SIGKILL');
