@@ -88,6 +88,7 @@ TrackController::TrackController(boost::asio::io_context& io, TrackControllerOpt
       tick_timer_(io) {}
 
 TrackController::~TrackController() {
+    video_.set_visual_track({});  // the video outlives this: it must not call back
     stop();
 }
 

@@ -57,6 +57,7 @@ std::unique_ptr<TrackController> attach_tracking(boost::asio::io_context& io,
     auto& c = *controller;
     session.add_command("track", [&c](const json& request) { return c.track(request); });
     session.add_command("track_stop", [&c](const json& request) { return c.track_stop(request); });
+    video->set_visual_track([&c] { return c.state(); });
     session.add_state_key("track", [&c] {
         const auto s = c.state();
         return s ? gimbal::state::write(*s) : json(nullptr);

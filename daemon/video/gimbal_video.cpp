@@ -259,7 +259,8 @@ void GimbalVideo::watch_counters() {
 void GimbalVideo::generate() {
     if (!generating()) return;
     const auto frame =
-        gimbal::klv_state::sensor_frame(options_.view(), unix_us_now(), options_.config.mission_id);
+        gimbal::klv_state::sensor_frame(options_.view(), unix_us_now(), options_.config.mission_id,
+                                        visual_track_ ? visual_track_() : std::nullopt);
     if (!gimbal::klv_state::has_position(frame)) return;  // nothing known about the camera yet
     klv::Encoded encoded = klv::encode(klv::sensor_set(frame));
     if (!encoded.ok()) {

@@ -27,6 +27,7 @@
 #include "link/lifetime.hpp"
 #include "logging.hpp"
 #include "session/gimbal_view.hpp"
+#include "state/track_state.hpp"
 #include "state/video_state.hpp"
 #include "video/klv_clock.hpp"
 #include "video/klv_track.hpp"
@@ -71,6 +72,12 @@ class GimbalVideo final : public VideoTap {
     const KlvTrack& klv() const { return track_; }
     std::uint64_t generated_sets() const { return generated_; }
 
+    // STATE `track` (contract section 20), read when a set is generated: the track goes into
+    // it as tags 40-42 and the VMTI set (74). Set by the track controller, created after this.
+    void set_visual_track(std::function<std::optional<gimbal::state::TrackState>()> track) {
+        visual_track_ = std::move(track);
+    }
+
     std::uint64_t add_viewer(Viewer viewer) override;
     void remove_viewer(std::uint64_t id) override;
 
@@ -103,6 +110,7 @@ class GimbalVideo final : public VideoTap {
     bool connected_ = false;
     bool running_ = false;
     std::uint64_t generated_ = 0;
+    std::function<std::optional<gimbal::state::TrackState>()> visual_track_;
     std::uint64_t generate_errors_ = 0;
     std::optional<gimbal::state::KlvOffsets> vs_telemetry_;  // until a stream set was compared
     double vs_telemetry_at_s_ = -1e9;
