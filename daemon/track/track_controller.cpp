@@ -88,6 +88,7 @@ TrackController::TrackController(boost::asio::io_context& io, TrackControllerOpt
       tick_timer_(io) {}
 
 TrackController::~TrackController() {
+    session_.set_track({});  // the session outlives this: its view must not call back
     stop();
 }
 

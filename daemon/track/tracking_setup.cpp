@@ -55,6 +55,7 @@ std::unique_ptr<TrackController> attach_tracking(boost::asio::io_context& io,
     auto& c = *controller;
     session.add_command("track", [&c](const json& request) { return c.track(request); });
     session.add_command("track_stop", [&c](const json& request) { return c.track_stop(request); });
+    // STATE `track`, and through the session's view the MAVLink camera and generated KLV.
     session.set_track([&c] { return c.state(); });
     return controller;
 }

@@ -8,6 +8,7 @@
 #include "klv/checksum.hpp"
 #include "klv/local_set.hpp"
 #include "klv/mapping.hpp"
+#include "klv/vmti.hpp"
 
 namespace gimbal::klv {
 
@@ -163,6 +164,25 @@ json list(const TagSpec& row, Span v, bool& valid) {
     return json{{"numerator", values[0]}, {"denominator", values.size() == 2 ? values[1] : 1}};
 }
 
+// Tag 74 (contract section 20): the VMTI set decoded under "vmti" (null when zero-length,
+// ST 0601's "unknown"); one that does not decode keeps its hex under the row's name,
+// "vmti_local_set", and says why under "vmti_error".
+constexpr std::uint32_t vmti_tag = 74;
+
+void add_vmti(json& out, Span value) {
+    if (value.empty()) {
+        out["vmti"] = nullptr;
+        return;
+    }
+    const Result<VmtiSet> vmti = decode_vmti(value);
+    if (vmti.ok()) {
+        out["vmti"] = vmti_json(*vmti);
+        return;
+    }
+    out["vmti_local_set"] = hex(value);
+    out["vmti_error"] = vmti.error().message;
+}
+
 }  // namespace
 
 json value_json(const TagSpec& row, Span value, Digits digits, bool& valid) {
@@ -289,6 +309,10 @@ DecodeResult decode(Span bytes, Digits digits) {
         const std::string number = std::to_string(item.tag);
         if (row == nullptr) {
             r.json["unknown"][number] = hex(item.value);
+            continue;
+        }
+        if (item.tag == vmti_tag) {
+            add_vmti(r.json, item.value);
             continue;
         }
         bool valid = true;

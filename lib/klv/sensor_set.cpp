@@ -67,6 +67,10 @@ LocalSet sensor_set(const SensorFrame& f) {
     std::uint64_t flags = 0;
     if (finite(f.slant_range_m) && f.slant_range_measured) flags |= 0x01 | 0x10;
     set.add(tag_of("generic_flag_data"), flags);
+    // A VMTI set that cannot be written (a frame size of 0) is left out like any unknown item.
+    if (f.vmti)
+        if (Result<Bytes> vmti = encode_vmti(*f.vmti); vmti.ok())
+            set.add(tag_of("vmti_local_set"), std::move(vmti).value());
     set.add(tag_of("uas_datalink_ls_version_number"), std::uint64_t{st0601_version});
     return set;
 }

@@ -2,9 +2,10 @@
 // about one camera at one moment: a SensorFrame in plain units (degrees, metres MSL), each
 // item optional, becomes a LocalSet with the section's tags in its order - 2 first, 3, 5, 6,
 // 7, 13-21, 23-25, the corners (26-33, or 82-89 when one is beyond the offsets' reach), 40-42,
-// 47, 65 - and the checksum (1) last when encoded. An item whose source is unknown is left
-// out (no frame centre: no 23-25 and no corners; no target: no 40-42). Pure: the caller gives
-// the time stamp.
+// 47, 74 (the VMTI set of a visual track, contract section 20), 65 - and the checksum (1)
+// last when encoded. An item whose source is unknown is left out (no frame centre: no 23-25
+// and no corners; no target: no 40-42; no track: no 74). Pure: the caller gives the time
+// stamp.
 #pragma once
 
 #include <array>
@@ -13,6 +14,7 @@
 #include <string>
 
 #include "klv/local_set.hpp"
+#include "klv/vmti.hpp"
 
 namespace gimbal::klv {
 
@@ -42,6 +44,7 @@ struct SensorFrame {
     // Image corners on the ground: upper left, upper right, lower right, lower left.
     std::optional<std::array<LatLon, 4>> corners;
     std::optional<GroundPoint> target;  // the target location, when one is known
+    std::optional<VmtiSet> vmti;        // the tracked targets (tag 74), when tracking
 };
 
 LocalSet sensor_set(const SensorFrame& frame);

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "geo/wgs84.hpp"
+#include "klv_state/track_vmti.hpp"
 
 namespace gimbal::klv_state {
 
@@ -47,6 +48,21 @@ std::optional<double> number(const json& j, const char* key) {
     return std::isfinite(d) ? std::optional(d) : std::nullopt;
 }
 
+// Contract section 20: the track's ground position is the target location (40-42) and the
+// track is the VMTI set (74). The frame centre stays the image centre's.
+void add_track(klv::SensorFrame& f, const state::TrackState& track,
+               const session::GimbalView& gimbal, const std::optional<double>& undulation_m) {
+    if (track.ground && std::isfinite(track.ground->lat) && std::isfinite(track.ground->lon)) {
+        klv::GroundPoint p{track.ground->lat, track.ground->lon, std::nullopt};
+        if (undulation_m && std::isfinite(track.ground->alt))
+            p.alt_msl_m = geo::msl_from_ellipsoid(track.ground->alt, *undulation_m);
+        f.target = p;
+    }
+    const std::optional<state::VideoState> video =
+        gimbal.video ? gimbal.video() : std::optional<state::VideoState>();
+    if (video) f.vmti = track_vmti(track, video->width, video->height);
+}
+
 }  // namespace
 
 klv::SensorFrame sensor_frame(const session::GimbalView& gimbal, std::uint64_t time_us,
@@ -88,6 +104,8 @@ klv::SensorFrame sensor_frame(const session::GimbalView& gimbal, std::uint64_t t
             klv::GroundPoint{*view.target_lat_deg, *view.target_lon_deg, view.target_alt_msl_m};
     if (!f.frame_center) f.frame_center = f.target;
     if (f.frame_center) f.corners = footprint(gimbal.telemetry);
+    if (const auto track = gimbal.track ? gimbal.track() : std::nullopt)
+        add_track(f, *track, gimbal, undulation);
 
     if (view.measured_range_m) {
         f.slant_range_m = view.measured_range_m;

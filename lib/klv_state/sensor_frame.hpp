@@ -11,7 +11,12 @@
 //   frame centre: `telemetry.ground` when present (its ellipsoid height to MSL with the
 //     view's geoid undulation), else the view's image-centre target;
 //   corners: `telemetry.footprint` (top-left, top-right, bottom-right, bottom-left);
-//   target location: the view's target (the gimbal's own);
+//   target location: the track's ground position (its ellipsoid height to MSL with the
+//     view's geoid undulation) while a track has one, else the view's target (the gimbal's
+//     own);
+//   VMTI (tag 74): the track (STATE `track`, when tracking or lost) as one target in pixels
+//     of the video's width x height (STATE `video`), track_vmti.hpp; none without a track
+//     or before the frame size is known;
 //   slant range: the view's measured (laser) range, else `telemetry.ground.range_m`, else
 //     the distance from the camera to the frame centre.
 #pragma once
@@ -27,7 +32,7 @@
 
 namespace gimbal::klv_state {
 
-// `gimbal.capabilities` must be set.
+// `gimbal.capabilities` must be set; the track is the view's (`gimbal.track`).
 klv::SensorFrame sensor_frame(const session::GimbalView& gimbal, std::uint64_t time_us,
                               const std::optional<std::string>& mission_id = std::nullopt);
 

@@ -3,16 +3,19 @@
 // with the reserved values. For set N it writes, into the output folder:
 //   N.klv          the encoded set
 //   N.input.json   the values given to encode() (JSON units; enumerations by name, time
-//                  stamps in microseconds, flags and nibbles as the wire integer, raw as hex)
+//                  stamps in microseconds, flags and nibbles as the wire integer, raw as hex;
+//                  tag 74, a MISB ST 0903 VMTI set, under "vmti" as lib/klv's JSON of it)
 //   N.decoded.json lib/klv's decode() of N.klv: {"status": ..., "json": {...}}
 // Usage: klv_sample_sets OUTPUT_DIR [COUNT] [SEED]
 #include <cstdio>
 #include <fstream>
 #include <random>
+#include <stdexcept>
 #include <string>
 
 #include "klv/local_set.hpp"
 #include "klv/mapping.hpp"
+#include "klv/vmti.hpp"
 
 namespace klv = gimbal::klv;
 using nlohmann::json;
@@ -42,9 +45,56 @@ struct Maker {
         return std::uniform_real_distribution<double>(lo, hi)(rng);
     }
 
+    // Tag 74: a VMTI set (lib/klv/vmti.hpp) at its ranges' low or high ends, or random: one
+    // to three targets with pixels inside the frame, and a location half of the time.
+    void add_vmti(Pick pick, klv::LocalSet& set, json& input) {
+        klv::VmtiSet vmti;
+        klv::VmtiTarget t;
+        if (pick == Pick::low || pick == Pick::high) {
+            const bool high = pick == Pick::high;
+            const std::uint32_t side = high ? 16777215 : 1;  // 3 bytes at most
+            vmti.frame_width = vmti.frame_height = side;
+            vmti.total_targets = vmti.reported_targets = high ? 16777215u : 0u;
+            t.id = high ? UINT64_MAX : 0;
+            t.centroid = t.top_left = t.bottom_right = std::uint64_t{side} * side;
+            t.confidence_pct = high ? 100 : 0;
+            t.location = high ? klv::VmtiLocation{90.0, 180.0, 19000.0}
+                              : klv::VmtiLocation{-90.0, -180.0, -900.0};
+            vmti.targets.push_back(t);
+        } else {
+            const auto width = static_cast<std::uint32_t>(1 + below(4096));
+            const auto height = static_cast<std::uint32_t>(1 + below(4096));
+            vmti.frame_width = width;
+            vmti.frame_height = height;
+            const std::size_t n = 1 + below(3);
+            vmti.total_targets = vmti.reported_targets = static_cast<std::uint32_t>(n);
+            const auto pixel = [&] {
+                return klv::vmti_pixel_number(static_cast<std::uint32_t>(1 + below(height)),
+                                              static_cast<std::uint32_t>(1 + below(width)), width);
+            };
+            for (std::size_t i = 0; i < n; ++i) {
+                t = {};
+                t.id = below(1ull << (7 * (1 + below(6))));
+                t.centroid = pixel();
+                t.top_left = pixel();
+                t.bottom_right = pixel();
+                t.confidence_pct = static_cast<std::uint8_t>(below(101));
+                if (below(2) == 0)
+                    t.location = klv::VmtiLocation{uniform(-90, 90), uniform(-180, 180),
+                                                   uniform(-900, 19000)};
+                vmti.targets.push_back(t);
+            }
+        }
+        const auto bytes = klv::encode_vmti(vmti);
+        if (!bytes.ok()) throw std::runtime_error(bytes.error().message);
+        set.add(74, bytes.value());
+        input["vmti"] = klv::vmti_json(vmti);
+    }
+
     // Adds one item for `row` to `set` and records the value given in `input`.
     void add(const klv::TagSpec& row, Pick pick, klv::LocalSet& set, json& input) {
         const std::string name(row.name);
+        if (row.tag == 74) return add_vmti(pick, set, input);
         switch (row.kind) {
             case klv::Kind::checksum:
                 return;

@@ -3,7 +3,9 @@ with every tag at random values inside its range, at the range ends and with the
 values; st0601.py (written separately from the standard's item table) decodes each one, and
 the two decodings must agree with each other and with the values that were encoded:
 angles and other mapped numbers within one mapping step, positions within 0.5 m, everything
-else exactly. Registered by tests/CMakeLists.txt (it needs the tool's path):
+else exactly. Tag 74 holds a MISB ST 0903 VMTI set: lib/klv decodes it under "vmti",
+st0601.py keeps its hex, and st0903.py (written separately from ST 0903's tables) decodes
+that hex; the targets must agree the same way. Registered by tests/CMakeLists.txt (it needs the tool's path):
     klv_st0601_agreement.py --tool build/debug/tests/klv_sample_sets
 """
 
@@ -17,6 +19,10 @@ import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import st0601  # noqa: E402
+import st0903  # noqa: E402
+
+# One IMAPB step of each part of a VMTI target location (ST 0903 VTarget tag 17).
+VMTI_LOCATION_STEPS = {"lat": 2.0 ** -23, "lon": 2.0 ** -22, "hae": 1.0}
 
 METRES_PER_DEGREE = 111320.0  # at the equator; the largest a degree of longitude gets
 
@@ -66,6 +72,42 @@ def compare(name, ours, theirs, step, what, problems, position=False):
                                                            difference * METRES_PER_DEGREE))
 
 
+def check_vmti(label, py_hex, theirs, given, problems):
+    """Tag 74: st0903.py's decoding of st0601.py's hex against lib/klv's JSON and the set
+    that was encoded (given as lib/klv's JSON of it)."""
+    if py_hex is None or theirs is None:
+        problems.append("%s: tag 74: python hex %r, lib/klv vmti %r" % (label, py_hex, theirs))
+        return
+    try:
+        py = st0903.decode(bytes.fromhex(py_hex))
+    except ValueError as e:
+        problems.append("%s: tag 74: st0903.py refused it: %s" % (label, e))
+        return
+    for key in ("version", "total_targets", "reported_targets", "frame_width", "frame_height"):
+        for what, other in (("lib/klv", theirs), ("encoded", given)):
+            if py.get(key) != other.get(key):
+                problems.append("%s: vmti %s: st0903.py %r, %s %r"
+                                % (label, key, py.get(key), what, other.get(key)))
+    for what, other in (("lib/klv", theirs), ("encoded", given)):
+        if len(py["targets"]) != len(other["targets"]):
+            problems.append("%s: vmti targets: st0903.py %d, %s %d"
+                            % (label, len(py["targets"]), what, len(other["targets"])))
+            continue
+        for i, (a, b) in enumerate(zip(py["targets"], other["targets"])):
+            where = "%s vmti target %d" % (label, i)
+            for key in ("id", "centroid", "top_left", "bottom_right", "confidence_level"):
+                if a.get(key) != b.get(key):
+                    problems.append("%s: %s st0903.py %r, %s %r"
+                                    % (where, key, a.get(key), what, b.get(key)))
+            if ("location" in a) != ("location" in b):
+                problems.append("%s: location in one decoding only" % where)
+            elif "location" in a:
+                for part, step in VMTI_LOCATION_STEPS.items():
+                    compare("%s location %s" % (where, part), a["location"][part],
+                            b["location"][part], step, "st0903.py vs " + what, problems,
+                            position=part != "hae")
+
+
 def check_set(base, problems):
     with open(base + ".klv", "rb") as f:
         data = f.read()
@@ -80,6 +122,9 @@ def check_set(base, problems):
                         % (label, status, reason, cpp["status"], cpp["reason"]))
         return
     theirs = cpp["json"]
+    if "vmti" in given:
+        check_vmti(label, py.pop("vmti_local_set", None), theirs.pop("vmti", None),
+                   given["vmti"], problems)
     if set(py) != set(theirs):
         problems.append("%s: keys differ: python only %s, lib/klv only %s"
                         % (label, sorted(set(py) - set(theirs)), sorted(set(theirs) - set(py))))

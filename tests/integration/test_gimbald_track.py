@@ -9,7 +9,9 @@ one. `track_stop` ends it (track_end, stopped). A gimbal without video answers `
 gimbald keeps answering, and is started again. A MAVLink ground station that acts as
 QGroundControl does (SET_MESSAGE_INTERVAL for CAMERA_TRACKING_IMAGE_STATUS, then
 CAMERA_TRACK_RECTANGLE) starts the track and sees its box and ground position in the
-tracking status messages; STOP_TRACKING ends it.
+tracking status messages; STOP_TRACKING ends it. The stream carries no KLV (--no-video-klv)
+and gimbald generates it: while a track runs, the generated sets carry it as a MISB ST 0903
+VMTI set in tag 74 - read with st0903.py, written from the standard - and as tags 40-42.
 """
 
 import math
@@ -21,6 +23,8 @@ import time
 import gimbaltest as gt
 import mavlinktest as mt
 import skipping
+import st0601
+import st0903
 
 GIMBAL_TRACK = os.environ.get("GIMBAL_TRACK")
 
@@ -49,11 +53,11 @@ class Tracking(gt.GimbaldTestCase):
         cls.video_port = gt.free_port()
         cls.vehicle_port = gt.free_port()
         cls.sim = cls.start_class_sim("--video", "udp://127.0.0.1:%d" % cls.video_port,
-                                      "--speed", "0", want=("tcp", "video"))
+                                      "--no-video-klv", "--speed", "0", want=("tcp", "video"))
         cls.daemon = cls.start_class_daemon({"gimbals": [
             dict(gt.orion_tcp("main", cls.sim.port),
-                 video={"input": "udp://127.0.0.1:%d" % cls.video_port,
-                        "tracking": {"tracker": "kcf"}}),
+                 video={"input": "udp://127.0.0.1:%d" % cls.video_port, "klv": "generate",
+                        "klv_rate_hz": 10, "tracking": {"tracker": "kcf"}}),
             {"name": "nose", "protocol": "viewpro", "link": {"type": "sim"}}],
             "vehicle": {"source": {"type": "udp", "bind": "127.0.0.1",
                                    "port": cls.vehicle_port}},
@@ -131,6 +135,82 @@ class Tracking(gt.GimbaldTestCase):
         again = self.c.request("track_stop", gimbal="main")
         self.assertOk(again)
         self.assertIsNone(again["stopped"])
+
+    def generated_vmti(self):
+        """(VMTI decoded by st0903.py, the ST 0601 set decoded by st0601.py, STATE track) of
+        the latest generated set and the track of the moment; None without a tag 74."""
+        reply = self.c.request("klv", gimbal="main")
+        track = state(self.c, keys=["track"])["track"]
+        if not (reply and reply.get("ok") and reply["klv_source"] == "generated"):
+            return None
+        packet = bytes.fromhex(reply["klv_hex"])
+        value = st0903.tag74_of_st0601(packet)
+        if value is None:
+            return None
+        status, reason, decoded = st0601.decode(packet)
+        self.assertEqual(status, "ok", reason)
+        return st0903.decode(value), decoded, track
+
+    def test_generated_klv_carries_the_track_as_vmti(self):
+        at = self.look_at_farm()
+        reply = self.c.request("track", gimbal="main", x=at["x"], y=at["y"], steer=False)
+        self.assertOk(reply)
+        track_id = reply["track"]["id"]
+        located = self.wait_track(lambda t: t["state"] == "tracking" and t["ground"] and
+                                  t["frames"] >= 10)
+        self.assertTrue(located, "no located track: %s" % state(self.c, keys=["track"]))
+        video = state(self.c, keys=["video"])["video"]
+        width, height = video["width"], video["height"]
+        self.assertTrue(width and height, video)
+
+        last = []
+
+        def agreeing():
+            got = self.generated_vmti()
+            last[:] = [got]
+            if not got or not got[2] or not got[2]["ground"]:
+                return None
+            vmti, klv, track = got
+            if len(vmti["targets"]) != 1:
+                return None
+            target = vmti["targets"][0]
+            # The pixel the centre falls in, rows and columns from 1 (ST 0903).
+            column = (track["centre"]["x"] + 1) / 2 * width + 1
+            row = (track["centre"]["y"] + 1) / 2 * height + 1
+            centroid = target["centroid"]
+            ground = track["ground"]
+            location = target.get("location")
+            near = (abs(centroid["column"] - column) <= 2 and abs(centroid["row"] - row) <= 2
+                    and location is not None and
+                    metres_between({"lat": location["lat"], "lon": location["lon"],
+                                    "alt": location["hae"]}, ground) < 3 and
+                    gt.ground_distance_m(klv["target_location_latitude"],
+                                         klv["target_location_longitude"],
+                                         ground["lat"], ground["lon"]) < 3)
+            return got if near else None
+
+        got = gt.wait_for(agreeing, 15, 0.2)
+        self.assertTrue(got, "the generated VMTI never matched STATE track: %s" % last)
+        vmti, klv, track = got
+        self.assertEqual(vmti["version"], 5)
+        self.assertEqual((vmti["frame_width"], vmti["frame_height"]), (width, height))
+        self.assertEqual((vmti["total_targets"], vmti["reported_targets"]), (1, 1))
+        target = vmti["targets"][0]
+        self.assertEqual(target["id"], track_id)
+        self.assertLessEqual(target["top_left"]["column"], target["centroid"]["column"])
+        self.assertLessEqual(target["centroid"]["column"], target["bottom_right"]["column"])
+        self.assertLessEqual(target["top_left"]["row"], target["centroid"]["row"])
+        self.assertLessEqual(target["centroid"]["row"], target["bottom_right"]["row"])
+        self.assertLessEqual(abs(target["confidence_level"] - 100 * track["confidence"]), 20)
+        # gimbald's own decoding of its set agrees (STATE video.klv.vmti).
+        ours = self.c.request("klv", gimbal="main")["klv"]["vmti"]
+        self.assertEqual(ours["targets"][0]["id"], track_id)
+
+        self.assertOk(self.c.request("track_stop", gimbal="main"))
+        self.assertTrue(self.track_ends(track_id, "stopped"))
+        self.assertTrue(gt.wait_for(lambda: self.generated_vmti() is None and
+                                    self.c.request("klv", gimbal="main")["klv_source"] ==
+                                    "generated", 5, 0.2), "tag 74 stayed after the track")
 
     def test_a_clients_steering_command_overrides_the_track(self):
         at = self.look_at_farm()
