@@ -672,14 +672,14 @@
   }
 
   // ---- visual tracking (contract section 20) ---------------------------------------------
-  // A gimbald with visual tracking has STATE `track` for every gimbal (null when none runs);
-  // whether this gimbal's video has `tracking` configured only its `track` reply tells.
+  // /api/console says which gimbals' video has `tracking` configured.
   function canTrack(s) {
-    return !!s && ('track' in s || takes(s, 'track'));
+    const g = s && app.info && (app.info.gimbals || []).find((x) => x.name === app.selected);
+    return !!(g && g.tracking);
   }
   function videoHint(s) {
     const track = !s || canTrack(s) ? 'drag a box or alt+click: track \u00b7 Esc: stop tracking'
-      : 'tracking: not offered by this gimbald';
+      : 'tracking: not configured for this gimbal (video.tracking)';
     return `click: point \u00b7 shift+click: stare \u00b7 ${track} \u00b7 wheel: zoom \u00b7 arrows: rate \u00b7 space: stop`;
   }
   // `track` on a box or at a point; a refusal shows in the command panel like any other.
@@ -721,7 +721,7 @@
       if (canTrack(app.states[app.selected])) { sendTrack({ x, y }); return; }
       const box = $('last-command');
       box.className = 'reply err';
-      box.textContent = 'track: this gimbald offers no visual tracking (no STATE `track`)';
+      box.textContent = `track: ${app.selected} has no visual tracking (its video has no \`tracking\` section)`;
       return;
     }
     const click = { gimbal: app.selected, x, y, stare: ev.shiftKey, reply: null };

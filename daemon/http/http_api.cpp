@@ -188,7 +188,9 @@ json HttpApi::console_info() const {
         gimbals.push_back({{"name", session->name()},
                            {"protocol", std::string(session->protocol())},
                            // Contract section 18: GET /api/video/{name} serves its video.
-                           {"video", daemon_.video && daemon_.video(session->name()) != nullptr}});
+                           {"video", daemon_.video && daemon_.video(session->name()) != nullptr},
+                           // Contract section 20: its video has `tracking` (a box starts one).
+                           {"tracking", static_cast<bool>(session->view().track)}});
     const auto& config = *daemon_.config;
     return {{"version", GIMBALD_VERSION},
             {"gimbals", std::move(gimbals)},

@@ -94,7 +94,8 @@ class HttpWithSimulator(gt.GimbaldTestCase):
         self.assertEqual(status, 200)
         version = self.c.request("version")["version"]
         self.assertEqual(body, {"version": version,
-                                "gimbals": [{"name": "main", "protocol": "orion", "video": False}],
+                                "gimbals": [{"name": "main", "protocol": "orion", "video": False,
+                                             "tracking": False}],
                                 "laser_allow_fire": False,
                                 "terrain": False,
                                 "tiles_url": "http://tiles.example/{z}/{x}/{y}.png"})
