@@ -458,10 +458,16 @@ async function tracking(page, commandPort) {
   if (!sent || !sent.reply.ok) return;
   const id = sent.reply.track.id;
 
+  // The ground filter settles once the camera stops slewing onto the object (boxes are
+  // located with the pose when they arrive, docs/tracking.md "Limits"): the first fix within
+  // 60 m, in 15 s; the last one seen otherwise.
+  let last = null;
   const located = await waitFor(async () => {
     const t = await stateTrack();
-    return t && t.id === id && t.state === 'tracking' && t.ground && t.frames >= 10 ? t : null;
-  }, 15000, 200);
+    if (!(t && t.id === id && t.state === 'tracking' && t.ground && t.frames >= 10)) return null;
+    last = t;
+    return metresApart(t.ground, FARM) < 60 ? t : null;
+  }, 15000, 200) || last;
   const off = located ? metresApart(located.ground, FARM) : null;
   check(located && off < 60, `tracking: STATE track ${id} tracking with ground ${off !== null ? off.toFixed(1) : '-'} m from the farm (60 m), confidence ${located && located.confidence}`);
 
@@ -494,13 +500,20 @@ async function tracking(page, commandPort) {
   check(plan && plan.id === id && plan.points >= 1 && plan.px <= 60 * plan.px_per_m + 2,
     `tracking: the plan view draws the object on the farm (${plan ? `${plan.points} trail points, ${(plan.px / plan.px_per_m).toFixed(1)} m off` : '-'})`);
 
-  // Esc: track_stop; STATE track null, nothing drawn.
+  // Esc: track_stop; STATE track null, nothing drawn. First the page must see the track
+  // (its overlay draws STATE track), or Esc has nothing to stop.
+  const running = await waitFor(() => page.evaluate(() => window.gimbaldConsole.video.overlay.track !== null), 3000);
+  const before = await stateTrack();
+  check(running && before && before.id === id,
+    `tracking: the track runs before Esc (${JSON.stringify(before && { id: before.id, state: before.state })}, drawn ${running})`);
   await page.keyboard.press('Escape');
+  // The panel shows the request at once and its reply when it comes ("…" meanwhile).
+  const shown = await waitFor(() => page.$eval('#last-command', (e) => (e.textContent.includes('"cmd":"track_stop"') &&
+    e.textContent.includes('"stopped":') ? e.textContent : null)), 5000, 200);
   const stopped = await waitFor(async () => (await stateTrack()) === null, 5000, 200);
-  const shown = await page.$eval('#last-command', (e) => e.textContent);
   const drawn = await waitFor(() => page.evaluate(() => window.gimbaldConsole.video.overlay.track === null), 3000);
-  check(stopped && shown.includes('"cmd":"track_stop"') && shown.includes(`"stopped":${id}`) && drawn,
-    `tracking: Esc sent track_stop, STATE track null, no box drawn (${shown.split('\n')[1] || ''})`);
+  check(shown && shown.includes(`"stopped":${id}`) && stopped && drawn,
+    `tracking: Esc sent track_stop (${shown ? shown.split('\n')[1] : 'not sent'}), STATE track null (${stopped}), no box drawn (${drawn})`);
 
   // Alt+click on the farm: track at that point; Esc again.
   const p = await project();
