@@ -42,8 +42,7 @@ nlohmann::json exit_fields(int status) {
 
 TrackProcess::TrackProcess(boost::asio::io_context& io, TrackProcessOptions options,
                            MessageSink on_message, ReadySink on_ready)
-    : io_(io),
-      options_(std::move(options)),
+    : options_(std::move(options)),
       on_message_(std::move(on_message)),
       on_ready_(std::move(on_ready)),
       socket_(io),

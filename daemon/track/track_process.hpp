@@ -81,7 +81,6 @@ class TrackProcess {
     void schedule_restart();
     double backoff_next();
 
-    boost::asio::io_context& io_;
     TrackProcessOptions options_;
     MessageSink on_message_;
     ReadySink on_ready_;
