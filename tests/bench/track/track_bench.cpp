@@ -302,8 +302,7 @@ int main(int argc, char** argv) {
                 "%zu/%zu%s, %zu lost; latency p50 %.1f ms, p95 %.1f ms, max %.1f ms (target p95 "
                 "under 30 ms): %s\n",
                 std::string(w::to_string(tracker)).c_str(), r.cpu_pct, in.budget_pct,
-                cpu_met ? "met" : "MISSED",
-                r.boxes, r.sent,
+                cpu_met ? "met" : "MISSED", r.boxes, r.sent,
                 kept_up ? "" : " (MISSED: could not keep up, newest frames tracked)", r.lost, r.p50,
                 r.p95, r.max, r.p95 < 30 ? "met" : "MISSED");
             breakdown(in, tracker, units, box);
