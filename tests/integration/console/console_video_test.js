@@ -406,6 +406,8 @@ async function functional(page, browser, commandPort, httpPort, stats) {
   }
 
   if (GIMBAL_TRACK) await tracking(page, commandPort);
+  // On CI a missing gimbal-track is lost coverage: a failure, not a skip.
+  else if (process.env.CI === 'true') check(false, 'visual tracking: no gimbal-track (GIMBAL_TRACK, or beside gimbald; CI=true)');
   else console.log('skip visual tracking: no gimbal-track (GIMBAL_TRACK, or beside gimbald)');
 }
 
