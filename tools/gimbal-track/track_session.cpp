@@ -149,8 +149,10 @@ void TrackSession::access_unit(const wire::AccessUnitAssembler::Unit& unit, bool
     for (std::size_t i = 0; i < frames.size() && track_; ++i) {
         ++stats_.frames;
         // Behind the input: decode everything (later frames need it), track only the newest.
+        // The first frame tracked too: gimbald starts a track with the pictures since the
+        // latest key frame, and the box belongs to the newest of them.
         const bool newest = i + 1 == frames.size() && !behind;
-        if (!newest && track_->tracker) {
+        if (!newest) {
             ++stats_.skipped;
             continue;
         }
