@@ -25,6 +25,10 @@ using nlohmann::json;
 
 namespace {
 
+// The camera poses of the latest frames kept for locating their boxes: 8 s at 30 fps, longer
+// than gimbal-track ever takes to answer (it is killed as hung after 10 s without a word).
+constexpr std::size_t max_frame_poses = 240;
+
 constexpr double tick_s = 0.05;  // 20 Hz: loss timing and steering
 
 // "2026-11-29T09:15:02.123Z": the contract's UTC with milliseconds.
@@ -84,7 +88,7 @@ TrackController::TrackController(boost::asio::io_context& io, TrackControllerOpt
       process_(
           io, process_options(options_), [this](const wire::Message& m) { on_message(m); },
           [this](bool ready) { on_ready(ready); }),
-      steering_(session),
+      steering_(session, terrain),
       tick_timer_(io) {}
 
 TrackController::~TrackController() {
@@ -94,10 +98,15 @@ TrackController::~TrackController() {
 
 void TrackController::start() {
     process_.start();
+    // Always watching: a track started now begins with the current group of pictures.
+    viewer_ = video_.add_viewer(
+        lifetime_.wrap([this](const gimbal::video::AccessUnit& au) { on_access_unit(au); }));
 }
 
 void TrackController::stop() {
     if (track_) end(gt::EndReason::stopped, false);
+    if (viewer_) video_.remove_viewer(*viewer_);
+    viewer_.reset();
     lifetime_.reset();
     tick_timer_.cancel();
     process_.stop();
@@ -149,12 +158,14 @@ Result<json> TrackController::track(const json& request) {
     track_.emplace(Track{id, read->box, 1.0, read->steer.value_or(c.steer), now, utc_now(),
                          gt::TrackStateMachine({c.lost_after_s, c.reacquire_s}, now),
                          gt::GroundFilter()});
-    need_key_ = true;
     last_heard_s_ = now;
     units_unanswered_ = 0;
     steering_.reset();
-    viewer_ = video_.add_viewer(
-        lifetime_.wrap([this](const gimbal::video::AccessUnit& au) { on_access_unit(au); }));
+    // The pictures since the latest key frame, at once: gimbal-track decodes them all and
+    // starts the tracker on the newest, the picture the box was drawn on (not the next key
+    // frame, up to a key frame interval later, when the object has moved on).
+    need_key_ = true;
+    for (const auto& unit : gop_.units()) forward(unit.view());
     arm_tick();
     const auto s = state();
     const json track_json = gimbal::state::write(*s);
@@ -234,19 +245,32 @@ void TrackController::on_box(const wire::Box& box) {
     track_->confidence = box.confidence;
     const auto change = track_->machine.frame(now, seen);
     // Only a box on the object is located: a lost one is only the image motion's guess.
-    if (seen) locate(now, (box.x0 + box.x1) / 2.0, (box.y0 + box.y1) / 2.0);
+    if (seen) locate(box.pts_90k, (box.x0 + box.x1) / 2.0, (box.y0 + box.y1) / 2.0);
     report(change);
 }
 
-void TrackController::locate(double now, double x, double y) {
-    const auto view = session_.capabilities().image();
-    if (!view) return;
-    const auto ground = gimbal::session::locate_point(*view, {x, y}, terrain_);
+void TrackController::locate(std::int64_t pts_90k, double x, double y) {
+    // With the camera's pose when the frame arrived, not now: by now the gimbal may have
+    // turned (steering it), and a frame located with a later pose would put the object where
+    // the camera went - a loop that runs away.
+    const auto pose = std::find_if(frame_poses_.rbegin(), frame_poses_.rend(),
+                                   [&](const FramePose& p) { return p.pts_90k == pts_90k; });
+    if (pose == frame_poses_.rend()) return;  // too old, or the frame came without a pose
+    const auto ground = gimbal::session::locate_point(pose->view, {x, y}, terrain_);
     if (!ground) return;
-    track_->filter.update({now, ground->point, ground->range_m});
+    track_->filter.update({pose->arrived_s, ground->point, ground->range_m});
 }
 
 void TrackController::on_access_unit(const gimbal::video::AccessUnit& au) {
+    gop_.add(au);
+    if (const auto view = session_.capabilities().image()) {
+        frame_poses_.push_back({static_cast<std::int64_t>(au.pts.value_or(0)), now_s(), *view});
+        if (frame_poses_.size() > max_frame_poses) frame_poses_.pop_front();
+    }
+    forward(au);
+}
+
+void TrackController::forward(const gimbal::video::AccessUnit& au) {
     if (!track_ || !process_.ready()) return;
     if (need_key_ && !au.key_frame) return;
     const auto pts = static_cast<std::int64_t>(au.pts.value_or(0));
@@ -287,8 +311,6 @@ void TrackController::end(gt::EndReason reason, bool tell_process) {
     if (tell_process) process_.send(wire::encode(wire::Stop{id}));
     // A client's own command has the gimbal now; otherwise a turning camera stops.
     if (reason != gt::EndReason::overridden) steering_.halt();
-    if (viewer_) video_.remove_viewer(*viewer_);
-    viewer_.reset();
     tick_timer_.cancel();
     const json fields{{"id", id},
                       {"reason", std::string(wire::to_string(reason))},
@@ -324,9 +346,13 @@ void TrackController::tick() {
         process_.kill_process("no answer while video went to it");
         return;
     }
-    if (track_->steer) {
+    // Steering waits for gimbal-track's first box: until then the gimbal keeps doing what it
+    // did (an Orion following the point the operator put it on); turning at a rate towards
+    // the requested box would let the platform's own motion sweep the object away.
+    if (track_->steer && track_->machine.frames() > 0) {
         const auto& b = track_->box;
-        steering_.steer(now, track_->filter.estimate(now), (b.x0 + b.x1) / 2, (b.y0 + b.y1) / 2);
+        steering_.steer(now, track_->filter.estimate(now), (b.x0 + b.x1) / 2, (b.y0 + b.y1) / 2,
+                        track_->machine.phase() != gt::TrackPhase::lost);
     }
     arm_tick();
 }

@@ -1,8 +1,9 @@
 // One gimbal's visual tracking (contract section 20) on the io_context: its gimbal-track
 // process (track_process.hpp), the `track` and `track_stop` commands, STATE `track` and the
-// events track_start, track_lost, track_reacquired and track_end. While a track runs, the
-// gimbal's access units go to gimbal-track (dropped, up to the next key frame, when it cannot
-// take them now); each box that comes back drives the track's state machine and, while the
+// events track_start, track_lost, track_reacquired and track_end. A track starts with the
+// access units since the latest key frame (kept all the time), then the gimbal's access units
+// go to gimbal-track as they come (dropped, up to the next key frame, when it cannot take them
+// now); each box that comes back drives the track's state machine and, while the
 // object is seen, its centre is located on the ground with the gimbal's image geometry (the
 // code `locate` uses, terrain when configured) and fed to the ground filter. A track ends
 // when stopped, overridden by a client's steering command, lost too long (timeout), or when
@@ -11,6 +12,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <deque>
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -32,6 +34,7 @@
 #include "track/track_process.hpp"
 #include "track/track_steering.hpp"
 #include "video/gimbal_video.hpp"
+#include "video/gop_buffer.hpp"
 #include "video/tracking_config.hpp"
 
 namespace gimbald::track {
@@ -87,7 +90,8 @@ class TrackController {
     void on_message(const gimbal::track::wire::Message& message);
     void on_box(const gimbal::track::wire::Box& box);
     void on_access_unit(const gimbal::video::AccessUnit& au);
-    void locate(double now, double x, double y);
+    void forward(const gimbal::video::AccessUnit& au);  // to gimbal-track, while a track runs
+    void locate(std::int64_t pts_90k, double x, double y);
     void report(const gimbal::track::TrackChange& change);
     void end(gimbal::track::EndReason reason, bool tell_process);
     void arm_tick();
@@ -106,6 +110,15 @@ class TrackController {
     std::chrono::steady_clock::time_point epoch_ = std::chrono::steady_clock::now();
     std::optional<Track> track_;
     std::optional<std::uint64_t> viewer_;
+    gimbal::video::GopBuffer gop_;  // the access units since the latest key frame
+    // The gimbal's image geometry when each recent access unit arrived, by its pts: a box is
+    // located with the pose of its own frame.
+    struct FramePose {
+        std::int64_t pts_90k = 0;
+        double arrived_s = 0;
+        gimbal::session::ImageView view;
+    };
+    std::deque<FramePose> frame_poses_;
     bool need_key_ = true;     // send nothing until a key frame (after a start or a drop)
     double last_heard_s_ = 0;  // the latest message from gimbal-track
     std::uint64_t units_unanswered_ = 0;  // access units sent since then
