@@ -428,6 +428,8 @@ void App::add_sim_video(SimLink& link, const cfg::GimbalConfig& g) {
     options.host = target->host;
     options.port = target->port;
     options.ttl = target->ttl;
+    // The simulated world's traffic is in the picture, something to track (docs/simulator.md).
+    options.stream.video.objects = gimbal::sim::ObjectSet::all();
     try {
         auto sender = std::make_unique<video::SimVideoSender>(std::move(options));
         link.set_advance_listener([camera, s = sender.get()](const gimbal::sim::Device& device) {

@@ -9,6 +9,7 @@
 #include <boost/asio/ip/multicast.hpp>
 #include <boost/asio/ip/unicast.hpp>
 
+#include "sim_video/objects_log.hpp"
 #include "video/url.hpp"
 
 namespace gimbald::video {
@@ -52,6 +53,12 @@ SimVideoSender::SimVideoSender(SimVideoSenderOptions options)
         options_.stream, [this](std::span<const std::uint8_t> chunk) { send(chunk); });
     if (!opened) throw std::runtime_error("video encoder: " + opened.error().message);
     stream_ = std::move(opened).value();
+    if (!options_.objects_log.empty()) {
+        objects_log_.open(options_.objects_log, std::ios::out | std::ios::trunc);
+        if (!objects_log_)
+            throw std::runtime_error("objects log '" + options_.objects_log +
+                                     "': cannot be written");
+    }
 }
 
 SimVideoSender::~SimVideoSender() {
@@ -127,7 +134,15 @@ void SimVideoSender::run() {
         if (view) {
             const auto pts = pts0 + static_cast<std::int64_t>(
                                         std::llround(static_cast<double>(index) * 90'000.0 / fps));
-            const bool ok = stream_->frame(*view, unix_us_now(), pts);
+            const std::uint64_t unix_us = unix_us_now();
+            const bool ok = stream_->frame(*view, unix_us, pts);
+            if (ok && objects_log_.is_open()) {
+                // Flushed with every frame: a test reads the truth while the video runs.
+                objects_log_ << gimbal::sim_video::objects_log_lines(
+                                    {index, unix_us, pts, view->model_time_s},
+                                    stream_->source().objects())
+                             << std::flush;
+            }
             ++index;
             const auto& s = stream_->stats();
             std::lock_guard lock(mutex_);

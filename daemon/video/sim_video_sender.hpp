@@ -14,6 +14,7 @@
 #include <atomic>
 #include <condition_variable>
 #include <cstdint>
+#include <fstream>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -32,7 +33,9 @@ struct SimVideoSenderOptions {
     std::string host;  // numeric address (unicast or multicast)
     std::uint16_t port = 0;
     std::optional<int> ttl;
-    gimbal::sim_video::SimVideoStreamOptions stream;  // size, fps, bit rate, KLV on/off
+    gimbal::sim_video::SimVideoStreamOptions stream;  // size, fps, bit rate, KLV, objects
+    // The moving objects' truth, one JSON line per object per frame (empty: none).
+    std::string objects_log;
 };
 
 struct SimVideoSenderStats {
@@ -73,6 +76,7 @@ class SimVideoSender {
     boost::asio::ip::udp::socket socket_;
     boost::asio::ip::udp::endpoint destination_;
     std::unique_ptr<gimbal::sim_video::SimVideoStream> stream_;  // worker thread only
+    std::ofstream objects_log_;                                  // worker thread only
 
     mutable std::mutex mutex_;
     std::condition_variable wake_;

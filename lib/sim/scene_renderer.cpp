@@ -9,6 +9,8 @@
 #include <vector>
 
 #include "geo/image.hpp"
+#include "sim/scene_colour.hpp"
+#include "sim/scene_objects.hpp"
 #include "sim/scene_style.hpp"
 #include "sim/terrain.hpp"
 #include "sim/terrain_ray.hpp"
@@ -16,33 +18,6 @@
 namespace gimbal::sim {
 
 namespace {
-
-// Colours as offsets from black (Y - 16, U - 128, V - 128): blends and shading of RGB are
-// linear there too.
-struct Colour {
-    float y = 0;
-    float u = 0;
-    float v = 0;
-};
-
-Colour offset(Rgb c) {
-    const Yuv q = to_yuv(c);
-    return {static_cast<float>(q.y) - 16.f, static_cast<float>(q.u) - 128.f,
-            static_cast<float>(q.v) - 128.f};
-}
-
-Colour lerp(Colour a, Colour b, float t) {
-    return {a.y + (b.y - a.y) * t, a.u + (b.u - a.u) * t, a.v + (b.v - a.v) * t};
-}
-
-Colour scaled(Colour a, float k) {
-    return {a.y * k, a.u * k, a.v * k};
-}
-
-// min/max rather than std::clamp: branch-free in the pixel loop.
-float clamp01(float v) {
-    return std::min(std::max(v, 0.f), 1.f);
-}
 
 std::uint8_t to_byte(float v) {
     return static_cast<std::uint8_t>(std::min(std::max(v, 0.f), 255.f) + 0.5f);
@@ -116,6 +91,7 @@ struct SceneRenderer::Impl {
     std::array<double, 3> down_row{};  // NED down component of a camera-frame ray
     std::optional<TerrainRayCaster> caster;
     std::vector<Mark> all_marks;
+    SceneObjects objects;     // roads, and the frame's moving objects
     std::vector<Node> nodes;  // (cells_x + 1) x (cells_y + 1)
     int cells_x = 0, cells_y = 0;
     std::uint8_t* y_out = nullptr;  // the frame's luma plane
@@ -244,8 +220,17 @@ struct SceneRenderer::Impl {
               mark_px(1 / std::min(f.fx, f.fy)) {}
     };
 
+    // What may show in a cell: landmarks, roads and objects.
+    struct Nearby {
+        std::array<Mark, 8> marks;
+        std::size_t n_marks = 0;
+        SceneObjects::Near objects;
+        // Something small enough that a blended edge cell would lose its shape.
+        bool shaped() const { return n_marks > 0 || objects.n_bodies > 0; }
+    };
+
     Colour ground(float x, float y, float h, float shade, float river, float fog, const Scale& s,
-                  const Mark* marks, std::size_t n_marks) const {
+                  const Nearby& near) const {
         const auto hi =
             static_cast<std::size_t>(std::min(std::max(h / static_cast<float>(height_step_m), 0.f),
                                               static_cast<float>(ramp.size() - 1)));
@@ -269,9 +254,10 @@ struct SceneRenderer::Impl {
         const float major_cov = std::max(clamp01(1.5f - dx_major) * s.major_fade_x,
                                          clamp01(1.5f - dy_major) * s.major_fade_y);
         c = lerp(c, grid_major, 0.85f * major_cov);
+        c = objects.roads_below(c, x, y, s.mark_px, near.objects);
 
-        for (std::size_t k = 0; k < n_marks; ++k) {
-            const Mark& m = marks[k];
+        for (std::size_t k = 0; k < near.n_marks; ++k) {
+            const Mark& m = near.marks[k];
             const float reach = m.r_ring + 1 / s.mark_px;
             const float dx = x - m.x, dy = y - m.y;
             if (std::abs(dx) > reach || std::abs(dy) > reach) continue;
@@ -279,12 +265,12 @@ struct SceneRenderer::Impl {
             c = lerp(c, ring, clamp01((m.r_ring - d) * s.mark_px + 0.5f));
             c = lerp(c, m.colour, clamp01((m.r_disc - d) * s.mark_px + 0.5f));
         }
+        c = objects.above(c, x, y, s.mark_px, near.objects);
         return lerp(c, haze, clamp01(fog));
     }
 
-    // The landmarks that may show in a cell with these corners.
-    std::size_t marks_near(const Node* const* corners, std::size_t n, Footprint f,
-                           std::array<Mark, 8>& out) const {
+    // The landmarks, roads and objects that may show in a cell with these corners.
+    void nearby(const Node* const* corners, std::size_t n, Footprint f, Nearby& out) const {
         double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
         for (std::size_t i = 0; i < n; ++i) {
             if (!corners[i]->ground) continue;
@@ -294,14 +280,18 @@ struct SceneRenderer::Impl {
             y1 = std::max(y1, corners[i]->y);
         }
         const double margin = 2 * std::max(f.fx, f.fy);
-        std::size_t count = 0;
+        out.n_marks = 0;
         for (const Mark& m : all_marks) {
             const double r = m.r_ring + margin;
             if (m.x + r >= x0 && m.x - r <= x1 && m.y + r >= y0 && m.y - r <= y1 &&
-                count < out.size())
-                out[count++] = m;
+                out.n_marks < out.marks.size())
+                out.marks[out.n_marks++] = m;
         }
-        return count;
+        if (x0 > x1) {  // no corner on the ground
+            out.objects = {};
+            return;
+        }
+        objects.near(x0, x1, y0, y1, margin, out.objects);
     }
 
     static Footprint footprint(const Node& n00, const Node& n10, const Node& n01, double size) {
@@ -317,8 +307,8 @@ struct SceneRenderer::Impl {
         const Node* corners[4] = {&n00, &n10, &n01, &n11};
         const Footprint f = footprint(n00, n10, n01, size);
         const Scale scale(f);
-        std::array<Mark, 8> marks;
-        const std::size_t n_marks = marks_near(corners, 4, f, marks);
+        Nearby near;
+        nearby(corners, 4, f, near);
         const float inv = 1.f / static_cast<float>(size);
         for (int j = y0; j < y1; ++j) {
             const float fy = static_cast<float>(j - cy) * inv;
@@ -335,7 +325,7 @@ struct SceneRenderer::Impl {
                 for (std::size_t k = 0; k < n_attr; ++k) v[k] = (l[k] + (r[k] - l[k]) * fx) * iw;
                 put(i, j,
                     ground(v[attr_x], v[attr_y], v[attr_height], v[attr_shade], v[attr_river],
-                           v[attr_fog], scale, marks.data(), n_marks));
+                           v[attr_fog], scale, near));
             }
         }
     }
@@ -346,12 +336,12 @@ struct SceneRenderer::Impl {
         const float iw = 1.f / n.w;
         const float across = static_cast<float>(n.depth * pixel_angle);
         const Node* self[1] = {&n};
-        std::array<Mark, 8> marks;
         const Footprint f{across, across};
-        const std::size_t n_marks = marks_near(self, 1, f, marks);
+        Nearby near;
+        nearby(self, 1, f, near);
         return ground(n.a[attr_x] * iw, n.a[attr_y] * iw, n.a[attr_height] * iw,
                       n.a[attr_shade] * iw, n.a[attr_river] * iw, n.a[attr_fog] * iw, Scale(f),
-                      marks.data(), n_marks);
+                      near);
     }
 
     // An edge cell too small to split: the corners' colours (sky, underground or each one's
@@ -434,14 +424,16 @@ struct SceneRenderer::Impl {
                 break;
         }
         if (size < 2 * min_cell_px) {
-            // An edge across a landmark gets a ray per pixel, so the landmark keeps its shape.
-            std::array<Mark, 8> marks;
+            // An edge across a landmark or an object gets a ray per pixel, so it keeps its
+            // shape.
+            Nearby near;
             float across = 0;
             for (std::size_t k = 0; k < 4; ++k)
                 if (corners[k]->ground)
                     across = std::max(across, static_cast<float>(corners[k]->depth * pixel_angle));
             const auto reach = static_cast<float>(size) * across;
-            if (across > 0 && marks_near(corners, 4, {reach, reach}, marks) > 0)
+            if (across > 0) nearby(corners, 4, {reach, reach}, near);
+            if (across > 0 && near.shaped())
                 fill_by_pixel(x0, x1, y0, y1);
             else
                 fill_blend(cx, cy, size, x0, x1, y0, y1, corners);
@@ -524,8 +516,9 @@ struct SceneRenderer::Impl {
         }
     }
 
-    void render(const geo::CameraPose& c, I420Frame& out) {
+    void render(const geo::CameraPose& c, std::span<const ObjectState> moving, I420Frame& out) {
         prepare(c);
+        objects.set_objects(moving);
         y_out = out.y.data();
         const int g = o.grid_px;
         const auto node = [&](int i, int j) -> Node& {
@@ -568,7 +561,8 @@ SceneRenderer::SceneRenderer(const SceneOptions& options)
 
 SceneRenderer::~SceneRenderer() = default;
 
-bool SceneRenderer::render(const geo::CameraPose& camera, I420Frame& frame) {
+bool SceneRenderer::render(const geo::CameraPose& camera, I420Frame& frame,
+                           std::span<const ObjectState> objects) {
     const SceneOptions& o = impl_->o;
     frame.resize(o.width, o.height);
     if (!geo::valid(camera)) {
@@ -578,7 +572,7 @@ bool SceneRenderer::render(const geo::CameraPose& camera, I420Frame& frame) {
         impl_->stats = {};
         return false;
     }
-    impl_->render(camera, frame);
+    impl_->render(camera, objects, frame);
     return true;
 }
 

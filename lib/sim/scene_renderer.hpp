@@ -8,14 +8,16 @@
 // (exact for a plane) and each pixel is textured from them. Cells whose corners disagree - the
 // horizon, the edge of a hill hiding the ground behind it - are split in four and cast again,
 // down to 4 px; those that still disagree blend their corners' colours (a soft edge, right to
-// a couple of pixels), or cast a ray per pixel where a landmark is. A landmark is
+// a couple of pixels), or cast a ray per pixel where a landmark or an object is. A landmark is
 // drawn where the ray meets its ground, so it appears where geo::project puts it (within a pixel or
 // two).
 #pragma once
 
 #include <memory>
+#include <span>
 
 #include "geo/footprint.hpp"
+#include "sim/ground_objects.hpp"
 #include "sim/i420_frame.hpp"
 
 namespace gimbal::sim {
@@ -45,9 +47,11 @@ class SceneRenderer {
     SceneRenderer(const SceneRenderer&) = delete;
     SceneRenderer& operator=(const SceneRenderer&) = delete;
 
-    // Renders what `camera` sees into `frame`, resized to the options' size. An invalid camera
+    // Renders what `camera` sees into `frame`, resized to the options' size, with these moving
+    // objects (sim/ground_objects.hpp, at the frame's time) on the ground. An invalid camera
     // (geo::valid) gives a uniform mid-grey frame and false.
-    bool render(const geo::CameraPose& camera, I420Frame& frame);
+    bool render(const geo::CameraPose& camera, I420Frame& frame,
+                std::span<const ObjectState> objects = {});
 
     // The LWIR camera's picture has no colour; the Orion can switch cameras any time.
     void set_monochrome(bool monochrome);

@@ -33,6 +33,18 @@ inline constexpr double grid_minor_darken = 0.45;
 inline constexpr double river_halfwidth_m = 40;
 inline constexpr Rgb water{50, 80, 110};
 
+// Roads (sim/ground_objects.hpp roads()): asphalt; the highway's deck is concrete with a
+// dark parapet along its last 0.8 m.
+inline constexpr Rgb asphalt{95, 95, 92};
+inline constexpr Rgb deck{160, 158, 150};
+inline constexpr Rgb parapet{60, 60, 60};
+// Moving objects: body in the catalogue's colour, roof 30 % lighter, windows, a truck's box,
+// a boat's cabin and its wake on the water.
+inline constexpr Rgb glass{35, 40, 50};
+inline constexpr Rgb cargo{225, 225, 218};
+inline constexpr Rgb boat_cabin{60, 70, 90};
+inline constexpr Rgb foam{205, 215, 220};
+
 // Ground by height above the ellipsoid: these colours at these heights, linear between.
 struct HeightColour {
     double alt_m;

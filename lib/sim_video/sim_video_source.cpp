@@ -13,24 +13,32 @@ Result<std::unique_ptr<SimVideoSource>> SimVideoSource::open(const SimVideoOptio
     h264.height = options.scene.height;
     auto opened = H264Encoder::open(h264);
     if (!opened) return opened.error();
-    return std::unique_ptr<SimVideoSource>(
-        new SimVideoSource(options.scene, std::move(opened).value()));
+    return std::unique_ptr<SimVideoSource>(new SimVideoSource(options, std::move(opened).value()));
 }
 
-SimVideoSource::SimVideoSource(const sim::SceneOptions& scene, std::unique_ptr<H264Encoder> encoder)
-    : renderer_(scene), encoder_(std::move(encoder)) {}
+SimVideoSource::SimVideoSource(const SimVideoOptions& options, std::unique_ptr<H264Encoder> encoder)
+    : object_set_(options.objects), renderer_(options.scene), encoder_(std::move(encoder)) {}
+
+bool SimVideoSource::encode(std::uint64_t unix_ms, std::int64_t pts_90k,
+                            std::vector<AccessUnit>& out) {
+    sim::draw_frame_code(picture_, unix_ms);
+    return encoder_->encode(picture_, pts_90k, out);
+}
 
 bool SimVideoSource::frame(const geo::CameraPose& camera, std::uint64_t unix_ms,
                            std::int64_t pts_90k, std::vector<AccessUnit>& out) {
+    truth_.clear();
     renderer_.render(camera, picture_);
-    sim::draw_frame_code(picture_, unix_ms);
-    return encoder_->encode(picture_, pts_90k, out);
+    return encode(unix_ms, pts_90k, out);
 }
 
 bool SimVideoSource::frame(const sim::CameraView& view, std::uint64_t unix_ms, std::int64_t pts_90k,
                            std::vector<AccessUnit>& out) {
     renderer_.set_monochrome(view.monochrome);
-    return frame(view.pose, unix_ms, pts_90k, out);
+    const std::vector<sim::ObjectState> moving = object_set_.at(view.model_time_s);
+    renderer_.render(view.pose, picture_, moving);
+    truth_ = object_truth(view.pose, moving);
+    return encode(unix_ms, pts_90k, out);
 }
 
 }  // namespace gimbal::sim_video

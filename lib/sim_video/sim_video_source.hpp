@@ -15,6 +15,7 @@
 #include "sim/i420_frame.hpp"
 #include "sim/scene_renderer.hpp"
 #include "sim_video/h264_encoder.hpp"
+#include "sim_video/object_truth.hpp"
 
 namespace gimbal::sim_video {
 
@@ -22,6 +23,8 @@ struct SimVideoOptions {
     // The picture: width, height, ray grid. The encoder's size follows it.
     sim::SceneOptions scene;
     H264Options h264;
+    // The moving objects drawn on the ground (at each view's model time): none by default.
+    sim::ObjectSet objects;
 };
 
 class SimVideoSource {
@@ -29,14 +32,18 @@ class SimVideoSource {
     // The source, or why not (bad_request for options, unavailable for the encoder).
     static Result<std::unique_ptr<SimVideoSource>> open(const SimVideoOptions& options);
 
-    // One frame of what `camera` sees, taken at unix_ms and shown at pts_90k; its access
-    // unit(s) are appended to `out`. False (error() says why) when the encoder refuses it; an
-    // invalid camera still gives a (grey) frame.
+    // One frame of what `camera` sees (the still scene: no moving objects), taken at unix_ms
+    // and shown at pts_90k; its access unit(s) are appended to `out`. False (error() says why)
+    // when the encoder refuses it; an invalid camera still gives a (grey) frame.
     bool frame(const geo::CameraPose& camera, std::uint64_t unix_ms, std::int64_t pts_90k,
                std::vector<AccessUnit>& out);
-    // Any simulated camera (a protocol's simulator hook): its pose, grey when monochrome.
+    // Any simulated camera (a protocol's simulator hook): its pose, grey when monochrome, and
+    // the options' moving objects where they are at the view's model time.
     bool frame(const sim::CameraView& view, std::uint64_t unix_ms, std::int64_t pts_90k,
                std::vector<AccessUnit>& out);
+
+    // The moving objects of the last frame, as the camera saw them.
+    const std::vector<ObjectTruth>& objects() const { return truth_; }
 
     // The last frame as rendered (time code included), before encoding.
     const sim::I420Frame& picture() const { return picture_; }
@@ -45,8 +52,11 @@ class SimVideoSource {
     const std::string& error() const { return encoder_->error(); }
 
   private:
-    SimVideoSource(const sim::SceneOptions& scene, std::unique_ptr<H264Encoder> encoder);
+    SimVideoSource(const SimVideoOptions& options, std::unique_ptr<H264Encoder> encoder);
+    bool encode(std::uint64_t unix_ms, std::int64_t pts_90k, std::vector<AccessUnit>& out);
 
+    sim::ObjectSet object_set_;
+    std::vector<ObjectTruth> truth_;
     sim::SceneRenderer renderer_;
     std::unique_ptr<H264Encoder> encoder_;
     sim::I420Frame picture_;

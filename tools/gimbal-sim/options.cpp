@@ -327,6 +327,10 @@ ParsedOptions parse_options(int argc, char** argv) {
         std::cerr << "gimbal-sim: --stall-reading-after needs --stall-reading-for\n";
         return {std::nullopt, 1};
     }
+    if (o.video.url.empty() && !o.video.objects_log.empty()) {
+        std::cerr << "gimbal-sim: --objects-log needs --video (the objects are in the picture)\n";
+        return {std::nullopt, 1};
+    }
     if (std::string error;
         !o.video.url.empty() && !video_sender_options(o.video, o.entry(), error)) {
         std::cerr << "gimbal-sim: " << error << "\n";

@@ -25,6 +25,23 @@ VIDEO
        "video: udp://HOST:PORT"; at the end, on standard error, the frames sent
        and the CPU they took. Watch it with ffplay udp://HOST:PORT (see
        docs/video.md), or give gimbald "video": {"input": "udp://0.0.0.0:PORT"}.
+
+MOVING OBJECTS
+       The picture shows the simulator's roads and, with --objects (default
+       all), vehicles driving them at 5-25 m/s and a boat on the river, each
+       where it is at the model's time (the same places on every run): car
+       (white, eastbound on the east-west road at 15 m/s, 1.5 km west of the
+       circle's centre at the start), convoy1..convoy5 (westbound at 15 m/s,
+       passing under the highway's overpass 24, 36, 48, 60 and 72 s after the
+       start, out of sight for about 2 s), truck and highway_car (the
+       highway), hill_car and tractor (round the east hill, which hides them
+       from parts of the circle) and boat (the river, 6 m/s). --objects none
+       shows the roads only. --objects-log FILE writes their truth, one JSON
+       line per object per frame: frame, unix_us, pts_90k, model time t, name,
+       kind, lat, lon, alt, heading, speed, north, east, slant_range_m, image
+       x, y and box (section 16 coordinates, from the frame's camera pose),
+       in_picture, visible (the fraction of the body in sight) and hidden
+       (null, "deck" or "terrain"). See docs/simulator.md "Moving objects".
 )";
 }
 
@@ -49,6 +66,15 @@ void add_video_options(CLI::App& app, VideoToolOptions& o) {
     app.add_flag(
            "--no-video-klv", [&o](std::int64_t) { o.klv = false; },
            "No KLV in the video (an Orion with its KLV output off)")
+        ->group(group);
+    app.add_option("--objects", o.objects,
+                   "Moving objects in the picture: all, none, or names (MOVING OBJECTS)")
+        ->type_name("LIST")
+        ->capture_default_str()
+        ->group(group);
+    app.add_option("--objects-log", o.objects_log,
+                   "Write the objects' truth to FILE, a JSON line per object per frame")
+        ->type_name("FILE")
         ->group(group);
 }
 
@@ -82,6 +108,14 @@ std::optional<gimbald::video::SimVideoSenderOptions> video_sender_options(
     s.stream.video.h264.width = width;  // SimVideoSource sets them from the scene too
     s.stream.video.h264.height = height;
     s.stream.klv = o.klv;
+    std::string why;
+    const auto objects = gimbal::sim::ObjectSet::parse(o.objects, why);
+    if (!objects) {
+        error = "--objects: " + why;
+        return std::nullopt;
+    }
+    s.stream.video.objects = *objects;
+    s.objects_log = o.objects_log;
     if (const std::string problem = gimbal::sim_video::check(s.stream.video.h264);
         !problem.empty()) {
         error = "--video: " + problem;

@@ -17,9 +17,12 @@ struct VideoToolOptions {
     int fps = 15;
     int bitrate_bps = 1200000;
     bool klv = true;
+    std::string objects = "all";  // sim::ObjectSet::parse's text
+    std::string objects_log;      // the objects' truth, JSON lines (empty: none)
 };
 
-// Adds --video, --video-size, --video-fps, --video-bitrate, --no-video-klv.
+// Adds --video, --video-size, --video-fps, --video-bitrate, --no-video-klv, --objects,
+// --objects-log.
 void add_video_options(CLI::App& app, VideoToolOptions& options);
 // The sender's settings, or the reason the options cannot be used with this protocol.
 std::optional<gimbald::video::SimVideoSenderOptions> video_sender_options(
