@@ -20,6 +20,7 @@
 #include "notify.hpp"
 #include "protocols/registry.hpp"
 #include "record/recording_link.hpp"
+#include "record/track_records.hpp"
 #include "secret_file.hpp"
 #include "signing_state.hpp"
 #include "track/steering_commands.hpp"
@@ -176,11 +177,37 @@ void App::start_tracking() {
                 events_.publish(name, e);
             }));
     }
+    if (recorder_) tap_track_recording();
     request_path_->add_executed_listener([this](const std::string& name, std::string_view cmd) {
         if (!track::is_steering_command(cmd)) return;
         for (std::size_t i = 0; i < sessions_.size(); ++i)
             if (trackers_[i] && sessions_[i]->name() == name) trackers_[i]->overridden(cmd);
     });
+}
+
+// Each track's events and STATE `track` after every box, on its gimbal's `track:` interface:
+// after every `video:` one (start_recorder), in configuration order.
+void App::tap_track_recording() {
+    std::size_t videos = 0;
+    for (const auto& g : config_.gimbals)
+        if (g.video) ++videos;
+    auto interface =
+        static_cast<std::uint32_t>(sessions_.size() + (config_.vehicle ? 1 : 0) + 1 + videos);
+    for (std::size_t i = 0; i < sessions_.size(); ++i) {
+        if (!trackers_[i]) continue;
+        const std::string name = sessions_[i]->name();
+        const auto write = [this, interface](const std::string& pdu) {
+            recorder_->record(interface, record::Direction::outbound,
+                              gimbal::record::track_dissector, pdu);
+        };
+        trackers_[i]->set_record_tap({[name, write](const gimbal::state::Event& e) {
+                                          write(gimbal::record::track_event_record(name, e));
+                                      },
+                                      [name, write](const gimbal::state::TrackState& t) {
+                                          write(gimbal::record::track_state_record(name, t));
+                                      }});
+        ++interface;
+    }
 }
 
 // Contract section 17: each gimbal's video, STATE `video` (null without one) and `klv`.
@@ -265,8 +292,8 @@ void App::start_http() {
     });
 }
 
-// Interfaces (docs/recording.md): one per gimbal in config order, then `mavlink` when a
-// vehicle source exists, then `json`.
+// Interfaces (docs/recording-format.md): one per gimbal in config order, then `mavlink` when a
+// vehicle source exists, then `json`, then `video:` and `track:` ones.
 void App::start_recorder() {
     record::RecorderOptions options(*config_.record);
     options.user_application = std::string("gimbald ") + GIMBALD_VERSION;
@@ -289,6 +316,14 @@ void App::start_recorder() {
     // Then one per gimbal with video (contract section 17): its MPEG-TS, and generated KLV.
     for (const auto& g : config_.gimbals)
         if (g.video) options.interfaces.push_back({"video:" + g.name, "mp2t " + g.video->input});
+    // Then one per gimbal with visual tracking (contract section 20): its track's events and
+    // STATE `track` (tap_track_recording).
+    for (const auto& g : config_.gimbals)
+        if (g.video && g.video->tracking)
+            options.interfaces.push_back(
+                {std::string(gimbal::record::track_prefix) + g.name,
+                 "gimbald-json visual track, " +
+                     std::string(gimbal::track::wire::to_string(g.video->tracking->tracker))});
     recorder_ = std::make_unique<record::Recorder>(io_, std::move(options));
 }
 

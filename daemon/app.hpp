@@ -60,6 +60,7 @@ class App {
     void start_http();
     void start_video();
     void start_tracking();
+    void tap_track_recording();
     void update_status();
     void open_geoid_if_needed(const nlohmann::json& gimbal_objects);
 

@@ -1420,20 +1420,45 @@ end
 
 ------------------------------------------------------------------------------------------------
 -- gimbald-json: JSON requests (inbound) and replies (outbound) of every transport, shown by
--- Wireshark's json dissector (filters json.member etc.).
+-- Wireshark's json dissector (filters json.member etc.); on a `track:<gimbal>` interface, the
+-- visual track's records (events and STATE track, docs/recording-format.md).
 ------------------------------------------------------------------------------------------------
 
 local json_proto = Proto("gimbald-json", "gimbald JSON")
 local jf = { text = ProtoField.string("gimbald-json.text", "Text") }
 json_proto.fields = { jf.text }
 local json_dissector = Dissector.get("json")
+local interface_name = Field.new("frame.interface_name")
+
+-- "track_lost id 3" or "track 3 tracking, confidence 0.93, 45.6973012 -121.4807403".
+local function track_summary(text)
+    local id = text:match('"id":(%d+)') or "?"
+    local event = text:match('"event":"([%w_]+)"')
+    if event then
+        local reason = text:match('"reason":"([%w_]+)"')
+        return event .. " id " .. id .. (reason and (" (" .. reason .. ")") or "")
+    end
+    local summary = "track " .. id .. " " .. (text:match('"state":"(%a+)"') or "?")
+    local confidence = text:match('"confidence":([-%d.e]+)')
+    if confidence then summary = summary .. ", confidence " .. confidence end
+    local lat, lon = text:match('"lat":([-%d.e]+)'), text:match('"lon":([-%d.e]+)')
+    if lat and lon then summary = summary .. ", " .. lat .. " " .. lon end
+    return summary
+end
 
 function json_proto.dissector(tvb, pinfo, tree)
     local t = tree:add(json_proto, tvb())
+    local itf = interface_name()
+    local track = itf ~= nil and tostring(itf.value):sub(1, 6) == "track:"
     local request = pinfo.p2p_dir == P2P_DIR_RECV
-    t:append_text(request and " (request)" or " (reply)")
+    t:append_text(track and " (track record)" or request and " (request)" or " (reply)")
     json_dissector:call(tvb, pinfo, tree)
     pinfo.cols.protocol = "gimbald-json"
+    if track then
+        local ok, text = pcall(function() return tvb():string() end)
+        if ok then pinfo.cols.info = track_summary(text) end
+        return tvb:len()
+    end
     local ok, first = pcall(function() return tvb(0, math.min(tvb:len(), 80)):string() end)
     if ok then pinfo.cols.info = (request and "request " or "reply ") .. first:gsub("[\r\n]", " ") end
     return tvb:len()

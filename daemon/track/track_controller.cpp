@@ -247,6 +247,7 @@ void TrackController::on_box(const wire::Box& box) {
     // Only a box on the object is located: a lost one is only the image motion's guess.
     if (seen) locate(box.pts_90k, (box.x0 + box.x1) / 2.0, (box.y0 + box.y1) / 2.0);
     report(change);
+    if (track_ && record_tap_.box_handled) record_tap_.box_handled(*state());
 }
 
 void TrackController::locate(std::int64_t pts_90k, double x, double y) {
@@ -358,7 +359,9 @@ void TrackController::tick() {
 }
 
 void TrackController::emit(std::string kind, json fields) {
-    if (on_event_) on_event_(gimbal::state::Event{std::move(kind), std::move(fields)});
+    const gimbal::state::Event event{std::move(kind), std::move(fields)};
+    if (record_tap_.event) record_tap_.event(event);
+    if (on_event_) on_event_(event);
 }
 
 }  // namespace gimbald::track

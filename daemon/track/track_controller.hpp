@@ -18,6 +18,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/steady_timer.hpp>
@@ -54,6 +55,12 @@ struct TrackControllerOptions {
 class TrackController {
   public:
     using EventSink = std::function<void(const gimbal::state::Event&)>;
+    // What the flight recorder records of a track (docs/recording-format.md): every event,
+    // and STATE `track` each time a box from gimbal-track was handled.
+    struct RecordTap {
+        EventSink event;
+        std::function<void(const gimbal::state::TrackState&)> box_handled;
+    };
 
     // `session`, `video` and `terrain` (nullptr: none) must outlive this object.
     TrackController(boost::asio::io_context& io, TrackControllerOptions options,
@@ -63,6 +70,7 @@ class TrackController {
 
     void start();
     void stop();
+    void set_record_tap(RecordTap tap) { record_tap_ = std::move(tap); }
 
     gimbal::command::Result<nlohmann::json> track(const nlohmann::json& request);
     gimbal::command::Result<nlohmann::json> track_stop(const nlohmann::json& request);
@@ -104,6 +112,7 @@ class TrackController {
     video::GimbalVideo& video_;
     gimbal::terrain::ElevationModel* terrain_;
     EventSink on_event_;
+    RecordTap record_tap_;
     TrackProcess process_;
     TrackSteering steering_;
     boost::asio::steady_timer tick_timer_;

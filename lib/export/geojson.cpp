@@ -1,5 +1,7 @@
 // RFC 7946: positions are [lon, lat] or [lon, lat, alt] (alt above the WGS84 ellipsoid),
 // polygon exterior rings closed and counter-clockwise, one FeatureCollection.
+#include <algorithm>
+
 #include "export/writers.hpp"
 
 namespace gimbal::flight_export {
@@ -34,9 +36,58 @@ Json point_properties(const char* kind, const TrackPoint& p) {
     return props;
 }
 
+Json line_string(const std::vector<const ObjectSample*>& samples) {
+    return {
+        {"type", "LineString"},
+        {"coordinates", coordinates(samples, [](const ObjectSample* s) { return *s->ground; })}};
+}
+
+Json optional_text(const std::optional<std::string>& text) {
+    return text ? Json(*text) : Json(nullptr);
+}
+
+// The object's line, its stretches while lost and its marks (lost, re-acquired, end).
+void add_object_track(Json& features, const ObjectTrack& track) {
+    const auto line = object_line(track);
+    if (line.size() >= 2) {
+        const auto lost = std::count_if(line.begin(), line.end(),
+                                        [](const ObjectSample* s) { return s->state == "lost"; });
+        features.push_back(
+            feature(line_string(line), {{"kind", "object_track"},
+                                        {"gimbal", track.gimbal},
+                                        {"id", track.id},
+                                        {"start", iso_time(track.start_us)},
+                                        {"end", iso_time(track.end_us)},
+                                        {"end_reason", optional_text(track.end_reason)},
+                                        {"points", line.size()},
+                                        {"lost_points", lost}}));
+    }
+    for (const auto& stretch : lost_stretches(track))
+        features.push_back(
+            feature(line_string(stretch), {{"kind", "object_track_lost"},
+                                           {"gimbal", track.gimbal},
+                                           {"id", track.id},
+                                           {"start", iso_time(stretch.front()->time_us)},
+                                           {"end", iso_time(stretch.back()->time_us)},
+                                           {"points", stretch.size()}}));
+    for (const auto& mark : object_marks(track)) {
+        const std::vector<Position> at{mark.at};
+        features.push_back(
+            feature({{"type", "Point"},
+                     {"coordinates", coordinates(at, [](const Position& p) { return p; })[0]}},
+                    {{"kind", "object_event"},
+                     {"gimbal", track.gimbal},
+                     {"id", track.id},
+                     {"event", mark.event->event},
+                     {"time", iso_time(mark.event->time_us)},
+                     {"reason", optional_text(mark.event->reason)}}));
+    }
+}
+
 }  // namespace
 
-std::string to_geojson(const Flight& flight, double footprint_every_s) {
+std::string to_geojson(const Flight& flight, double footprint_every_s,
+                       const std::vector<ObjectTrack>& objects) {
     Json features = Json::array();
 
     std::vector<const TrackPoint*> track;
@@ -65,6 +116,8 @@ std::string to_geojson(const Flight& flight, double footprint_every_s) {
              {"end", iso_time(segment.back()->time_us)},
              {"points", segment.size()}}));
     }
+
+    for (const auto& object : objects) add_object_track(features, object);
 
     for (const TrackPoint* p : footprints_every(flight, footprint_every_s)) {
         const auto ring = counter_clockwise_ring(*p->footprint);

@@ -1,6 +1,7 @@
 // KML 2.2 (OGC 07-147r2): one Document; Placemarks with LineString and Polygon geometries,
 // altitudeMode absolute (metres above mean sea level, so the MSL altitudes are used).
-// Geometries lacking an altitude are clamped to the ground instead.
+// Geometries lacking an altitude are clamped to the ground instead; the object tracks' heights
+// above the ellipsoid become MSL with the undulation the gimbal reported (with_msl_heights).
 #include "export/writers.hpp"
 
 namespace gimbal::flight_export {
@@ -76,9 +77,59 @@ std::string extended_data(const TrackPoint& p) {
     return out + "</ExtendedData>";
 }
 
+constexpr const char* object_styles =
+    "<Style id=\"object\"><LineStyle><color>ffff00ff</color><width>3</width></LineStyle>"
+    "</Style>\n"
+    "<Style id=\"object_lost\"><LineStyle><color>ff808080</color><width>5</width></LineStyle>"
+    "</Style>\n"
+    "<Style id=\"object_event\"><IconStyle><color>ffff00ff</color><scale>0.8</scale>"
+    "</IconStyle></Style>\n";
+
+std::string data(const std::string& name, const std::string& value) {
+    return "<Data name=\"" + escape(name) + "\"><value>" + escape(value) + "</value></Data>";
+}
+
+// A Folder per track: its line, its stretches while lost (drawn over the line) and its marks.
+std::string object_folder(const ObjectTrack& track) {
+    const std::string name = "object " + std::to_string(track.id);
+    std::string out = "<Folder><name>object track " + std::to_string(track.id) + "</name>" +
+                      time_span(track.start_us, track.end_us) + "\n";
+    std::string mode;
+    const auto line = object_line(track);
+    const auto ground = [](const ObjectSample* s) { return *s->ground; };
+    if (line.size() >= 2) {
+        const auto coords = coordinates(line, ground, mode);
+        out += "<Placemark><name>" + name + "</name>" + time_span(track.start_us, track.end_us) +
+               "<styleUrl>#object</styleUrl><ExtendedData>" + data("gimbal", track.gimbal) +
+               data("id", std::to_string(track.id)) +
+               (track.end_reason ? data("end_reason", *track.end_reason) : std::string()) +
+               data("points", std::to_string(line.size())) + "</ExtendedData>" +
+               line_string(coords, mode) + "</Placemark>\n";
+    }
+    for (const auto& stretch : lost_stretches(track)) {
+        const auto coords = coordinates(stretch, ground, mode);
+        out += "<Placemark><name>" + name + " lost</name>" +
+               time_span(stretch.front()->time_us, stretch.back()->time_us) +
+               "<styleUrl>#object_lost</styleUrl>" + line_string(coords, mode) + "</Placemark>\n";
+    }
+    for (const auto& mark : object_marks(track)) {
+        const std::vector<Position> at{mark.at};
+        const auto coords = coordinates(
+            at, [](const Position& p) { return p; }, mode);
+        const auto& e = *mark.event;
+        out += "<Placemark><name>" + name + " " + escape(e.event) +
+               (e.reason ? " (" + escape(*e.reason) + ")" : std::string()) +
+               "</name><TimeStamp><when>" + iso_time(e.time_us) +
+               "</when></TimeStamp><styleUrl>#object_event</styleUrl><Point><altitudeMode>" + mode +
+               "</altitudeMode><coordinates>" + coords + "</coordinates></Point></Placemark>\n";
+    }
+    return out + "</Folder>\n";
+}
+
 }  // namespace
 
-std::string to_kml(const Flight& flight, double footprint_every_s) {
+std::string to_kml(const Flight& flight, double footprint_every_s,
+                   const std::vector<ObjectTrack>& objects) {
     std::string out =
         "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
         "<kml xmlns=\"http://www.opengis.net/kml/2.2\">\n<Document>\n"
@@ -91,6 +142,7 @@ std::string to_kml(const Flight& flight, double footprint_every_s) {
         "</Style>\n"
         "<Style id=\"footprint\"><LineStyle><color>ff00ff00</color><width>1</width></LineStyle>"
         "<PolyStyle><color>4000ff00</color></PolyStyle></Style>\n";
+    if (!objects.empty()) out += object_styles;
 
     std::vector<const TrackPoint*> track;
     for (const auto& p : flight.points)
@@ -115,6 +167,12 @@ std::string to_kml(const Flight& flight, double footprint_every_s) {
                    time_span(segment.front()->time_us, segment.back()->time_us) +
                    "<styleUrl>#target</styleUrl>" + line_string(coords, mode) + "</Placemark>\n";
         }
+        out += "</Folder>\n";
+    }
+
+    if (!objects.empty()) {
+        out += "<Folder><name>object tracks</name>\n";
+        for (const auto& object : with_msl_heights(objects, flight)) out += object_folder(object);
         out += "</Folder>\n";
     }
 

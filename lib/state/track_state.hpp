@@ -1,12 +1,15 @@
 // STATE `track` (contract section 20): the visual track a gimbal runs, null when none - its
 // box and centre in section 16 image coordinates, the tracker's confidence, where the object
 // is on the ground and how it moves (the ground filter's estimate; null before the first
-// located frame), and its life so far. Filled by daemon/track.
+// located frame), and its life so far. Filled by daemon/track; read back from recordings
+// (lib/record/track_records.hpp), hence fields() over a const or non-const part (part.hpp).
 #pragma once
 
 #include <cstdint>
 #include <optional>
 #include <string>
+
+#include "state/part.hpp"
 
 namespace gimbal::state {
 
@@ -45,37 +48,37 @@ struct TrackState {
 // Image coordinates: 1e-4 of the half-width is a tenth of a pixel at 4K.
 inline constexpr int image_decimals = 4;
 
-template <class V>
-void fields(V& v, const TrackImageBox& b) {
+template <class V, part_of<TrackImageBox> P>
+void fields(V& v, P& b) {
     v.decimals("x0", b.x0, image_decimals);
     v.decimals("y0", b.y0, image_decimals);
     v.decimals("x1", b.x1, image_decimals);
     v.decimals("y1", b.y1, image_decimals);
 }
 
-template <class V>
-void fields(V& v, const TrackCentre& c) {
+template <class V, part_of<TrackCentre> P>
+void fields(V& v, P& c) {
     v.decimals("x", c.x, image_decimals);
     v.decimals("y", c.y, image_decimals);
 }
 
-template <class V>
-void fields(V& v, const TrackGround& g) {
+template <class V, part_of<TrackGround> P>
+void fields(V& v, P& g) {
     v.latlon("lat", g.lat);
     v.latlon("lon", g.lon);
     v.metres("alt", g.alt);
 }
 
-template <class V>
-void fields(V& v, const TrackVelocity& m) {
+template <class V, part_of<TrackVelocity> P>
+void fields(V& v, P& m) {
     v.decimals("north", m.north, 2);
     v.decimals("east", m.east, 2);
     v.decimals("speed", m.speed, 2);
     v.angle("course", m.course);
 }
 
-template <class V>
-void fields(V& v, const TrackState& t) {
+template <class V, part_of<TrackState> P>
+void fields(V& v, P& t) {
     v.integer("id", t.id);
     v.string("state", t.state);
     v.object("box", t.box);

@@ -1,5 +1,6 @@
-// gimbal-export: aircraft track, target track and camera footprints from a gimbald
-// recording, as GeoJSON, KML or CSV. See `gimbal-export --help` and docs/replay-export.md.
+// gimbal-export: aircraft track, target track, camera footprints and the visually tracked
+// object's track from a gimbald recording, as GeoJSON, KML or CSV. See `gimbal-export --help`
+// and docs/replay-export.md.
 #include <CLI/CLI.hpp>
 #include <fstream>
 #include <iostream>
@@ -9,72 +10,110 @@
 #include "export/klv_csv.hpp"
 #include "export/writers.hpp"
 #include "record/gimbal_stream.hpp"
+#include "record/track_stream.hpp"
 #include "record/video_stream.hpp"
 
 namespace {
 
 constexpr const char* description = R"(NAME
-       gimbal-export - aircraft track, target track and camera footprints from a
-       gimbald recording, for QGIS, Google Earth or a spreadsheet
+       gimbal-export - aircraft track, target track, camera footprints and the
+       visually tracked object's track from a gimbald recording, for QGIS,
+       Google Earth or a spreadsheet
 
 SYNOPSIS
-       gimbal-export FILE... --format geojson|kml|csv|klv-csv [--gimbal NAME]
-                     [--footprint-every S] [-o OUT]
+       gimbal-export FILE... --format geojson|kml|csv|track-csv|klv-csv
+                     [--gimbal NAME] [--footprint-every S] [-o OUT]
 
 DESCRIPTION
        Reads a pcapng recording written by gimbald (docs/recording.md),
        decodes what one gimbal sent - its telemetry frames, with the decoder of
-       its protocol, the same codec and state code gimbald uses - and writes
-       one of:
+       its protocol, the same codec and state code gimbald uses - and, when the
+       gimbal had visual tracking (interface track:NAME), the records of its
+       tracks: the events and STATE track after every box gimbald handled.
+       It writes one of:
 
-       geojson  an RFC 7946 FeatureCollection: the aircraft track (LineString),
-                the target track (a LineString per run of ranged points), and
-                camera footprints (Polygon, exterior ring counter-clockwise)
-                every S seconds, each with the telemetry values as properties.
-                Positions are [lon, lat, alt], alt above the WGS84 ellipsoid
-                (a gimbal that reports only MSL heights has positions
-                [lon, lat] and alt_msl as a property).
-       kml      a KML 2.2 Document with the same Placemarks (LineString,
-                Polygon), altitudeMode absolute with heights above mean sea
-                level (alt minus the reported geoid undulation when the gimbal
-                reports heights above the ellipsoid).
-       csv      a header line, then one row per telemetry packet: time (the
-                receive time, ISO-8601 UTC), gimbal_time, system_time_ms, lat,
-                lon, alt, alt_msl, roll, pitch, yaw (aircraft), pan, tilt, hfov,
-                vfov, mode, range_source, target_lat, target_lon, target_alt,
-                target_alt_msl, zoom, lrf_m; empty where the packet has no value.
-       klv-csv  the KLV track of the gimbal's recorded video (interface
-                video:NAME, contract section 17): a header line, then one row
-                per MISB ST 0601 set - the sets found in the recorded MPEG-TS
-                (source "stream", checksum verified; bad ones are skipped and
-                counted) and those gimbald generated (source "generated") -
-                with time (when gimbald received or made it, ISO-8601 UTC),
-                source, and every decoded item as a column (names and units of
-                docs/video.md; flags as item.flag columns).
+       geojson    an RFC 7946 FeatureCollection: the aircraft track
+                  (LineString), the target track (a LineString per run of
+                  ranged points), the object tracks, and camera footprints
+                  (Polygon, exterior ring counter-clockwise) every S seconds,
+                  each with the telemetry values as properties. Positions are
+                  [lon, lat, alt], alt above the WGS84 ellipsoid (a gimbal that
+                  reports only MSL heights has positions [lon, lat] and alt_msl
+                  as a property). An object track is a LineString (kind
+                  object_track) through every ground position the tracker's
+                  filter had, with properties id, gimbal, start, end,
+                  end_reason (stopped, overridden, timeout, no_video; null
+                  when the recording ends first), points and lost_points; a
+                  LineString (kind object_track_lost) over each stretch while
+                  the object was lost, its positions predicted; and a Point
+                  (kind object_event) where it was lost, re-acquired and ended.
+       kml        a KML 2.2 Document with the same Placemarks (LineString,
+                  Polygon, Point), altitudeMode absolute with heights above
+                  mean sea level (alt minus the reported geoid undulation when
+                  the gimbal reports heights above the ellipsoid; the object's
+                  heights with the undulation reported for the aircraft). The
+                  object tracks are in a Folder "object tracks", one Folder
+                  per track.
+       csv        a header line, then one row per telemetry packet: time (the
+                  receive time, ISO-8601 UTC), gimbal_time, system_time_ms,
+                  lat, lon, alt, alt_msl, roll, pitch, yaw (aircraft), pan,
+                  tilt, hfov, vfov, mode, range_source, target_lat,
+                  target_lon, target_alt, target_alt_msl, zoom, lrf_m; empty
+                  where the packet has no value.
+       track-csv  the object tracks as a table: a header line, then one row
+                  per track record in recorded order: time (when gimbald
+                  handled it, ISO-8601 UTC), gimbal, id, event (empty for a
+                  box; track_start, track_lost, track_reacquired, track_end),
+                  state (tracking, lost; ended on track_end), lat, lon, alt
+                  (where the filter had the object, alt above the WGS84
+                  ellipsoid; empty before the first located box),
+                  velocity_north, velocity_east, speed (m/s), course
+                  (degrees), confidence, centre_x, centre_y (the box's centre
+                  in image coordinates, -1..1), reason (on track_end). An
+                  event row has no position. A recording without the gimbal's
+                  track interface is exit 1.
+       klv-csv    the KLV track of the gimbal's recorded video (interface
+                  video:NAME, contract section 17): a header line, then one
+                  row per MISB ST 0601 set - the sets found in the recorded
+                  MPEG-TS (source "stream", checksum verified; bad ones are
+                  skipped and counted) and those gimbald generated (source
+                  "generated") - with time (when gimbald received or made it,
+                  ISO-8601 UTC), source, and every decoded item as a column
+                  (names and units of docs/video.md; flags as item.flag
+                  columns).
 
        Units are those of gimbald's STATE (degrees, metres). Camera footprints
        are the image corners projected onto the ground at the target's altitude
        (only for gimbals that report a field of view); a footprint is drawn
        for the first packet that has one and then every --footprint-every
-       seconds of receive time. Several FILEs are read as one recording, in the
-       order given (gimbald rotates files). A file cut short by a crash is read
-       up to its last complete block, with a warning.
+       seconds of receive time. An object track runs from its track_start to
+       its track_end; gimbald numbers tracks from 1 again when it restarts, so
+       one id may name several tracks of a recording. Several FILEs are read
+       as one recording, in the order given (gimbald rotates files). A file
+       cut short by a crash is read up to its last complete block, with a
+       warning.
 )";
 
 constexpr const char* footer = R"(OUTPUT
        The export goes to OUT (or standard output); a summary line goes to
        standard error:
            gimbal-export: gimbal main (orion): 300 telemetry packets, 30 footprints
+           gimbal-export: gimbal main (orion): 300 telemetry packets, 30 footprints,
+               2 object tracks (412 positions)
+           gimbal-export: visual track of gimbal main: 2 tracks, 431 records
+               (412 positions)
            gimbal-export: video of gimbal main: 450 KLV sets (450 stream, 0 generated)
 
 EXIT STATUS
        0 written; 1 bad command line, unreadable file, not a recording, no such
-       gimbal, or OUT cannot be written.
+       gimbal (no track of it for track-csv, no video of it for klv-csv), or
+       OUT cannot be written.
 
 EXAMPLES
        gimbal-export flight.pcapng --format geojson -o flight.geojson
        gimbal-export flight.pcapng --format kml --footprint-every 2 -o flight.kml
        gimbal-export flight.pcapng --gimbal nose --format csv > nose.csv
+       gimbal-export flight.pcapng --format track-csv -o object.csv
        gimbal-export flight.pcapng --format klv-csv -o klv.csv
 )";
 
@@ -120,6 +159,47 @@ int export_klv(const std::vector<std::string>& files, const std::string& gimbal,
     return 0;
 }
 
+// The object tracks of the gimbal's visual tracking (none when it had none).
+bool load_objects(const std::vector<std::string>& files, const std::string& gimbal,
+                  gimbal::record::TrackStream& stream,
+                  std::vector<gimbal::flight_export::ObjectTrack>& objects) {
+    std::string error;
+    if (!gimbal::record::load_track_files(files, gimbal, stream, error)) {
+        std::cerr << "gimbal-export: " << error << std::endl;
+        return false;
+    }
+    objects = gimbal::flight_export::object_tracks(stream);
+    return true;
+}
+
+std::size_t positions(const std::vector<gimbal::flight_export::ObjectTrack>& objects) {
+    std::size_t n = 0;
+    for (const auto& track : objects) n += gimbal::flight_export::object_line(track).size();
+    return n;
+}
+
+std::string unreadable(const gimbal::record::TrackStream& stream) {
+    return stream.unreadable
+               ? ", " + std::to_string(stream.unreadable) + " unreadable records skipped"
+               : std::string();
+}
+
+int export_track_csv(const gimbal::record::TrackStream& stream,
+                     const std::vector<gimbal::flight_export::ObjectTrack>& objects,
+                     const std::string& output) {
+    if (!stream.found) {
+        std::cerr << "gimbal-export: the recording has no visual track of gimbal " << stream.gimbal
+                  << " (interface track:" << stream.gimbal
+                  << "; its video needs a tracking section)" << std::endl;
+        return 1;
+    }
+    if (!write_output(output, gimbal::flight_export::to_track_csv(objects))) return 1;
+    std::cerr << "gimbal-export: visual track of gimbal " << stream.gimbal << ": " << objects.size()
+              << " tracks, " << stream.records.size() << " records (" << positions(objects)
+              << " positions)" << unreadable(stream) << std::endl;
+    return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -136,9 +216,9 @@ int main(int argc, char** argv) {
     app.get_formatter()->column_width(30);
     app.add_option("FILE", files, "Recording (pcapng) to read; several: in this order")
         ->type_name("");
-    app.add_option("--format", format, "Output format: geojson, kml, csv or klv-csv")
+    app.add_option("--format", format, "Output format: geojson, kml, csv, track-csv or klv-csv")
         ->type_name("FORMAT")
-        ->check(CLI::IsMember({"geojson", "kml", "csv", "klv-csv"}).description(""));
+        ->check(CLI::IsMember({"geojson", "kml", "csv", "track-csv", "klv-csv"}).description(""));
     app.add_option("--gimbal", gimbal,
                    "Gimbal to export (its interface gimbal:NAME); needed when the recording "
                    "holds several")
@@ -182,17 +262,25 @@ int main(int argc, char** argv) {
     }
     for (const auto& w : warnings)
         std::cerr << "gimbal-export: warning: " << w << "; exporting what came before" << std::endl;
+    gimbal::record::TrackStream track_stream;
+    std::vector<fe::ObjectTrack> objects;
+    if (format != "csv" && !load_objects(files, flight.gimbal, track_stream, objects)) return 1;
+    if (format == "track-csv") return export_track_csv(track_stream, objects, output);
 
-    const std::string text = format == "geojson" ? fe::to_geojson(flight, footprint_every_s)
-                             : format == "kml"   ? fe::to_kml(flight, footprint_every_s)
-                                                 : fe::to_csv(flight);
+    const std::string text = format == "geojson"
+                                 ? fe::to_geojson(flight, footprint_every_s, objects)
+                             : format == "kml" ? fe::to_kml(flight, footprint_every_s, objects)
+                                               : fe::to_csv(flight);
     if (!write_output(output, text)) return 1;
     std::cerr << "gimbal-export: gimbal " << flight.gimbal << " (" << flight.protocol
               << "): " << flight.points.size() << " telemetry packets, "
               << fe::footprints_every(flight, footprint_every_s).size() << " footprints"
               << (flight.decode_errors
                       ? ", " + std::to_string(flight.decode_errors) + " frames did not decode"
-                      : std::string())
-              << std::endl;
+                      : std::string());
+    if (track_stream.found)
+        std::cerr << ", " << objects.size() << " object tracks (" << positions(objects)
+                  << " positions)" << unreadable(track_stream);
+    std::cerr << std::endl;
     return 0;
 }
