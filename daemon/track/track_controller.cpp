@@ -247,7 +247,11 @@ void TrackController::on_box(const wire::Box& box) {
     // Only a box on the object is located: a lost one is only the image motion's guess.
     if (seen) locate(box.pts_90k, (box.x0 + box.x1) / 2.0, (box.y0 + box.y1) / 2.0);
     report(change);
-    if (track_ && record_tap_.box_handled) record_tap_.box_handled(*state());
+    if (!track_) return;
+    if (record_tap_.box_handled) record_tap_.box_handled(*state());
+    // A command due goes out with the box that made it, not at the next tick (up to 50 ms
+    // later): frame received -> steering command sent is a budget (contract section 20).
+    steer(now);
 }
 
 void TrackController::locate(std::int64_t pts_90k, double x, double y) {
@@ -347,15 +351,18 @@ void TrackController::tick() {
         process_.kill_process("no answer while video went to it");
         return;
     }
+    steer(now);
+    arm_tick();
+}
+
+void TrackController::steer(double now) {
     // Steering waits for gimbal-track's first box: until then the gimbal keeps doing what it
     // did (an Orion following the point the operator put it on); turning at a rate towards
     // the requested box would let the platform's own motion sweep the object away.
-    if (track_->steer && track_->machine.frames() > 0) {
-        const auto& b = track_->box;
-        steering_.steer(now, track_->filter.estimate(now), (b.x0 + b.x1) / 2, (b.y0 + b.y1) / 2,
-                        track_->machine.phase() != gt::TrackPhase::lost);
-    }
-    arm_tick();
+    if (!track_->steer || track_->machine.frames() == 0) return;
+    const auto& b = track_->box;
+    steering_.steer(now, track_->filter.estimate(now), (b.x0 + b.x1) / 2, (b.y0 + b.y1) / 2,
+                    track_->machine.phase() != gt::TrackPhase::lost);
 }
 
 void TrackController::emit(std::string kind, json fields) {

@@ -103,6 +103,7 @@ class TrackController {
     void report(const gimbal::track::TrackChange& change);
     void end(gimbal::track::EndReason reason, bool tell_process);
     void arm_tick();
+    void steer(double now);  // a steering command, when one is due
     void tick();
     void emit(std::string kind, nlohmann::json fields);
 
