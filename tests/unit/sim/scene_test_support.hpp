@@ -5,10 +5,12 @@
 #include <cmath>
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <utility>
 #include <vector>
 
 #include "geo/image.hpp"
+#include "sim/ground_objects.hpp"
 #include "sim/i420_frame.hpp"
 #include "sim/scene_style.hpp"
 #include "sim/terrain.hpp"
@@ -30,6 +32,15 @@ inline geo::CameraPose aimed(const geo::Lla& from, const geo::Lla& to, double hf
     const auto pt = geo::pan_tilt_towards(mount, from, to);
     return geo::camera_pose(from, mount, pt->pan_deg + pan_offset, pt->tilt_deg + tilt_offset,
                             hfov_deg, vfov_for(hfov_deg));
+}
+
+// The object of that name among these (sim/ground_objects.hpp); fails the test without one.
+inline const sim::ObjectState& object_named(const std::vector<sim::ObjectState>& all,
+                                            const std::string& name) {
+    for (const auto& o : all)
+        if (o.spec().name == name) return o;
+    FAIL("no object " << name);
+    return all.front();
 }
 
 inline geo::Lla landmark_lla(std::size_t i) {

@@ -5,9 +5,11 @@
 #include <cmath>
 #include <string>
 
+#include "scene_test_support.hpp"
 #include "sim/ground_objects.hpp"
 
 using namespace gimbal;
+using scene_test::object_named;
 using sim::ObjectSet;
 
 namespace {
@@ -32,13 +34,6 @@ double distance_to_road(sim::TerrainXY p, const std::string& route) {
                         std::hypot(a.east_m + u * dx - p.east_m, a.north_m + u * dy - p.north_m));
     }
     return best;
-}
-
-const sim::ObjectState& named(const std::vector<sim::ObjectState>& all, const std::string& name) {
-    for (const auto& o : all)
-        if (o.spec().name == name) return o;
-    FAIL("no object " << name);
-    return all.front();
 }
 
 }  // namespace
@@ -82,10 +77,9 @@ TEST_CASE("objects: they move as their velocity says, and turn round at the ends
         }
     }
     // The eastbound car comes back westbound after the east end (6 km away).
-    const auto& start = named(all.at(0), "car");
-    CHECK(start.east_mps > 14);
-    const auto& later = named(all.at(800), "car");
-    CHECK(later.east_mps < -14);
+    const auto at_start = all.at(0), at_800 = all.at(800);
+    CHECK(object_named(at_start, "car").east_mps > 14);
+    CHECK(object_named(at_800, "car").east_mps < -14);
 }
 
 TEST_CASE("objects: the convoy drives under the highway's deck on time", "[sim][objects]") {
@@ -95,7 +89,8 @@ TEST_CASE("objects: the convoy drives under the highway's deck on time", "[sim][
         const double at = 24 + 12 * k;
         INFO(name);
         const auto under = [&](double t) {
-            const auto& o = named(all.at(t), name);
+            const auto objects = all.at(t);
+            const auto& o = object_named(objects, name);
             CHECK(o.east_mps < -14);  // westbound
             return sim::under_deck(o.xy, o.level);
         };
@@ -108,8 +103,9 @@ TEST_CASE("objects: the convoy drives under the highway's deck on time", "[sim][
     // What drives on the deck is not under it; the boat never is.
     for (double t = 0; t < 600; t += 10) {
         const auto objects = all.at(t);
-        CHECK_FALSE(sim::under_deck(named(objects, "truck").xy, named(objects, "truck").level));
-        CHECK_FALSE(sim::under_deck(named(objects, "boat").xy, 0));
+        CHECK_FALSE(sim::under_deck(object_named(objects, "truck").xy,
+                                    object_named(objects, "truck").level));
+        CHECK_FALSE(sim::under_deck(object_named(objects, "boat").xy, 0));
     }
 }
 

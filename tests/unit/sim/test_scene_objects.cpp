@@ -13,13 +13,6 @@ using namespace scene_test;
 
 namespace {
 
-const sim::ObjectState& named(const std::vector<sim::ObjectState>& all, const std::string& name) {
-    for (const auto& o : all)
-        if (o.spec().name == name) return o;
-    FAIL("no object " << name);
-    return all.front();
-}
-
 sim::I420Frame render(const geo::CameraPose& camera, const std::vector<sim::ObjectState>& objects) {
     sim::SceneRenderer renderer;
     sim::I420Frame frame;
@@ -44,7 +37,7 @@ const geo::Lla eye{45.7, -121.5, 1500};
 TEST_CASE("scene objects: a car where geo::project puts it, its shadow beside it",
           "[sim][scene][objects]") {
     const auto objects = sim::ObjectSet::all().at(0);
-    const sim::ObjectState& car = named(objects, "car");
+    const sim::ObjectState& car = object_named(objects, "car");
     const geo::CameraPose camera = aimed(eye, car.position, 2);
     const sim::I420Frame with = render(camera, objects), without = render(camera, {});
     const auto luma = [](const sim::I420Frame& f, const geo::Lla& at, const geo::CameraPose& c) {
@@ -79,7 +72,7 @@ TEST_CASE("scene objects: a car where geo::project puts it, its shadow beside it
 
 TEST_CASE("scene objects: a car under the highway's deck is hidden", "[sim][scene][objects]") {
     const auto under = sim::ObjectSet::all().at(24);
-    const sim::ObjectState& convoy1 = named(under, "convoy1");
+    const sim::ObjectState& convoy1 = object_named(under, "convoy1");
     REQUIRE(sim::under_deck(convoy1.xy, convoy1.level));
     const geo::CameraPose camera = aimed(eye, convoy1.position, 2);
     const sim::I420Frame with = render(camera, under), without = render(camera, {});
@@ -98,7 +91,7 @@ TEST_CASE("scene objects: a car under the highway's deck is hidden", "[sim][scen
     CHECK(v.at(static_cast<int>(centre->px), static_cast<int>(centre->py)).y > 130);
     // Two seconds earlier it is in the open, and drawn.
     const auto before = sim::ObjectSet::all().at(22);
-    const sim::ObjectState& open = named(before, "convoy1");
+    const sim::ObjectState& open = object_named(before, "convoy1");
     REQUIRE_FALSE(sim::under_deck(open.xy, open.level));
     const geo::CameraPose camera2 = aimed(eye, open.position, 2);
     const sim::I420Frame seen = render(camera2, before), empty = render(camera2, {});

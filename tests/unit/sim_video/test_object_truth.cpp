@@ -6,11 +6,13 @@
 #include <sstream>
 #include <string>
 
+#include "../sim/scene_test_support.hpp"
 #include "geo/image.hpp"
 #include "sim_video/object_truth.hpp"
 #include "sim_video/objects_log.hpp"
 
 using namespace gimbal;
+using scene_test::object_named;
 
 namespace {
 
@@ -36,10 +38,7 @@ const sim_video::ObjectTruth& named(const std::vector<sim_video::ObjectTruth>& a
 
 TEST_CASE("object truth: where the camera sees each object", "[sim_video][objects]") {
     const auto objects = sim::ObjectSet::all().at(0);
-    const sim::ObjectState* car = nullptr;
-    for (const auto& o : objects)
-        if (o.spec().name == "car") car = &o;
-    REQUIRE(car);
+    const sim::ObjectState* car = &object_named(objects, "car");
     const geo::CameraPose camera = looking_at(car->position, 2);
     const auto truth = sim_video::object_truth(camera, objects);
     REQUIRE(truth.size() == objects.size());
@@ -64,10 +63,7 @@ TEST_CASE("object truth: where the camera sees each object", "[sim_video][object
 
 TEST_CASE("object truth: under the deck, hidden", "[sim_video][objects]") {
     const auto objects = sim::ObjectSet::all().at(24);
-    const sim::ObjectState* convoy = nullptr;
-    for (const auto& o : objects)
-        if (o.spec().name == "convoy1") convoy = &o;
-    REQUIRE(convoy);
+    const sim::ObjectState* convoy = &object_named(objects, "convoy1");
     const auto truth = sim_video::object_truth(looking_at(convoy->position, 2), objects);
     const auto& t = named(truth, "convoy1");
     CHECK(t.in_picture);
@@ -78,10 +74,7 @@ TEST_CASE("object truth: under the deck, hidden", "[sim_video][objects]") {
 TEST_CASE("object truth: behind the terrain, hidden", "[sim_video][objects]") {
     // From low down west of the east hill, the hill road behind it is out of sight.
     const auto objects = sim::ObjectSet::all().at(0);
-    const sim::ObjectState* hill_car = nullptr;
-    for (const auto& o : objects)
-        if (o.spec().name == "hill_car") hill_car = &o;
-    REQUIRE(hill_car);
+    const sim::ObjectState* hill_car = &object_named(objects, "hill_car");
     const sim::TerrainXY low{0, 2200};
     const geo::LatLon ll = sim::terrain_lat_lon(low);
     const geo::Lla from{ll.lat_deg, ll.lon_deg, sim::terrain_height_xy(low) + 30};
