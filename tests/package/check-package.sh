@@ -180,6 +180,33 @@ if [ -f "$track_deb" ]; then
   warnings=$(LC_ALL=C.UTF-8 MANWIDTH=80 man --warnings -l "$page" 2>&1 >/dev/null || true)
   [ -z "$warnings" ] && grep -q "^\.TH .*gimbal.* $version\"" <<<"$(zcat "$page")" \
     && pass "gimbald-track: man page gimbal-track.1.gz" || fail "gimbald-track: man page: $warnings"
+  # Both packages installed together: the packaged /usr/sbin/gimbald finds /usr/bin/gimbal-track
+  # by itself (docs/tracking.md "gimbald's side") and it says hello.
+  if [ ${#run[@]} -eq 0 ]; then
+    both=$(mktemp -d)
+    trap 'rm -rf "$control" "$scratch" "$tscratch" "$both"' EXIT
+    dpkg-deb -x "$deb" "$both"
+    dpkg-deb -x "$track_deb" "$both"
+    port=$(shuf -i 20000-40000 -n 1)
+    printf '{"command": {"port": %d}, "gimbals": [{"name": "sim", "protocol": "orion",
+      "link": {"type": "sim"}, "video": {"input": "udp://127.0.0.1:%d", "tracking": {}}}]}\n' \
+      "$port" "$((port + 1))" >"$both/tracking.json"
+    (cd / && exec env -u GIMBAL_TRACK "$both/usr/sbin/gimbald" -c "$both/tracking.json" \
+      >"$both/gimbald.log" 2>&1) &
+    daemon=$!
+    for _ in $(seq 50); do
+      grep -q '"event":"track_process_ready"' "$both/gimbald.log" && break
+      sleep 0.2
+    done
+    kill "$daemon" 2>/dev/null || true
+    wait "$daemon" 2>/dev/null || true
+    if grep -q '"event":"track_process_ready"' "$both/gimbald.log" \
+        && grep -q "\"program\":\"$both/usr/bin/gimbal-track\"" "$both/gimbald.log"; then
+      pass "packaged gimbald starts the packaged gimbal-track"
+    else
+      fail "packaged gimbald and gimbal-track: $(grep -E 'track_process|error' "$both/gimbald.log" | head -5)"
+    fi
+  fi
 fi
 # Man pages render without groff warnings and carry the version. (Here-strings,
 # not pipes into grep -q: with pipefail an early grep exit SIGPIPEs the writer.)
