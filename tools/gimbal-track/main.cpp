@@ -24,6 +24,8 @@ using namespace gimbal_track;
 
 namespace {
 
+constexpr int start_burst_ms = 10;
+
 int signal_fd() {
     sigset_t set;
     sigemptyset(&set);
@@ -82,7 +84,12 @@ int run(const Options& options, const Log& log) {
         if (fds[0].revents == 0) continue;
         switch (socket.receive(buffer, wire::max_datagram_bytes)) {
             case SeqPacket::Received::message:
-                session.datagram(buffer, socket.pending());
+                // Before a track's first frame, "behind" waits a little for more: gimbald
+                // starts a track with a burst of the units since the latest key frame and the
+                // box belongs to the newest, but on another core this process may read one
+                // before gimbald has written the next (they come microseconds apart; live
+                // frames tens of milliseconds apart).
+                session.datagram(buffer, socket.pending(session.starting() ? start_burst_ms : 0));
                 break;
             case SeqPacket::Received::too_large:
                 session.refuse("a datagram larger than " +

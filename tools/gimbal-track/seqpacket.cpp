@@ -75,9 +75,9 @@ SeqPacket::Received SeqPacket::receive(std::vector<std::uint8_t>& buffer, std::s
     return Received::message;
 }
 
-bool SeqPacket::pending() const {
+bool SeqPacket::pending(int wait_ms) const {
     pollfd p{fd_, POLLIN, 0};
-    return ::poll(&p, 1, 0) == 1 && (p.revents & POLLIN) != 0;
+    return ::poll(&p, 1, wait_ms) == 1 && (p.revents & POLLIN) != 0;
 }
 
 bool SeqPacket::send(std::span<const std::uint8_t> datagram) {

@@ -28,8 +28,8 @@ class SeqPacket {
     // Blocks for the next datagram into `buffer` (its capacity is the limit); a larger one
     // is read, discarded and reported too_large.
     Received receive(std::vector<std::uint8_t>& buffer, std::size_t limit);
-    // Whether a datagram is already waiting.
-    bool pending() const;
+    // Whether a datagram is waiting, or arrives within wait_ms.
+    bool pending(int wait_ms = 0) const;
     // False when gimbald went away (or the socket failed).
     bool send(std::span<const std::uint8_t> datagram);
 

@@ -124,6 +124,10 @@ void TrackSession::report_decoder_error() {
                   {{"id", t.request.id}, {"errors", stats_.decoder_errors}});
 }
 
+bool TrackSession::starting() const {
+    return track_ != nullptr && track_->tracker == nullptr;
+}
+
 void TrackSession::access_unit(const wire::AccessUnitAssembler::Unit& unit, bool behind) {
     ++stats_.units;
     if (!track_) {

@@ -54,6 +54,8 @@ class TrackSession {
     void shutdown();
 
     bool tracking() const { return track_ != nullptr; }
+    // A track runs and has not tracked its first frame yet.
+    bool starting() const;
     const SessionStats& stats() const { return stats_; }
 
   private:
