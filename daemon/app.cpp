@@ -286,6 +286,13 @@ void App::start_http() {
             if (sessions_[i]->name() == gimbal) return videos_[i].get();
         return nullptr;
     };
+    // Contract section 20; trackers_ too is filled later (start_tracking).
+    view.track_steer_latency =
+        [this](const std::string& name) -> const gimbal::metrics::Histogram* {
+        for (std::size_t i = 0; i < sessions_.size() && i < trackers_.size(); ++i)
+            if (sessions_[i]->name() == name && trackers_[i]) return &trackers_[i]->steer_latency();
+        return nullptr;
+    };
     http_ = std::make_unique<http::HttpServer>(io_, std::move(options), std::move(view));
     events_.add([this](const std::string& gimbal, const gimbal::state::Event& e) {
         http_->publish_event(gimbal, e);

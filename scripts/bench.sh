@@ -9,14 +9,19 @@
 # (bench_record, docs/operations.md "Recording throughput"; RECORD_SECONDS, default 60), then
 # visual tracking: gimbal-track decoding and tracking at the input rate, CSRT and KCF, 640x360
 # at 15 fps and 1280x720 at 30 fps (bench_track, docs/tracking.md "Cost"; TRACK_SECONDS sets
-# each run's length, default 20).
+# each run's length, default 20), and tracking with the daemon: frame received -> steering
+# command sent and the laser dead-man while tracking, real gimbal-sim + gimbald + gimbal-track
+# (tests/bench/track/track_latency_bench.py, docs/tracking.md "Cost"; TRACK_LATENCY_SECONDS
+# sets how long the track runs, default 60).
 # Extra arguments go to each Google Benchmark program, bench_terrain and bench_sim_video, e.g.
 #   scripts/bench.sh --benchmark_filter=Decode --benchmark_repetitions=5
 # Each target is printed as met or MISSED (a summary at the end); timings are never enforced.
 #
 #   --smoke     the same benchmarks on the same data and models, each measured briefly (the
-#               relay 2 s, the recorder 1 s, each tracking run 3 s); fails when one does not run or loses
-#               something. ctest runs it as "bench: bench.sh --smoke".
+#               relay 2 s, the recorder 1 s, each tracking run 3 s, the track with gimbald 8 s);
+#               fails when one does not run or loses something. ctest runs it as "bench:
+#               bench.sh --smoke" (with TRACK_LATENCY_SMOKE=0: the tracking latency smoke is a
+#               ctest of its own, "bench: track_latency_bench.py --smoke").
 #   --no-build  use the programs already built in BUILD_DIR
 #
 # Environment: BUILD_DIR, an already configured build directory instead of build/release;
@@ -41,10 +46,12 @@ else
     build=build/release
 fi
 targets=(bench_orion bench_klv bench_terrain bench_video_relay bench_sim_video bench_record
-         bench_track gimbal-track)
+         bench_track gimbal-track gimbald gimbal-sim)
 $build_it && cmake --build "$build" --target "${targets[@]}" -j "$jobs"
 bench=$build/tests/bench
 model_dir=$bench/terrain  # the terrain model, built once and kept
+track_latency=(python3 tests/bench/track/track_latency_bench.py --gimbald "$build/daemon/gimbald"
+               --gimbal-sim "$build/tools/gimbal-sim" --gimbal-track "$build/tools/gimbal-track")
 
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
@@ -72,6 +79,7 @@ if ! $smoke; then
     "$bench/record/bench_record" --rate 10000 --seconds "${RECORD_SECONDS:-60}" --dir "$out" |
         tee "$out/record"
     "$bench/track/bench_track" --seconds "${TRACK_SECONDS:-20}" | tee "$out/track"
+    "${track_latency[@]}" --seconds "${TRACK_LATENCY_SECONDS:-60}" | tee "$out/track_latency"
 else
     # Every registered Google benchmark must run and report; none may flag an error.
     for program in bench_orion bench_klv; do
@@ -114,6 +122,14 @@ PY
     "$bench/track/bench_track" --smoke >"$out/track" 2>&1 ||
         fail "bench_track --smoke: $(tail -5 "$out/track")"
     echo "bench_track --smoke: ran"
+
+    # Tracking with gimbald: a track on the simulator's car for 8 s, the laser left to its
+    # dead-man meanwhile; fails without a track, a steering latency in /metrics or a cease.
+    if [[ ${TRACK_LATENCY_SMOKE:-1} != 0 ]]; then
+        "${track_latency[@]}" --smoke >"$out/track_latency" 2>&1 ||
+            fail "track_latency_bench.py --smoke: $(tail -15 "$out/track_latency")"
+        echo "track_latency_bench.py --smoke: ran"
+    fi
 fi
 
 echo "== targets"
@@ -126,6 +142,7 @@ verdicts "$out/video"
 verdicts "$out/terrain"
 verdicts "$out/record"
 verdicts "$out/track"
+if [[ -f $out/track_latency ]]; then verdicts "$out/track_latency"; fi
 name="bench.sh$($smoke && echo " --smoke")"
 if ((${#missed[@]})); then
     echo "$name: nothing lost, but ${#missed[@]} target(s) MISSED (above)"

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "config.hpp"
+#include "metrics/histogram.hpp"
 #include "request_path.hpp"
 #include "video/video_tap.hpp"
 
@@ -26,6 +27,9 @@ struct DaemonView {
     std::function<bool()> mqtt_up;                        // false without an mqtt section
     // Contract section 18: a gimbal's video, null for no such gimbal or one without video.
     std::function<video::VideoTap*(const std::string& gimbal)> video;
+    // Contract section 20: a gimbal's frame received -> steering command sent latencies,
+    // null for a gimbal without visual tracking.
+    std::function<const gimbal::metrics::Histogram*(const std::string& gimbal)> track_steer_latency;
 };
 
 // The HTTP server's own counters (metrics).

@@ -78,6 +78,15 @@ std::string render_metrics(const DaemonView& daemon, const CommandMetrics& comma
                      g.session->laser_firing(index) ? 1.0 : 0.0);
     }
 
+    e.family("gimbald_track_steer_latency_seconds", Type::histogram,
+             "Visual tracking: from a frame's arrival to the steering command its box made "
+             "due, handed to the gimbal's link (commands of the 20 Hz tick not counted).");
+    for (const auto& g : gimbals) {
+        const auto* latency =
+            daemon.track_steer_latency ? daemon.track_steer_latency(g.session->name()) : nullptr;
+        if (latency != nullptr) e.histogram({{"gimbal", g.session->name()}}, *latency);
+    }
+
     e.family("gimbald_commands_total", Type::counter,
              "Requests completed by the request path (every transport), by command and result "
              "(ok or the error code).");

@@ -1,9 +1,11 @@
 #include "track/track_controller.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <variant>
+#include <vector>
 
 #include "calendar/utc.hpp"
 #include "command/params.hpp"
@@ -30,6 +32,13 @@ namespace {
 constexpr std::size_t max_frame_poses = 240;
 
 constexpr double tick_s = 0.05;  // 20 Hz: loss timing and steering
+
+// Frame received -> steering command sent: finer than the request latencies' buckets around
+// the budget (30 ms p95, contract section 20), which is one of the bounds.
+std::vector<double> steer_latency_buckets_s() {
+    return {0.001, 0.002, 0.005, 0.01, 0.015, 0.02, 0.025, 0.03, 0.04,
+            0.05,  0.075, 0.1,   0.15, 0.25,  0.5,  1.0,   2.5};
+}
 
 // "2026-11-29T09:15:02.123Z": the contract's UTC with milliseconds.
 std::string utc_now() {
@@ -89,7 +98,8 @@ TrackController::TrackController(boost::asio::io_context& io, TrackControllerOpt
           io, process_options(options_), [this](const wire::Message& m) { on_message(m); },
           [this](bool ready) { on_ready(ready); }),
       steering_(session, terrain),
-      tick_timer_(io) {}
+      tick_timer_(io),
+      steer_latency_(steer_latency_buckets_s()) {}
 
 TrackController::~TrackController() {
     session_.set_track({});  // the session outlives this: its view must not call back
@@ -251,7 +261,14 @@ void TrackController::on_box(const wire::Box& box) {
     if (record_tap_.box_handled) record_tap_.box_handled(*state());
     // A command due goes out with the box that made it, not at the next tick (up to 50 ms
     // later): frame received -> steering command sent is a budget (contract section 20).
-    steer(now);
+    if (steer(now)) observe_steer_latency(box.pts_90k);
+}
+
+void TrackController::observe_steer_latency(std::int64_t pts_90k) {
+    const auto pose = std::find_if(frame_poses_.rbegin(), frame_poses_.rend(),
+                                   [&](const FramePose& p) { return p.pts_90k == pts_90k; });
+    if (pose == frame_poses_.rend()) return;  // too old, or the frame came without a pose
+    steer_latency_.observe(std::max(0.0, now_s() - pose->arrived_s));
 }
 
 void TrackController::locate(std::int64_t pts_90k, double x, double y) {
@@ -355,14 +372,16 @@ void TrackController::tick() {
     arm_tick();
 }
 
-void TrackController::steer(double now) {
+bool TrackController::steer(double now) {
     // Steering waits for gimbal-track's first box: until then the gimbal keeps doing what it
     // did (an Orion following the point the operator put it on); turning at a rate towards
     // the requested box would let the platform's own motion sweep the object away.
-    if (!track_->steer || track_->machine.frames() == 0) return;
+    if (!track_->steer || track_->machine.frames() == 0) return false;
     const auto& b = track_->box;
+    const auto sent = steering_.sent();
     steering_.steer(now, track_->filter.estimate(now), (b.x0 + b.x1) / 2, (b.y0 + b.y1) / 2,
                     track_->machine.phase() != gt::TrackPhase::lost);
+    return steering_.sent() != sent;
 }
 
 void TrackController::emit(std::string kind, json fields) {

@@ -26,6 +26,7 @@
 #include "command/result.hpp"
 #include "gimbal_session.hpp"
 #include "link/lifetime.hpp"
+#include "metrics/histogram.hpp"
 #include "session/track_request.hpp"
 #include "state/event.hpp"
 #include "state/track_state.hpp"
@@ -80,6 +81,11 @@ class TrackController {
     // STATE `track`; nullopt when none runs.
     std::optional<gimbal::state::TrackState> state() const;
     const TrackProcess& process() const { return process_; }
+    // Frame received -> steering command sent (contract section 20, "Budgets"): for each
+    // steering command a box made due, the time from its frame's access unit arriving at
+    // gimbald to the command handed to the gimbal's link, in seconds. Commands of the 20 Hz
+    // tick are not counted. Metric gimbald_track_steer_latency_seconds (docs/http.md).
+    const gimbal::metrics::Histogram& steer_latency() const { return steer_latency_; }
 
   private:
     struct Track {
@@ -103,7 +109,10 @@ class TrackController {
     void report(const gimbal::track::TrackChange& change);
     void end(gimbal::track::EndReason reason, bool tell_process);
     void arm_tick();
-    void steer(double now);  // a steering command, when one is due
+    // A steering command, when one is due; true when one was sent.
+    bool steer(double now);
+    // The steering command sent for the box of frame `pts_90k`: its latency, observed.
+    void observe_steer_latency(std::int64_t pts_90k);
     void tick();
     void emit(std::string kind, nlohmann::json fields);
 
@@ -133,6 +142,7 @@ class TrackController {
     double last_heard_s_ = 0;  // the latest message from gimbal-track
     std::uint64_t units_unanswered_ = 0;  // access units sent since then
     std::uint32_t next_id_ = 1;
+    gimbal::metrics::Histogram steer_latency_;
     Lifetime lifetime_;
 };
 
