@@ -60,6 +60,26 @@ def wait_for(predicate, timeout, interval=0.05):
 
 # --- ports and files -------------------------------------------------------------------------
 
+def settled_projection(client, gimbal, point, within=0.1, timeout=20, still=0.005):
+    """`project`'s reply for point once it lies within `within` of the picture's centre and
+    the camera has settled: two replies 0.2 s apart agree to `still` (a box drawn while the
+    gimbal still slews is drawn on a picture that no longer shows it there). None on timeout."""
+    previous = [None]
+
+    def settled():
+        reply = client.request("project", gimbal=gimbal, **point)
+        if not (reply and reply.get("ok") and reply["visible"] and
+                abs(reply["x"]) < within and abs(reply["y"]) < within):
+            previous[0] = None
+            return None
+        before, previous[0] = previous[0], reply
+        if before and abs(reply["x"] - before["x"]) < still and \
+                abs(reply["y"] - before["y"]) < still:
+            return reply
+        return None
+    return wait_for(settled, timeout, 0.2)
+
+
 def free_port(kind=socket.SOCK_DGRAM):
     """A port nobody listens on right now (the kernel's pick for port 0)."""
     with socket.socket(socket.AF_INET, kind) as s:

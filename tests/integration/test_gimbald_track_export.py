@@ -58,13 +58,7 @@ class TrackRecordingExport(gt.GimbaldTestCase):
         """Points the camera at the farm; its image position once it is near the centre."""
         self.assertOk(c.request("geopoint", gimbal="main", **FARM))
 
-        def centred():
-            reply = c.request("project", gimbal="main", **FARM)
-            if reply and reply.get("ok") and reply["visible"] and \
-                    abs(reply["x"]) < 0.1 and abs(reply["y"]) < 0.1:
-                return reply
-            return None
-        at = gt.wait_for(centred, 20, 0.2)
+        at = gt.settled_projection(c, "main", FARM)
         self.assertTrue(at, "the farm never came to the centre of the picture")
         return at
 
