@@ -264,10 +264,15 @@ void TrackController::on_box(const wire::Box& box) {
     if (steer(now)) observe_steer_latency(box.pts_90k);
 }
 
-void TrackController::observe_steer_latency(std::int64_t pts_90k) {
+const TrackController::FramePose* TrackController::frame_pose(std::int64_t pts_90k) const {
     const auto pose = std::find_if(frame_poses_.rbegin(), frame_poses_.rend(),
                                    [&](const FramePose& p) { return p.pts_90k == pts_90k; });
-    if (pose == frame_poses_.rend()) return;  // too old, or the frame came without a pose
+    return pose == frame_poses_.rend() ? nullptr : &*pose;
+}
+
+void TrackController::observe_steer_latency(std::int64_t pts_90k) {
+    const FramePose* pose = frame_pose(pts_90k);
+    if (pose == nullptr) return;  // too old, or the frame came without a pose
     steer_latency_.observe(std::max(0.0, now_s() - pose->arrived_s));
 }
 
@@ -275,9 +280,8 @@ void TrackController::locate(std::int64_t pts_90k, double x, double y) {
     // With the camera's pose when the frame arrived, not now: by now the gimbal may have
     // turned (steering it), and a frame located with a later pose would put the object where
     // the camera went - a loop that runs away.
-    const auto pose = std::find_if(frame_poses_.rbegin(), frame_poses_.rend(),
-                                   [&](const FramePose& p) { return p.pts_90k == pts_90k; });
-    if (pose == frame_poses_.rend()) return;  // too old, or the frame came without a pose
+    const FramePose* pose = frame_pose(pts_90k);
+    if (pose == nullptr) return;  // too old, or the frame came without a pose
     const auto ground = gimbal::session::locate_point(pose->view, {x, y}, terrain_);
     if (!ground) return;
     track_->filter.update({pose->arrived_s, ground->point, ground->range_m});

@@ -138,6 +138,7 @@ class TrackController {
         gimbal::session::ImageView view;
     };
     std::deque<FramePose> frame_poses_;
+    const FramePose* frame_pose(std::int64_t pts_90k) const;  // nullptr: not kept
     bool need_key_ = true;     // send nothing until a key frame (after a start or a drop)
     double last_heard_s_ = 0;  // the latest message from gimbal-track
     std::uint64_t units_unanswered_ = 0;  // access units sent since then
